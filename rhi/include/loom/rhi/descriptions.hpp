@@ -1,0 +1,375 @@
+#pragma once
+// Plain descriptions of GPU objects and of the work recorded on them (after sokol_gfx's desc
+// structs and WebGPU's descriptors). Every field has a sensible default; a description that is
+// wrong comes back from the Device as an InvalidArgument error naming the object and field.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "loom/rhi/format.hpp"
+#include "loom/rhi/handles.hpp"
+
+namespace loom::rhi {
+
+// ---- bit flags -------------------------------------------------------------------------------
+
+template <class E>
+struct EnableBitFlags : std::false_type {};
+
+template <class E>
+concept BitFlags = EnableBitFlags<E>::value;
+
+template <BitFlags E>
+constexpr E operator|(E a, E b) {
+    using U = std::underlying_type_t<E>;
+    return static_cast<E>(static_cast<U>(a) | static_cast<U>(b));
+}
+template <BitFlags E>
+constexpr E operator&(E a, E b) {
+    using U = std::underlying_type_t<E>;
+    return static_cast<E>(static_cast<U>(a) & static_cast<U>(b));
+}
+template <BitFlags E>
+constexpr E& operator|=(E& a, E b) { return a = a | b; }
+/// True when every flag of `wanted` is set in `flags`.
+template <BitFlags E>
+constexpr bool has_all(E flags, E wanted) { return (flags & wanted) == wanted; }
+/// True when any flag of `wanted` is set in `flags`.
+template <BitFlags E>
+constexpr bool has_any(E flags, E wanted) { return static_cast<std::underlying_type_t<E>>(flags & wanted) != 0; }
+
+// ---- textures --------------------------------------------------------------------------------
+
+enum class TextureDimension : uint8_t { Tex2D, Tex2DArray, Tex3D, Cube };
+
+enum class TextureUsage : uint32_t {
+    None = 0,
+    Sampled = 1u << 0,                 ///< read in shaders through a sampler
+    ColorAttachment = 1u << 1,         ///< rendered to as a colour target
+    DepthStencilAttachment = 1u << 2,  ///< rendered to as depth/stencil target
+    Storage = 1u << 3,                 ///< read/written as a storage image
+    CopySrc = 1u << 4,                 ///< source of copies and readback
+    CopyDst = 1u << 5,                 ///< destination of copies and uploads
+};
+template <>
+struct EnableBitFlags<TextureUsage> : std::true_type {};
+
+/// Where a texture lives inside a heap (memory aliasing). Offsets must respect the alignment
+/// reported by Device::texture_memory_requirements.
+struct TexturePlacement {
+    HeapHandle heap;
+    uint64_t offset = 0;
+};
+
+struct TextureDesc {
+    std::string name;  ///< shown in errors, debuggers and plans
+    TextureDimension dimension = TextureDimension::Tex2D;
+    Format format = Format::RGBA8Unorm;
+    uint32_t width = 1;
+    uint32_t height = 1;
+    uint32_t depth_or_layers = 1;  ///< depth for Tex3D, layers for arrays, 6 for Cube
+    uint32_t mip_levels = 1;
+    uint32_t samples = 1;
+    /// Readback and upload are always allowed; these say how else the texture is used.
+    TextureUsage usage = TextureUsage::Sampled | TextureUsage::ColorAttachment;
+    /// Set to place the texture inside a heap (only where Capabilities::placed_resources).
+    std::optional<TexturePlacement> placement;
+};
+
+/// Size and alignment a texture needs inside a heap.
+struct MemoryRequirements {
+    uint64_t size = 0;
+    uint64_t alignment = 1;
+};
+
+struct HeapDesc {
+    std::string name;
+    uint64_t size = 0;
+};
+
+// ---- buffers ---------------------------------------------------------------------------------
+
+enum class BufferUsage : uint32_t {
+    None = 0,
+    Vertex = 1u << 0,
+    Index = 1u << 1,
+    Uniform = 1u << 2,
+    Storage = 1u << 3,
+    Indirect = 1u << 4,
+    CopySrc = 1u << 5,
+    CopyDst = 1u << 6,
+};
+template <>
+struct EnableBitFlags<BufferUsage> : std::true_type {};
+
+struct BufferDesc {
+    std::string name;
+    uint64_t size = 0;
+    /// Uploads (Device::write_buffer) and readback are always allowed.
+    BufferUsage usage = BufferUsage::Vertex;
+};
+
+enum class IndexType : uint8_t { Uint16, Uint32 };
+
+// ---- samplers --------------------------------------------------------------------------------
+
+enum class Filter : uint8_t { Nearest, Linear };
+enum class AddressMode : uint8_t { Repeat, MirroredRepeat, ClampToEdge, ClampToBorder };
+enum class CompareOp : uint8_t { Never, Less, Equal, LessEqual, Greater, NotEqual, GreaterEqual, Always };
+enum class BorderColor : uint8_t { TransparentBlack, OpaqueBlack, OpaqueWhite };
+
+struct SamplerDesc {
+    std::string name;
+    Filter min_filter = Filter::Linear;
+    Filter mag_filter = Filter::Linear;
+    Filter mipmap_filter = Filter::Nearest;
+    AddressMode address_u = AddressMode::ClampToEdge;
+    AddressMode address_v = AddressMode::ClampToEdge;
+    AddressMode address_w = AddressMode::ClampToEdge;
+    float min_lod = 0.0f;
+    float max_lod = 1000.0f;
+    float max_anisotropy = 1.0f;
+    /// Set for depth-comparison (shadow) samplers.
+    std::optional<CompareOp> compare;
+    BorderColor border = BorderColor::TransparentBlack;
+};
+
+// ---- pipelines -------------------------------------------------------------------------------
+
+enum class VertexFormat : uint8_t {
+    Float, Float2, Float3, Float4,
+    Int, Int2, Int3, Int4,
+    Uint, Uint2, Uint3, Uint4,
+    UByte4Norm, Byte4Norm, UShort2Norm, Short2Norm, UShort4Norm, Short4Norm,
+};
+
+enum class VertexStepMode : uint8_t { PerVertex, PerInstance };
+
+struct VertexAttribute {
+    uint32_t location = 0;  ///< matches `layout(location = N) in` in the vertex shader
+    VertexFormat format = VertexFormat::Float3;
+    uint32_t offset = 0;
+};
+
+/// One vertex buffer slot: its stride and the attributes read from it.
+struct VertexBufferLayout {
+    uint32_t stride = 0;
+    VertexStepMode step = VertexStepMode::PerVertex;
+    std::vector<VertexAttribute> attributes;
+};
+
+enum class PrimitiveTopology : uint8_t { TriangleList, TriangleStrip, LineList, LineStrip, PointList };
+enum class CullMode : uint8_t { None, Front, Back };
+/// Which winding, as seen in normalised device coordinates (y up), is the front face.
+enum class FrontFace : uint8_t { CounterClockwise, Clockwise };
+enum class PolygonMode : uint8_t { Fill, Line };
+
+struct RasterState {
+    CullMode cull = CullMode::None;
+    FrontFace front_face = FrontFace::CounterClockwise;
+    PolygonMode polygon = PolygonMode::Fill;
+    bool depth_clamp = false;
+    float depth_bias_constant = 0.0f;
+    float depth_bias_slope = 0.0f;
+};
+
+struct DepthState {
+    bool test = false;
+    bool write = false;
+    CompareOp compare = CompareOp::Less;
+};
+
+enum class BlendFactor : uint8_t {
+    Zero, One, SrcColor, OneMinusSrcColor, DstColor, OneMinusDstColor,
+    SrcAlpha, OneMinusSrcAlpha, DstAlpha, OneMinusDstAlpha, ConstantColor, OneMinusConstantColor,
+};
+enum class BlendOp : uint8_t { Add, Subtract, ReverseSubtract, Min, Max };
+
+enum class ColorMask : uint8_t { None = 0, R = 1, G = 2, B = 4, A = 8, All = 15 };
+template <>
+struct EnableBitFlags<ColorMask> : std::true_type {};
+
+struct BlendState {
+    bool enabled = false;
+    BlendFactor src_color = BlendFactor::One;
+    BlendFactor dst_color = BlendFactor::Zero;
+    BlendOp color_op = BlendOp::Add;
+    BlendFactor src_alpha = BlendFactor::One;
+    BlendFactor dst_alpha = BlendFactor::Zero;
+    BlendOp alpha_op = BlendOp::Add;
+    ColorMask write_mask = ColorMask::All;
+};
+
+struct GraphicsPipelineDesc {
+    std::string name;
+    ShaderHandle vertex;
+    ShaderHandle fragment;
+    std::vector<VertexBufferLayout> vertex_buffers;  ///< slot i is vertex_buffers[i]
+    PrimitiveTopology topology = PrimitiveTopology::TriangleList;
+    RasterState raster;
+    DepthState depth;
+    std::vector<Format> color_formats;  ///< one per colour attachment, in attachment order
+    std::vector<BlendState> blend;      ///< per colour attachment; empty means no blending
+    Format depth_format = Format::Undefined;
+    uint32_t samples = 1;
+};
+
+struct ComputePipelineDesc {
+    std::string name;
+    ShaderHandle compute;
+};
+
+// ---- render passes ---------------------------------------------------------------------------
+
+enum class LoadOp : uint8_t { Load, Clear, DontCare };
+enum class StoreOp : uint8_t { Store, DontCare };
+
+struct ColorAttachment {
+    TextureHandle texture;
+    uint32_t mip = 0;
+    uint32_t layer = 0;
+    LoadOp load = LoadOp::Clear;
+    StoreOp store = StoreOp::Store;
+    /// Converted to the attachment's kind: float/unorm/snorm use it as is, integer formats
+    /// round it (double holds every 32-bit integer exactly).
+    std::array<double, 4> clear{0.0, 0.0, 0.0, 0.0};
+};
+
+struct DepthAttachment {
+    TextureHandle texture;
+    uint32_t mip = 0;
+    uint32_t layer = 0;
+    LoadOp depth_load = LoadOp::Clear;
+    StoreOp depth_store = StoreOp::Store;
+    float clear_depth = 1.0f;
+    LoadOp stencil_load = LoadOp::DontCare;
+    StoreOp stencil_store = StoreOp::DontCare;
+    uint32_t clear_stencil = 0;
+};
+
+/// Attachments must all have the same size (of the chosen mip). The backend moves them into
+/// the attachment state itself; textures sampled inside the pass must have been transitioned
+/// to ResourceState::ShaderRead before it begins.
+struct RenderPassDesc {
+    std::string label;
+    std::vector<ColorAttachment> colors;
+    std::optional<DepthAttachment> depth;
+};
+
+/// Viewport in framebuffer pixels, origin top-left (row 0 is the top row).
+struct Viewport {
+    float x = 0.0f;
+    float y = 0.0f;
+    float width = 0.0f;
+    float height = 0.0f;
+    float min_depth = 0.0f;
+    float max_depth = 1.0f;
+};
+
+/// Rectangle in framebuffer pixels, origin top-left.
+struct Rect {
+    int32_t x = 0;
+    int32_t y = 0;
+    uint32_t width = 0;
+    uint32_t height = 0;
+};
+
+// ---- resource bindings -----------------------------------------------------------------------
+
+/// A uniform or storage buffer range; size 0 means "to the end of the buffer".
+struct BufferBinding {
+    BufferHandle buffer;
+    uint64_t offset = 0;
+    uint64_t size = 0;
+};
+
+/// A combined texture + sampler (`uniform sampler2D` in GLSL).
+struct TextureBinding {
+    TextureHandle texture;
+    SamplerHandle sampler;
+};
+
+/// A storage image (`uniform image2D` in GLSL), one mip level.
+struct StorageTextureBinding {
+    TextureHandle texture;
+    uint32_t mip = 0;
+};
+
+/// One entry of a bind group: what goes at `binding` of the set. Whether a buffer is bound as
+/// uniform or storage buffer comes from the shader's reflection.
+struct BindingEntry {
+    uint32_t binding = 0;
+    std::variant<BufferBinding, TextureBinding, StorageTextureBinding> resource;
+};
+
+/// The resources of one descriptor set (`layout(set = S, binding = B)`), built fluently:
+/// `BindGroup{}.buffer(0, ubo).texture(1, albedo, sampler)`.
+struct BindGroup {
+    std::vector<BindingEntry> entries;
+
+    BindGroup& buffer(uint32_t binding, BufferHandle buf, uint64_t offset = 0, uint64_t size = 0) {
+        entries.push_back({binding, BufferBinding{buf, offset, size}});
+        return *this;
+    }
+    BindGroup& buffer(uint32_t binding, const BufferBinding& range) {
+        entries.push_back({binding, range});
+        return *this;
+    }
+    BindGroup& texture(uint32_t binding, TextureHandle tex, SamplerHandle sampler) {
+        entries.push_back({binding, TextureBinding{tex, sampler}});
+        return *this;
+    }
+    BindGroup& storage_texture(uint32_t binding, TextureHandle tex, uint32_t mip = 0) {
+        entries.push_back({binding, StorageTextureBinding{tex, mip}});
+        return *this;
+    }
+};
+
+// ---- resource states and copies --------------------------------------------------------------
+
+/// The state a resource is in, for explicit transitions (Vulkan layouts and barriers; GL
+/// memory barriers for storage access). Backends track each texture's current state.
+enum class ResourceState : uint8_t {
+    Undefined,         ///< contents may be discarded
+    ShaderRead,        ///< sampled texture / uniform or read-only storage buffer
+    RenderTarget,      ///< colour attachment
+    DepthWrite,        ///< depth/stencil attachment, written
+    DepthRead,         ///< depth/stencil attachment or texture, read-only
+    Storage,           ///< storage image / buffer, read-write in shaders
+    CopySrc,
+    CopyDst,
+    Present,           ///< handed to the window system
+    VertexBuffer,
+    IndexBuffer,
+    IndirectArgument,
+};
+
+struct Origin3D {
+    uint32_t x = 0, y = 0, z = 0;
+};
+struct Extent3D {
+    uint32_t width = 1, height = 1, depth = 1;
+};
+
+/// A rectangle of one mip level and layer of a texture (rows top-first).
+struct TextureRegion {
+    uint32_t mip = 0;
+    uint32_t layer = 0;
+    Origin3D origin{};
+    /// 0 means "the whole mip level" in that dimension.
+    Extent3D extent{0, 0, 0};
+};
+
+struct TextureCopy {
+    TextureHandle src;
+    TextureRegion src_region;
+    TextureHandle dst;
+    TextureRegion dst_region;  ///< its extent is ignored; src_region's is used
+};
+
+}  // namespace loom::rhi

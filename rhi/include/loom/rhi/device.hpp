@@ -1,0 +1,252 @@
+#pragma once
+// The render-hardware interface: a small Device / CommandList pair (after NVRHI's IDevice and
+// ICommandList) that the OpenGL and Vulkan backends implement identically.
+//
+// Conventions (the same on every backend, see DESIGN.md): NDC y points up, depth runs 0..1,
+// row 0 of every framebuffer, texture, upload and readback is the top row, counter-clockwise
+// triangles (as seen in NDC) are front faces.
+//
+// A frame is recorded between begin_frame() and end_frame(). Uploads (write_buffer,
+// write_texture) may happen at any time and are ordered before the commands of the next frame
+// submitted. Readbacks wait for the GPU.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "loom/rhi/descriptions.hpp"
+#include "loom/rhi/image.hpp"
+#include "loom/rhi/result.hpp"
+#include "loom/rhi/shader.hpp"
+
+namespace loom::rhi {
+
+enum class Backend : uint8_t { OpenGL, Vulkan };
+
+/// "gl" or "vulkan".
+std::string_view backend_name(Backend backend);
+/// Accepts "gl", "opengl", "vulkan", "vk".
+std::optional<Backend> parse_backend(std::string_view name);
+
+struct WindowDesc {
+    std::string title = "loom";
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    bool vsync = true;
+    bool resizable = true;
+};
+
+struct DeviceDesc {
+    Backend backend = Backend::OpenGL;
+    /// Headless devices render offscreen only; windowed ones open a GLFW window with a
+    /// back buffer (see Device::backbuffer()).
+    bool headless = true;
+    WindowDesc window;
+    /// Enable API debug output (KHR_debug on GL, the Khronos validation layer on Vulkan).
+    /// Messages go to the logger; errors are logged at LogLevel::Error.
+    bool debug = true;
+};
+
+/// What a backend can do with one format.
+struct FormatCapabilities {
+    bool sampled = false;
+    bool filterable = false;   ///< linear filtering when sampled
+    bool color_attachment = false;
+    bool blendable = false;
+    bool depth_stencil_attachment = false;
+    bool storage = false;
+};
+
+struct Capabilities {
+    Backend backend = Backend::OpenGL;
+    std::string device_name;   ///< e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string api_version;   ///< e.g. "4.5 (Core Profile) Mesa 22.3.6"
+    std::array<FormatCapabilities, kFormatCount> formats{};
+    /// Textures can be placed at offsets inside heaps (memory aliasing); Vulkan yes, GL no.
+    bool placed_resources = false;
+    bool timestamps = false;
+    uint32_t max_texture_size = 0;
+    uint32_t max_color_attachments = 0;
+    uint64_t uniform_buffer_offset_alignment = 256;
+    uint64_t storage_buffer_offset_alignment = 256;
+
+    [[nodiscard]] const FormatCapabilities& format(Format f) const { return formats[static_cast<std::size_t>(f)]; }
+};
+
+/// Objects alive on a device and the GPU memory they hold (textures and buffers; heaps count
+/// as memory, the textures placed in them count as textures but not again as memory).
+struct ResourceStats {
+    uint64_t textures = 0;
+    uint64_t buffers = 0;
+    uint64_t heaps = 0;
+    uint64_t samplers = 0;
+    uint64_t shaders = 0;
+    uint64_t pipelines = 0;
+    uint64_t texture_bytes = 0;
+    uint64_t buffer_bytes = 0;
+    uint64_t heap_bytes = 0;
+    [[nodiscard]] uint64_t total_bytes() const { return texture_bytes + buffer_bytes + heap_bytes; }
+};
+
+/// Work done by the last finished frame, counted by the backend.
+struct FrameStats {
+    uint64_t api_calls = 0;        ///< calls into GL / vkCmd* recorded
+    uint64_t draw_calls = 0;
+    uint64_t dispatches = 0;
+    uint64_t pipeline_binds = 0;   ///< actual program/pipeline changes (after filtering)
+    uint64_t texture_binds = 0;
+    uint64_t buffer_binds = 0;     ///< vertex, index, uniform and storage buffer bindings
+    uint64_t render_passes = 0;
+    uint64_t bytes_uploaded = 0;   ///< write_buffer / write_texture / transient uniforms
+};
+
+/// GPU time of one labelled range of a frame.
+struct TimerResult {
+    std::string label;
+    double gpu_ms = 0.0;
+};
+
+/// Records the commands of one frame. Obtained from Device::begin_frame(), valid until
+/// Device::end_frame(). Misuse (a stale handle, a draw outside a render pass) is recorded and
+/// returned by end_frame() as an Error; the offending command is skipped.
+class CommandList {
+public:
+    virtual ~CommandList() = default;
+
+    virtual void begin_render_pass(const RenderPassDesc& desc) = 0;
+    virtual void end_render_pass() = 0;
+
+    virtual void set_pipeline(PipelineHandle pipeline) = 0;
+    /// Defaults to the full attachment size at begin_render_pass.
+    virtual void set_viewport(const Viewport& viewport) = 0;
+    /// Defaults to the full attachment size at begin_render_pass.
+    virtual void set_scissor(const Rect& rect) = 0;
+    /// Binds the resources of `layout(set = set)` for the following draws/dispatches.
+    virtual void set_bind_group(uint32_t set, const BindGroup& group) = 0;
+    /// Vulkan push constants (emulated with a uniform buffer on GL).
+    virtual void push_constants(std::span<const std::byte> data, uint32_t offset = 0) = 0;
+    virtual void set_vertex_buffer(uint32_t slot, BufferHandle buffer, uint64_t offset = 0) = 0;
+    virtual void set_index_buffer(BufferHandle buffer, IndexType type, uint64_t offset = 0) = 0;
+
+    /// Copies `data` into per-frame uniform memory and returns a binding for it, valid until
+    /// the end of the frame (for per-draw constants without managing buffers).
+    virtual BufferBinding transient_uniforms(std::span<const std::byte> data) = 0;
+
+    virtual void draw(uint32_t vertex_count, uint32_t instance_count = 1, uint32_t first_vertex = 0,
+                      uint32_t first_instance = 0) = 0;
+    virtual void draw_indexed(uint32_t index_count, uint32_t instance_count = 1, uint32_t first_index = 0,
+                              int32_t base_vertex = 0, uint32_t first_instance = 0) = 0;
+    virtual void dispatch(uint32_t groups_x, uint32_t groups_y = 1, uint32_t groups_z = 1) = 0;
+
+    virtual void copy_buffer(BufferHandle src, uint64_t src_offset, BufferHandle dst, uint64_t dst_offset,
+                             uint64_t size) = 0;
+    virtual void copy_texture(const TextureCopy& copy) = 0;
+
+    /// Moves a resource into `state` (from the state the backend tracked for it). Needed before
+    /// sampling a texture that was rendered to, before storage access, and after it.
+    virtual void transition(TextureHandle texture, ResourceState state) = 0;
+    virtual void transition(BufferHandle buffer, ResourceState state) = 0;
+
+    /// GPU timing of the commands between begin_timer and end_timer (not nested).
+    virtual void begin_timer(std::string_view label) = 0;
+    virtual void end_timer() = 0;
+
+    /// Debug markers shown in API debuggers (RenderDoc, apitrace).
+    virtual void push_debug_group(std::string_view label) = 0;
+    virtual void pop_debug_group() = 0;
+
+    /// Convenience: push constants from a trivially copyable value.
+    template <class T>
+    void push_constants_of(const T& value, uint32_t offset = 0) {
+        push_constants(std::as_bytes(std::span<const T, 1>(&value, 1)), offset);
+    }
+    template <class T>
+    BufferBinding transient_uniforms_of(const T& value) {
+        return transient_uniforms(std::as_bytes(std::span<const T, 1>(&value, 1)));
+    }
+};
+
+class Device {
+public:
+    virtual ~Device() = default;
+
+    [[nodiscard]] virtual Backend backend() const = 0;
+    [[nodiscard]] virtual const Capabilities& capabilities() const = 0;
+
+    // -- resources ------------------------------------------------------------------------
+    virtual Result<TextureHandle> create_texture(const TextureDesc& desc) = 0;
+    virtual Result<BufferHandle> create_buffer(const BufferDesc& desc) = 0;
+    virtual Result<SamplerHandle> create_sampler(const SamplerDesc& desc) = 0;
+    virtual Result<ShaderHandle> create_shader(const ShaderModule& module) = 0;
+    virtual Result<PipelineHandle> create_graphics_pipeline(const GraphicsPipelineDesc& desc) = 0;
+    virtual Result<PipelineHandle> create_compute_pipeline(const ComputePipelineDesc& desc) = 0;
+    /// A block of memory for placed textures (Capabilities::placed_resources only).
+    virtual Result<HeapHandle> create_heap(const HeapDesc& desc) = 0;
+    /// Size and alignment `desc` needs inside a heap (Capabilities::placed_resources only).
+    virtual Result<MemoryRequirements> texture_memory_requirements(const TextureDesc& desc) = 0;
+
+    /// Destroying is deferred until the GPU no longer uses the object. Stale or foreign
+    /// handles give an InvalidHandle error.
+    virtual Status destroy(TextureHandle texture) = 0;
+    virtual Status destroy(BufferHandle buffer) = 0;
+    virtual Status destroy(SamplerHandle sampler) = 0;
+    virtual Status destroy(ShaderHandle shader) = 0;
+    virtual Status destroy(PipelineHandle pipeline) = 0;
+    /// Textures placed in the heap must have been destroyed first.
+    virtual Status destroy(HeapHandle heap) = 0;
+
+    /// The description a texture was created with.
+    virtual Result<TextureDesc> texture_desc(TextureHandle texture) = 0;
+
+    // -- data transfer --------------------------------------------------------------------
+    virtual Status write_buffer(BufferHandle buffer, uint64_t offset, std::span<const std::byte> data) = 0;
+    /// `data` holds the region's rows top-first, tightly packed, in the texture's format.
+    virtual Status write_texture(TextureHandle texture, const TextureRegion& region,
+                                 std::span<const std::byte> data) = 0;
+    /// Reads one mip level / layer back (waits for the GPU). Rows top-first.
+    virtual Result<Image> read_texture(TextureHandle texture, uint32_t mip = 0, uint32_t layer = 0) = 0;
+    virtual Result<std::vector<std::byte>> read_buffer(BufferHandle buffer, uint64_t offset, uint64_t size) = 0;
+
+    // -- frames ---------------------------------------------------------------------------
+    /// Starts recording a frame. On a windowed device this also acquires the back buffer.
+    virtual CommandList& begin_frame() = 0;
+    /// Submits the frame (and presents on a windowed device). Returns the first error recorded
+    /// in the frame's command list. Does not wait for the GPU; a few frames may be in flight.
+    virtual Status end_frame() = 0;
+    /// Waits until the GPU has finished all submitted work.
+    virtual Status wait_idle() = 0;
+
+    /// GPU timings of the most recent frame whose results are available (may lag a frame or
+    /// two; after wait_idle() they are those of the last frame).
+    virtual std::vector<TimerResult> timer_results() = 0;
+
+    [[nodiscard]] virtual ResourceStats resource_stats() const = 0;
+    [[nodiscard]] virtual FrameStats last_frame_stats() const = 0;
+
+    // -- window (windowed devices; headless ones return defaults) ---------------------------
+    /// Processes window events; false once the user closed the window (always false headless).
+    virtual bool poll_window() = 0;
+    /// Size of the window's framebuffer in pixels (0x0 headless).
+    [[nodiscard]] virtual Extent3D window_size() const = 0;
+    /// The texture presented at end_frame(); render into it as a colour attachment. Valid
+    /// between begin_frame() and end_frame(); null on a headless device.
+    virtual TextureHandle backbuffer() = 0;
+};
+
+/// Creates a device of a compiled-in backend. Unsupported if the backend was not built or the
+/// machine lacks the API; the message says which.
+///
+/// Declared here, defined by the `loom::backends` library (backends/create_device.cpp): the
+/// RHI cannot link the backends that are built on it, so the umbrella target that links every
+/// compiled-in backend provides the factory. Link `loom::backends` to call it, or call a
+/// backend's own factory (loom/gl/gl_device.hpp, loom/vulkan/vulkan_device.hpp) directly.
+Result<std::unique_ptr<Device>> create_device(const DeviceDesc& desc);
+
+/// The backends compiled into this build, in the order OpenGL, Vulkan (also loom::backends).
+std::span<const Backend> compiled_backends();
+
+}  // namespace loom::rhi

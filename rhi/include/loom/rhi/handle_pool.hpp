@@ -1,0 +1,116 @@
+#pragma once
+// Storage for a backend's objects of one kind, addressed by typed handles. Shared by the
+// backends so that null, stale and foreign handles are reported the same way everywhere.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "loom/rhi/handles.hpp"
+#include "loom/rhi/result.hpp"
+
+namespace loom::rhi {
+
+/// Returns a fresh id for a new Device (never 0), so that handles remember their device.
+uint16_t next_device_id();
+
+template <class Tag, class T>
+class HandlePool {
+public:
+    using HandleType = Handle<Tag>;
+
+    explicit HandlePool(uint16_t device_id) : device_id_(device_id) {}
+
+    HandleType insert(T value) {
+        uint32_t index;
+        if (!free_.empty()) {
+            index = free_.back();
+            free_.pop_back();
+        } else {
+            index = static_cast<uint32_t>(slots_.size());
+            slots_.emplace_back();
+        }
+        Slot& slot = slots_[index];
+        slot.value.emplace(std::move(value));
+        ++live_;
+        return HandleType{index, slot.generation, device_id_};
+    }
+
+    /// The object behind `handle`, or an InvalidHandle error that says why there is none.
+    Result<T*> get(HandleType handle) {
+        if (auto error = check(handle)) return std::move(*error);
+        return &*slots_[handle.index].value;
+    }
+
+    /// Like get(), but nullptr instead of an error (for hot paths that already validated).
+    T* find(HandleType handle) {
+        if (handle.is_null() || handle.device != device_id_ || handle.index >= slots_.size()) return nullptr;
+        Slot& slot = slots_[handle.index];
+        return slot.generation == handle.generation && slot.value ? &*slot.value : nullptr;
+    }
+    const T* find(HandleType handle) const { return const_cast<HandlePool*>(this)->find(handle); }
+
+    /// Removes and returns the object; the handle (and copies of it) become stale.
+    Result<T> remove(HandleType handle) {
+        if (auto error = check(handle)) return std::move(*error);
+        Slot& slot = slots_[handle.index];
+        T value = std::move(*slot.value);
+        slot.value.reset();
+        // Generation 0 is reserved for null handles.
+        slot.generation = static_cast<uint16_t>(slot.generation == 0xFFFF ? 1 : slot.generation + 1);
+        free_.push_back(handle.index);
+        --live_;
+        return value;
+    }
+
+    [[nodiscard]] std::size_t size() const { return live_; }
+
+    template <class F>
+    void for_each(F&& f) {
+        for (uint32_t i = 0; i < slots_.size(); ++i) {
+            if (slots_[i].value) f(HandleType{i, slots_[i].generation, device_id_}, *slots_[i].value);
+        }
+    }
+
+    /// Removes every object (in slot order), calling f(handle, value) on each first.
+    template <class F>
+    void clear(F&& f) {
+        for_each(f);
+        for (uint32_t i = 0; i < slots_.size(); ++i) {
+            if (slots_[i].value) (void)remove(HandleType{i, slots_[i].generation, device_id_});
+        }
+    }
+
+private:
+    struct Slot {
+        std::optional<T> value;
+        uint16_t generation = 1;
+    };
+
+    std::optional<Error> check(HandleType handle) const {
+        const std::string kind = Tag::kName;
+        if (handle.is_null()) return Error{ErrorCode::InvalidHandle, kind + " handle is null"};
+        if (handle.device != device_id_) {
+            return Error{ErrorCode::InvalidHandle,
+                         kind + " handle #" + std::to_string(handle.index) + " belongs to device " +
+                             std::to_string(handle.device) + ", not to this device (" +
+                             std::to_string(device_id_) + ")"};
+        }
+        if (handle.index >= slots_.size() || slots_[handle.index].generation != handle.generation ||
+            !slots_[handle.index].value) {
+            return Error{ErrorCode::InvalidHandle,
+                         kind + " handle #" + std::to_string(handle.index) + " is stale: the " + kind +
+                             " was destroyed"};
+        }
+        return std::nullopt;
+    }
+
+    uint16_t device_id_;
+    std::vector<Slot> slots_;
+    std::vector<uint32_t> free_;
+    std::size_t live_ = 0;
+};
+
+}  // namespace loom::rhi

@@ -1,0 +1,30 @@
+#include "loom/rhi/device.hpp"
+
+#include <atomic>
+
+#include "loom/rhi/handle_pool.hpp"
+
+namespace loom::rhi {
+
+std::string_view backend_name(Backend backend) {
+    switch (backend) {
+        case Backend::OpenGL: return "gl";
+        case Backend::Vulkan: return "vulkan";
+    }
+    return "unknown";
+}
+
+std::optional<Backend> parse_backend(std::string_view name) {
+    if (name == "gl" || name == "opengl") return Backend::OpenGL;
+    if (name == "vulkan" || name == "vk") return Backend::Vulkan;
+    return std::nullopt;
+}
+
+uint16_t next_device_id() {
+    static std::atomic<uint16_t> counter{0};
+    uint16_t id = ++counter;
+    if (id == 0) id = ++counter;  // 0 never names a device
+    return id;
+}
+
+}  // namespace loom::rhi
