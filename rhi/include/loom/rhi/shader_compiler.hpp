@@ -36,6 +36,9 @@ struct ShaderCompilerOptions {
     std::map<std::string, std::string> virtual_files;
     /// Emit debug info / skip optimisation.
     bool debug_info = false;
+    /// Called with the path of every #include resolved from disk (include_dirs or relative to
+    /// the includer), e.g. to write a build dependency file. Not called for virtual_files.
+    std::function<void(const std::filesystem::path& resolved)> on_include;
 };
 
 /// Compiles GLSL to a ShaderModule. Thread-compatible: one compiler per thread, or guard it.
@@ -58,6 +61,11 @@ public:
     /// embedded at build time).
     static Result<ShaderModule> from_spirv(std::string name, ShaderStage stage, std::span<const uint32_t> spirv);
 
+    /// Checks without a GL context that `module.gl_source` is valid GLSL 450 core (glslang,
+    /// OpenGL rules). A ShaderCompile error names the module and the offending lines.
+    static Status check_gl_source(const ShaderModule& module);
+
+    /// Number of modules held by the compile_cached() cache.
     [[nodiscard]] std::size_t cache_size() const;
 
 private:
