@@ -1,0 +1,34 @@
+// Helpers shared by loom's shaders: #include "loom/common.glsl".
+#ifndef LOOM_COMMON_GLSL
+#define LOOM_COMMON_GLSL
+
+// Rec. 709 relative luminance of a linear RGB colour.
+float luminance(vec3 linear_rgb) {
+    return dot(linear_rgb, vec3(0.2126, 0.7152, 0.0722));
+}
+
+// The exact sRGB transfer functions (IEC 61966-2-1), per channel.
+vec3 srgb_to_linear(vec3 srgb) {
+    vec3 low = srgb / 12.92;
+    vec3 high = pow((srgb + 0.055) / 1.055, vec3(2.4));
+    return mix(high, low, lessThanEqual(srgb, vec3(0.04045)));
+}
+
+vec3 linear_to_srgb(vec3 linear_rgb) {
+    vec3 low = linear_rgb * 12.92;
+    vec3 high = 1.055 * pow(linear_rgb, vec3(1.0 / 2.4)) - 0.055;
+    return mix(high, low, lessThanEqual(linear_rgb, vec3(0.0031308)));
+}
+
+// The i-th vertex (0..2) of a triangle that covers the whole viewport, in NDC (y up).
+vec2 fullscreen_triangle_position(int vertex_index) {
+    return vec2(vertex_index == 1 ? 3.0 : -1.0, vertex_index == 2 ? 3.0 : -1.0);
+}
+
+// Texture coordinates of an NDC position: (0,0) at the top-left of the framebuffer
+// (NDC y = +1), (1,1) at the bottom-right, so a sampled texture appears unflipped.
+vec2 ndc_to_uv(vec2 ndc) {
+    return vec2(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
+}
+
+#endif

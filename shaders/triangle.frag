@@ -1,0 +1,10 @@
+#version 450
+// Writes the interpolated vertex colour.
+
+layout(location = 0) in vec3 v_color;
+
+layout(location = 0) out vec4 frag_color;
+
+void main() {
+    frag_color = vec4(v_color, 1.0);
+}

@@ -1,0 +1,2 @@
+// Included relative to tint.glsl.
+const float kScale = 2.0;
