@@ -359,7 +359,14 @@ Result<ShaderModule> module_from_spirv(std::string name, ShaderStage stage, std:
         module.reflection = std::move(reflection);
         return module;
     } catch (const std::exception& e) {
-        return make_error(ErrorCode::ShaderCompile, name + ": SPIRV-Cross: " + e.what());
+        std::string message = name + ": SPIRV-Cross: " + e.what();
+        if (std::string_view(e.what()).find("cannot be expressed") != std::string_view::npos) {
+            // Push constants become a std140 uniform block in GL and must keep their Vulkan
+            // (std430) offsets there; arrays of scalars or vec2 have different strides.
+            message += " (GL needs every push-constant and uniform block layout to be valid std140: "
+                       "use arrays of vec4-sized elements)";
+        }
+        return make_error(ErrorCode::ShaderCompile, std::move(message));
     }
 }
 

@@ -135,6 +135,19 @@ void main() {
     }
 }
 
+TEST(ShaderGlSource, PushConstantsThatStd140CannotExpressAreAnError) {
+    // std430 gives float[4] a stride of 4; a GL uniform block (std140) cannot: the bytes the
+    // backends upload would land in the wrong members, so this must not compile.
+    rhi::ShaderCompiler compiler;
+    const std::string message = compile_error(compiler, source("weights.frag", ShaderStage::Fragment, R"(#version 450
+layout(push_constant) uniform Push { float weights[4]; } push;
+layout(location = 0) out vec4 color;
+void main() { color = vec4(push.weights[1]); }
+)"));
+    EXPECT_THAT(message, HasSubstr("weights.frag"));
+    EXPECT_THAT(message, HasSubstr("std140"));
+}
+
 TEST(ShaderGlSource, CheckRejectsInvalidGlsl) {
     // check_gl_source is a real check: a Vulkan-only construct fails it with the module's name.
     rhi::ShaderModule module;

@@ -251,6 +251,18 @@ TEST(ShaderReflection, FromSpirvGivesTheSameReflection) {
     EXPECT_EQ(rebuilt->entry_point, "main");
 }
 
+TEST(ShaderReflection, DebugInfoKeepsTheReflection) {
+    rhi::ShaderCompiler plain;
+    rhi::ShaderCompilerOptions options;
+    options.debug_info = true;
+    rhi::ShaderCompiler debug(options);
+    auto a = compile_ok(plain, source("material.frag", ShaderStage::Fragment, kMaterialShader));
+    auto b = compile_ok(debug, source("material.frag", ShaderStage::Fragment, kMaterialShader));
+    EXPECT_GT(b.spirv.size(), a.spirv.size());  // line info and source were added
+    EXPECT_EQ(a.reflection.uniform_blocks, b.reflection.uniform_blocks);
+    EXPECT_EQ(a.reflection.outputs, b.reflection.outputs);
+}
+
 TEST(ShaderReflection, FromSpirvRejectsWrongStageAndGarbage) {
     rhi::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("material.frag", ShaderStage::Fragment, kMaterialShader));
