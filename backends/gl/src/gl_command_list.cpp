@@ -1,0 +1,878 @@
+// GlCommandList: validation, state tracking and resolution of each command at record time;
+// the GL calls themselves run at end_frame() (see gl_frame.cpp).
+#include <algorithm>
+#include <cmath>
+
+#include "gl_device.hpp"
+
+namespace loom::gl {
+namespace {
+
+using rhi::ResourceState;
+
+std::string quote_name(const std::string& name) { return "'" + name + "'"; }
+
+uint32_t mip_extent(uint32_t size, uint32_t mip) { return std::max(1u, size >> mip); }
+
+uint32_t layer_count(const rhi::TextureDesc& d, uint32_t mip) {
+    return d.dimension == rhi::TextureDimension::Tex3D ? mip_extent(d.depth_or_layers, mip) : d.depth_or_layers;
+}
+
+std::string_view state_name(ResourceState s) {
+    switch (s) {
+        case ResourceState::Undefined: return "Undefined";
+        case ResourceState::ShaderRead: return "ShaderRead";
+        case ResourceState::RenderTarget: return "RenderTarget";
+        case ResourceState::DepthWrite: return "DepthWrite";
+        case ResourceState::DepthRead: return "DepthRead";
+        case ResourceState::Storage: return "Storage";
+        case ResourceState::CopySrc: return "CopySrc";
+        case ResourceState::CopyDst: return "CopyDst";
+        case ResourceState::Present: return "Present";
+        case ResourceState::VertexBuffer: return "VertexBuffer";
+        case ResourceState::IndexBuffer: return "IndexBuffer";
+        case ResourceState::IndirectArgument: return "IndirectArgument";
+    }
+    return "?";
+}
+
+/// Barrier bits that make shader storage writes visible to the use `next` stands for.
+GLbitfield barrier_after_storage(ResourceState next) {
+    switch (next) {
+        case ResourceState::Undefined: return 0;
+        case ResourceState::ShaderRead:
+            return GL_TEXTURE_FETCH_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                   GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
+        case ResourceState::RenderTarget:
+        case ResourceState::DepthWrite:
+        case ResourceState::DepthRead:
+        case ResourceState::Present: return GL_FRAMEBUFFER_BARRIER_BIT;
+        case ResourceState::Storage: return GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT;
+        case ResourceState::CopySrc:
+        case ResourceState::CopyDst:
+            return GL_TEXTURE_UPDATE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_PIXEL_BUFFER_BARRIER_BIT;
+        case ResourceState::VertexBuffer: return GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT;
+        case ResourceState::IndexBuffer: return GL_ELEMENT_ARRAY_BARRIER_BIT;
+        case ResourceState::IndirectArgument: return GL_COMMAND_BARRIER_BIT;
+    }
+    return GL_ALL_BARRIER_BITS;
+}
+
+/// The GL clear call for one colour attachment, with the clear value in the attachment's kind.
+void clear_color(GLuint fbo, GLint index, rhi::Format format, const std::array<double, 4>& value) {
+    const rhi::ChannelKind kind = rhi::format_info(format).color_kind();
+    if (kind == rhi::ChannelKind::Uint) {
+        GLuint v[4];
+        for (int i = 0; i < 4; ++i) v[i] = static_cast<GLuint>(std::clamp(std::nearbyint(value[static_cast<std::size_t>(i)]), 0.0, 4294967295.0));
+        glClearNamedFramebufferuiv(fbo, GL_COLOR, index, v);
+    } else if (kind == rhi::ChannelKind::Sint) {
+        GLint v[4];
+        for (int i = 0; i < 4; ++i) {
+            v[i] = static_cast<GLint>(std::clamp(std::nearbyint(value[static_cast<std::size_t>(i)]), -2147483648.0, 2147483647.0));
+        }
+        glClearNamedFramebufferiv(fbo, GL_COLOR, index, v);
+    } else {
+        const GLfloat v[4] = {static_cast<float>(value[0]), static_cast<float>(value[1]), static_cast<float>(value[2]),
+                              static_cast<float>(value[3])};
+        glClearNamedFramebufferfv(fbo, GL_COLOR, index, v);
+    }
+}
+
+}  // namespace
+
+// ---- frame bookkeeping -----------------------------------------------------------------------
+
+void GlCommandList::begin(uint64_t frame_index) {
+    recording_ = true;
+    frame_index_ = frame_index;
+    commands_.clear();
+    first_error_.reset();
+    pass_.reset();
+    pipeline_ = {};
+    groups_ = {};
+    vertex_buffers_ = {};
+    index_buffer_ = {};
+    push_size_ = 0;
+    push_dirty_ = false;
+    push_binding_.reset();
+    open_timer_.reset();
+    timers_.clear();
+    debug_depth_ = 0;
+}
+
+std::vector<GlCommand> GlCommandList::finish() {
+    if (pass_) {
+        fail(ErrorCode::InvalidState, "end_frame: render pass " + quote_name(pass_->label) + " was not ended");
+        end_render_pass();
+    }
+    if (open_timer_) {
+        fail(ErrorCode::InvalidState, "end_frame: timer " + quote_name(*open_timer_) + " was not ended");
+        end_timer();
+    }
+    if (debug_depth_ > 0) {
+        fail(ErrorCode::InvalidState, "end_frame: " + std::to_string(debug_depth_) + " debug group(s) were not popped");
+        while (debug_depth_ > 0) pop_debug_group();
+    }
+    recording_ = false;
+    return std::move(commands_);
+}
+
+void GlCommandList::fail(ErrorCode code, std::string message) {
+    if (!first_error_) first_error_ = Error{code, std::move(message)};
+}
+
+std::string GlCommandList::where(std::string_view command) const {
+    std::string out(command);
+    if (pass_) out += " in render pass " + quote_name(pass_->label);
+    return out + ": ";
+}
+
+// ---- render passes ---------------------------------------------------------------------------
+
+void GlCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
+    const std::string what = "begin_render_pass " + quote_name(desc.label) + ": ";
+    if (pass_) {
+        fail(ErrorCode::InvalidState, what + "render pass " + quote_name(pass_->label) + " is still open");
+        return;
+    }
+    if (desc.colors.empty() && !desc.depth) {
+        fail(ErrorCode::InvalidArgument, what + "no attachments");
+        return;
+    }
+    if (desc.colors.size() > device_->capabilities().max_color_attachments) {
+        fail(ErrorCode::InvalidArgument, what + std::to_string(desc.colors.size()) + " colour attachments exceed the limit of " +
+                                             std::to_string(device_->capabilities().max_color_attachments));
+        return;
+    }
+    PassState pass;
+    pass.label = desc.label;
+    bool sized = false;
+    // Checks one attachment; returns the texture or nullptr after recording an error.
+    auto check = [&](rhi::TextureHandle handle, uint32_t mip, uint32_t layer, const std::string& name,
+                     bool depth) -> GlTexture* {
+        auto found = device_->textures().get(handle);
+        if (!found.ok()) {
+            fail(ErrorCode::InvalidHandle, what + name + ": " + found.error().message);
+            return nullptr;
+        }
+        GlTexture* t = *found;
+        const std::string tex = name + " (texture " + quote_name(t->desc.name) + ")";
+        const auto usage = depth ? rhi::TextureUsage::DepthStencilAttachment : rhi::TextureUsage::ColorAttachment;
+        if (!rhi::has_any(t->desc.usage, usage)) {
+            fail(ErrorCode::InvalidArgument, what + tex + " lacks usage " + (depth ? "DepthStencilAttachment" : "ColorAttachment"));
+            return nullptr;
+        }
+        if (mip >= t->desc.mip_levels || layer >= layer_count(t->desc, mip)) {
+            fail(ErrorCode::InvalidArgument, what + tex + ": mip " + std::to_string(mip) + " / layer " + std::to_string(layer) +
+                                                 " out of range");
+            return nullptr;
+        }
+        const uint32_t w = mip_extent(t->desc.width, mip), h = mip_extent(t->desc.height, mip);
+        if (!sized) {
+            pass.width = w;
+            pass.height = h;
+            pass.samples = t->desc.samples;
+            sized = true;
+        } else if (w != pass.width || h != pass.height) {
+            fail(ErrorCode::InvalidArgument, what + "attachments differ in size: " + tex + " is " + std::to_string(w) + "x" +
+                                                 std::to_string(h) + ", earlier ones " + std::to_string(pass.width) + "x" +
+                                                 std::to_string(pass.height));
+            return nullptr;
+        } else if (t->desc.samples != pass.samples) {
+            fail(ErrorCode::InvalidArgument, what + "attachments differ in sample count: " + tex + " has " +
+                                                 std::to_string(t->desc.samples));
+            return nullptr;
+        }
+        return t;
+    };
+    std::vector<std::pair<const GlTexture*, std::array<uint32_t, 2>>> colors;
+    std::vector<GlTexture*> color_textures;
+    for (std::size_t i = 0; i < desc.colors.size(); ++i) {
+        const rhi::ColorAttachment& a = desc.colors[i];
+        GlTexture* t = check(a.texture, a.mip, a.layer, "colors[" + std::to_string(i) + "]", false);
+        if (!t) return;
+        colors.push_back({t, {a.mip, a.layer}});
+        color_textures.push_back(t);
+        pass.color_formats.push_back(t->desc.format);
+    }
+    GlTexture* depth = nullptr;
+    if (desc.depth) {
+        depth = check(desc.depth->texture, desc.depth->mip, desc.depth->layer, "depth", true);
+        if (!depth) return;
+        pass.depth_format = depth->desc.format;
+    }
+    const GLuint fbo = device_->framebuffer_for(colors, depth, desc.depth ? std::array<uint32_t, 2>{desc.depth->mip, desc.depth->layer}
+                                                                          : std::array<uint32_t, 2>{0, 0});
+    pass.framebuffer = fbo;
+    // The pass moves its attachments into the attachment states itself.
+    for (GlTexture* t : color_textures) t->state = ResourceState::RenderTarget;
+    if (depth) depth->state = ResourceState::DepthWrite;
+
+    struct ColorClear {
+        GLint index;
+        rhi::Format format;
+        std::array<double, 4> value;
+    };
+    std::vector<ColorClear> color_clears;
+    std::vector<GLenum> discard_before;
+    for (std::size_t i = 0; i < desc.colors.size(); ++i) {
+        const rhi::ColorAttachment& a = desc.colors[i];
+        const auto index = static_cast<GLint>(i);
+        if (a.load == rhi::LoadOp::Clear) color_clears.push_back({index, pass.color_formats[i], a.clear});
+        if (a.load == rhi::LoadOp::DontCare) discard_before.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
+        if (a.store == rhi::StoreOp::DontCare) pass.discard_after.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
+    }
+    bool clear_depth = false, clear_stencil = false;
+    float depth_value = 1.0f;
+    GLint stencil_value = 0;
+    if (desc.depth) {
+        const rhi::FormatInfo& info = rhi::format_info(pass.depth_format);
+        const rhi::DepthAttachment& d = *desc.depth;
+        if (info.has_depth()) {
+            clear_depth = d.depth_load == rhi::LoadOp::Clear;
+            if (d.depth_load == rhi::LoadOp::DontCare) discard_before.push_back(GL_DEPTH_ATTACHMENT);
+            if (d.depth_store == rhi::StoreOp::DontCare) pass.discard_after.push_back(GL_DEPTH_ATTACHMENT);
+        }
+        if (info.has_stencil()) {
+            clear_stencil = d.stencil_load == rhi::LoadOp::Clear;
+            if (d.stencil_load == rhi::LoadOp::DontCare) discard_before.push_back(GL_STENCIL_ATTACHMENT);
+            if (d.stencil_store == rhi::StoreOp::DontCare) pass.discard_after.push_back(GL_STENCIL_ATTACHMENT);
+        }
+        depth_value = d.clear_depth;
+        stencil_value = static_cast<GLint>(std::min<uint32_t>(d.clear_stencil, 255));
+    }
+    const uint32_t width = pass.width, height = pass.height;
+    const auto color_count = static_cast<uint32_t>(desc.colors.size());
+    const std::string label = desc.label;
+    record([=](GlStateCache& cache) {
+        cache.bind_draw_framebuffer(fbo);
+        if (!discard_before.empty()) {
+            glInvalidateNamedFramebufferData(fbo, static_cast<GLsizei>(discard_before.size()), discard_before.data());
+            cache.count_call();
+        }
+        if (!color_clears.empty() || clear_depth || clear_stencil) cache.prepare_clear(color_count);
+        for (const ColorClear& c : color_clears) {
+            clear_color(fbo, c.index, c.format, c.value);
+            cache.count_call();
+        }
+        if (clear_depth && clear_stencil) {
+            glClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, depth_value, stencil_value);
+            cache.count_call();
+        } else if (clear_depth) {
+            glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &depth_value);
+            cache.count_call();
+        } else if (clear_stencil) {
+            glClearNamedFramebufferiv(fbo, GL_STENCIL, 0, &stencil_value);
+            cache.count_call();
+        }
+        cache.viewport(0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height), 0.0f, 1.0f);
+        cache.scissor(0, 0, static_cast<int32_t>(width), static_cast<int32_t>(height));
+    });
+    pass_ = std::move(pass);
+    device_->count_render_pass();
+}
+
+void GlCommandList::end_render_pass() {
+    if (!pass_) {
+        fail(ErrorCode::InvalidState, "end_render_pass: no render pass is open");
+        return;
+    }
+    if (!pass_->discard_after.empty()) {
+        const GLuint fbo = pass_->framebuffer;
+        std::vector<GLenum> discard = pass_->discard_after;
+        record([fbo, discard](GlStateCache& cache) {
+            glInvalidateNamedFramebufferData(fbo, static_cast<GLsizei>(discard.size()), discard.data());
+            cache.count_call();
+        });
+    }
+    pass_.reset();
+}
+
+// ---- state -----------------------------------------------------------------------------------
+
+void GlCommandList::set_pipeline(rhi::PipelineHandle pipeline) {
+    auto found = device_->pipelines().get(pipeline);
+    if (!found.ok()) {
+        pipeline_ = {};
+        fail(ErrorCode::InvalidHandle, where("set_pipeline") + found.error().message);
+        return;
+    }
+    const GlPipeline& p = **found;
+    if (!p.compute && pass_) {
+        const bool formats_match = p.color_formats == pass_->color_formats && p.depth_format == pass_->depth_format;
+        if (!formats_match || p.samples != pass_->samples) {
+            std::string pass_formats, pipe_formats;
+            for (auto f : pass_->color_formats) pass_formats += std::string(pass_formats.empty() ? "" : ", ") + std::string(rhi::format_name(f));
+            for (auto f : p.color_formats) pipe_formats += std::string(pipe_formats.empty() ? "" : ", ") + std::string(rhi::format_name(f));
+            pipeline_ = {};
+            fail(ErrorCode::InvalidArgument,
+                 where("set_pipeline") + "pipeline " + quote_name(p.name) + " targets [" + pipe_formats + "] depth " +
+                     std::string(rhi::format_name(p.depth_format)) + " x" + std::to_string(p.samples) + ", the pass has [" +
+                     pass_formats + "] depth " + std::string(rhi::format_name(pass_->depth_format)) + " x" +
+                     std::to_string(pass_->samples));
+            return;
+        }
+    }
+    pipeline_ = pipeline;
+}
+
+GlPipeline* GlCommandList::current_pipeline(std::string_view command, bool compute) {
+    if (pipeline_.is_null()) {
+        fail(ErrorCode::InvalidState, where(command) + "no pipeline is set");
+        return nullptr;
+    }
+    GlPipeline* p = device_->pipelines().find(pipeline_);
+    if (!p) {
+        fail(ErrorCode::InvalidHandle, where(command) + "the pipeline was destroyed");
+        return nullptr;
+    }
+    if (p->compute != compute) {
+        fail(ErrorCode::InvalidState, where(command) + "pipeline " + quote_name(p->name) + " is a " +
+                                          (p->compute ? "compute" : "graphics") + " pipeline");
+        return nullptr;
+    }
+    return p;
+}
+
+void GlCommandList::set_viewport(const rhi::Viewport& v) {
+    if (!(v.width > 0.0f) || !(v.height > 0.0f) || v.min_depth < 0.0f || v.max_depth > 1.0f) {
+        fail(ErrorCode::InvalidArgument, where("set_viewport") + "size must be positive and depths within 0..1");
+        return;
+    }
+    // With the upper-left origin, GL window y runs down from row 0, exactly like loom's
+    // top-left viewport rectangles: no flip.
+    record([v](GlStateCache& cache) { cache.viewport(v.x, v.y, v.width, v.height, v.min_depth, v.max_depth); });
+}
+
+void GlCommandList::set_scissor(const rhi::Rect& r) {
+    record([r](GlStateCache& cache) {
+        cache.scissor(r.x, r.y, static_cast<int32_t>(r.width), static_cast<int32_t>(r.height));
+    });
+}
+
+void GlCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
+    if (set >= rhi::kMaxBindGroups) {
+        fail(ErrorCode::InvalidArgument, where("set_bind_group") + "set " + std::to_string(set) + " beyond the " +
+                                             std::to_string(rhi::kMaxBindGroups) + " supported");
+        return;
+    }
+    for (const rhi::BindingEntry& e : group.entries) {
+        if (e.binding >= rhi::kMaxBindingsPerGroup) {
+            fail(ErrorCode::InvalidArgument, where("set_bind_group") + "set " + std::to_string(set) + " binding " +
+                                                 std::to_string(e.binding) + " beyond the " +
+                                                 std::to_string(rhi::kMaxBindingsPerGroup) + " supported");
+            return;
+        }
+    }
+    groups_[set] = group;
+}
+
+void GlCommandList::push_constants(std::span<const std::byte> data, uint32_t offset) {
+    if (offset > kMaxPushConstantBytes || data.size() > kMaxPushConstantBytes - offset) {
+        fail(ErrorCode::InvalidArgument, where("push_constants") + std::to_string(data.size()) + " bytes at offset " +
+                                             std::to_string(offset) + " exceed " + std::to_string(kMaxPushConstantBytes));
+        return;
+    }
+    std::copy(data.begin(), data.end(), push_data_.begin() + offset);
+    push_size_ = std::max(push_size_, offset + static_cast<uint32_t>(data.size()));
+    push_dirty_ = true;
+}
+
+void GlCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, uint64_t offset) {
+    if (slot >= vertex_buffers_.size()) {
+        fail(ErrorCode::InvalidArgument, where("set_vertex_buffer") + "slot " + std::to_string(slot) + " beyond 16");
+        return;
+    }
+    vertex_buffers_[slot] = {buffer, offset};
+}
+
+void GlCommandList::set_index_buffer(rhi::BufferHandle buffer, rhi::IndexType type, uint64_t offset) {
+    index_buffer_ = {buffer, type, offset};
+}
+
+rhi::BufferBinding GlCommandList::transient_uniforms(std::span<const std::byte> data) {
+    if (!recording_) {
+        fail(ErrorCode::InvalidState, "transient_uniforms: no frame is being recorded");
+        return {};
+    }
+    return device_->allocate_transient(data);
+}
+
+// ---- bindings --------------------------------------------------------------------------------
+
+bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view command, std::vector<ResolvedBinding>& out) {
+    const std::string prefix = where(command) + "pipeline " + quote_name(p.name) + ": ";
+    for (const PipelineBinding& b : p.bindings) {
+        const std::string slot = "set " + std::to_string(b.set) + " binding " + std::to_string(b.binding) + " (" + quote_name(b.name) + ")";
+        const rhi::BindingEntry* entry = nullptr;
+        if (groups_[b.set]) {
+            for (const rhi::BindingEntry& e : groups_[b.set]->entries) {
+                if (e.binding == b.binding) entry = &e;
+            }
+        }
+        if (!entry) {
+            fail(ErrorCode::InvalidState, prefix + slot + " is not bound");
+            return false;
+        }
+        ResolvedBinding r;
+        r.kind = b.kind;
+        r.point = rhi::gl_binding_point(b.set, b.binding);
+        switch (b.kind) {
+            case BindingKind::UniformBuffer:
+            case BindingKind::StorageBuffer: {
+                const auto* range = std::get_if<rhi::BufferBinding>(&entry->resource);
+                if (!range) {
+                    fail(ErrorCode::InvalidArgument, prefix + slot + " is a buffer but a texture is bound there");
+                    return false;
+                }
+                auto buffer = device_->buffers().get(range->buffer);
+                if (!buffer.ok()) {
+                    fail(ErrorCode::InvalidHandle, prefix + slot + ": " + buffer.error().message);
+                    return false;
+                }
+                const GlBuffer& buf = **buffer;
+                const bool uniform = b.kind == BindingKind::UniformBuffer;
+                const uint64_t alignment = uniform ? device_->capabilities().uniform_buffer_offset_alignment
+                                                   : device_->capabilities().storage_buffer_offset_alignment;
+                const uint64_t size = range->size ? range->size : buf.desc.size - std::min(buf.desc.size, range->offset);
+                if (range->offset % alignment != 0 || range->offset + size > buf.desc.size || size == 0) {
+                    fail(ErrorCode::InvalidArgument, prefix + slot + ": range " + std::to_string(range->offset) + "+" +
+                                                         std::to_string(size) + " of buffer " + quote_name(buf.desc.name) +
+                                                         " is out of bounds or not aligned to " + std::to_string(alignment));
+                    return false;
+                }
+                r.object = buf.name;
+                r.offset = static_cast<GLintptr>(range->offset);
+                r.size = static_cast<GLsizeiptr>(size);
+                break;
+            }
+            case BindingKind::SampledTexture: {
+                const auto* tb = std::get_if<rhi::TextureBinding>(&entry->resource);
+                if (!tb) {
+                    fail(ErrorCode::InvalidArgument, prefix + slot + " is a sampled texture but something else is bound there");
+                    return false;
+                }
+                auto texture = device_->textures().get(tb->texture);
+                if (!texture.ok()) {
+                    fail(ErrorCode::InvalidHandle, prefix + slot + ": " + texture.error().message);
+                    return false;
+                }
+                auto sampler = device_->samplers().get(tb->sampler);
+                if (!sampler.ok()) {
+                    fail(ErrorCode::InvalidHandle, prefix + slot + ": " + sampler.error().message);
+                    return false;
+                }
+                const GlTexture& t = **texture;
+                const bool depth = rhi::format_info(t.desc.format).is_depth_stencil();
+                const bool readable = t.state == ResourceState::ShaderRead || (depth && t.state == ResourceState::DepthRead);
+                if (!readable) {
+                    // Parity with Vulkan, where sampling needs the shader-read layout.
+                    fail(ErrorCode::InvalidState, prefix + "texture " + quote_name(t.desc.name) + " sampled at " + slot +
+                                                      " is in state " + std::string(state_name(t.state)) +
+                                                      "; transition it to ShaderRead first");
+                    return false;
+                }
+                if (!rhi::has_any(t.desc.usage, rhi::TextureUsage::Sampled)) {
+                    fail(ErrorCode::InvalidArgument, prefix + "texture " + quote_name(t.desc.name) + " lacks usage Sampled");
+                    return false;
+                }
+                r.object = t.name;
+                r.sampler = (*sampler)->name;
+                break;
+            }
+            case BindingKind::StorageImage: {
+                const auto* sb = std::get_if<rhi::StorageTextureBinding>(&entry->resource);
+                if (!sb) {
+                    fail(ErrorCode::InvalidArgument, prefix + slot + " is a storage image but something else is bound there");
+                    return false;
+                }
+                auto texture = device_->textures().get(sb->texture);
+                if (!texture.ok()) {
+                    fail(ErrorCode::InvalidHandle, prefix + slot + ": " + texture.error().message);
+                    return false;
+                }
+                const GlTexture& t = **texture;
+                if (!rhi::has_any(t.desc.usage, rhi::TextureUsage::Storage)) {
+                    fail(ErrorCode::InvalidArgument, prefix + "texture " + quote_name(t.desc.name) + " lacks usage Storage");
+                    return false;
+                }
+                if (t.state != ResourceState::Storage) {
+                    fail(ErrorCode::InvalidState, prefix + "storage texture " + quote_name(t.desc.name) + " at " + slot +
+                                                      " is in state " + std::string(state_name(t.state)) +
+                                                      "; transition it to Storage first");
+                    return false;
+                }
+                if (sb->mip >= t.desc.mip_levels) {
+                    fail(ErrorCode::InvalidArgument, prefix + slot + ": mip " + std::to_string(sb->mip) + " out of range");
+                    return false;
+                }
+                r.object = t.name;
+                r.level = static_cast<GLint>(sb->mip);
+                r.layered = t.target != GL_TEXTURE_2D;
+                r.access = b.image_access;
+                r.format = t.format->internal_format;
+                break;
+            }
+        }
+        out.push_back(r);
+    }
+    if (p.push_constant_size > 0) {
+        if (push_dirty_ || !push_binding_) {
+            // A copy of the push-constant block per change, so that every draw sees the
+            // values current when it was recorded.
+            const uint32_t size = std::max(p.push_constant_size, push_size_);
+            push_binding_ = device_->allocate_transient(std::span<const std::byte>(push_data_.data(), size));
+            push_dirty_ = false;
+        }
+        auto buffer = device_->buffers().get(push_binding_->buffer);
+        ResolvedBinding r;
+        r.kind = BindingKind::UniformBuffer;
+        r.point = rhi::kGlPushConstantBinding;
+        r.object = (*buffer)->name;
+        r.offset = static_cast<GLintptr>(push_binding_->offset);
+        r.size = static_cast<GLsizeiptr>(push_binding_->size);
+        out.push_back(r);
+    }
+    return true;
+}
+
+// ---- draws and dispatches --------------------------------------------------------------------
+
+void GlCommandList::draw(uint32_t vertex_count, uint32_t instance_count, uint32_t first_vertex, uint32_t first_instance) {
+    draw_common(false, vertex_count, instance_count, first_vertex, 0, first_instance);
+}
+
+void GlCommandList::draw_indexed(uint32_t index_count, uint32_t instance_count, uint32_t first_index, int32_t base_vertex,
+                                 uint32_t first_instance) {
+    draw_common(true, index_count, instance_count, first_index, base_vertex, first_instance);
+}
+
+void GlCommandList::apply_bindings(GlStateCache& cache, const std::vector<ResolvedBinding>& bindings) {
+    for (const ResolvedBinding& b : bindings) {
+        switch (b.kind) {
+            case BindingKind::UniformBuffer: cache.bind_uniform_buffer(b.point, b.object, b.offset, b.size); break;
+            case BindingKind::StorageBuffer: cache.bind_storage_buffer(b.point, b.object, b.offset, b.size); break;
+            case BindingKind::SampledTexture:
+                cache.bind_texture(b.point, b.object);
+                cache.bind_sampler(b.point, b.sampler);
+                break;
+            case BindingKind::StorageImage:
+                cache.bind_image(b.point, b.object, b.level, b.layered, 0, b.access, b.format);
+                break;
+        }
+    }
+}
+
+void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
+                                uint32_t first_instance) {
+    const char* command = indexed ? "draw_indexed" : "draw";
+    if (!pass_) {
+        fail(ErrorCode::InvalidState, std::string(command) + ": not inside a render pass");
+        return;
+    }
+    GlPipeline* p = current_pipeline(command, false);
+    if (!p) return;
+    if (count == 0 || instance_count == 0) return;
+    std::vector<ResolvedBinding> bindings;
+    if (!resolve_bindings(*p, command, bindings)) return;
+
+    struct VertexBinding {
+        uint32_t slot;
+        GLuint buffer;
+        GLintptr offset;
+        GLsizei stride;
+    };
+    std::vector<VertexBinding> vertex;
+    for (uint32_t slot = 0; slot < p->strides.size(); ++slot) {
+        const VertexBufferSlot& vb = vertex_buffers_[slot];
+        auto buffer = device_->buffers().get(vb.buffer);
+        if (!buffer.ok()) {
+            fail(ErrorCode::InvalidHandle, where(command) + "vertex buffer slot " + std::to_string(slot) + " of pipeline " +
+                                               quote_name(p->name) + ": " + buffer.error().message);
+            return;
+        }
+        vertex.push_back({slot, (*buffer)->name, static_cast<GLintptr>(vb.offset), static_cast<GLsizei>(p->strides[slot])});
+    }
+    GLuint index_buffer = 0;
+    GLenum index_type = GL_UNSIGNED_INT;
+    uintptr_t index_offset = 0;
+    if (indexed) {
+        auto buffer = device_->buffers().get(index_buffer_.buffer);
+        if (!buffer.ok()) {
+            fail(ErrorCode::InvalidHandle, where(command) + "index buffer: " + buffer.error().message);
+            return;
+        }
+        const bool u16 = index_buffer_.type == rhi::IndexType::Uint16;
+        index_buffer = (*buffer)->name;
+        index_type = u16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
+        index_offset = static_cast<uintptr_t>(index_buffer_.offset + uint64_t{first} * (u16 ? 2 : 4));
+        if (index_offset + uint64_t{count} * (u16 ? 2 : 4) > (*buffer)->desc.size) {
+            fail(ErrorCode::InvalidArgument, where(command) + std::to_string(count) + " indices from index " +
+                                                 std::to_string(first) + " run past the end of index buffer " +
+                                                 quote_name((*buffer)->desc.name));
+            return;
+        }
+    }
+    const GLuint program = p->program, vao = p->vao;
+    const GLenum topology = p->topology;
+    const GlRasterState raster = p->raster;
+    const std::vector<GlBlendState> blend = p->blend;
+    const GLint base_instance_location = p->base_instance_location;
+    record([=](GlStateCache& cache) {
+        cache.use_program(program);
+        cache.raster(raster);
+        for (uint32_t i = 0; i < blend.size(); ++i) cache.blend(i, blend[i]);
+        cache.enable(GL_SCISSOR_TEST, true);
+        cache.bind_vertex_array(vao);
+        for (const VertexBinding& v : vertex) cache.vertex_buffer(vao, v.slot, v.buffer, v.offset, v.stride);
+        if (indexed) cache.element_buffer(vao, index_buffer);
+        apply_bindings(cache, bindings);
+        if (base_instance_location >= 0) {
+            glProgramUniform1i(program, base_instance_location, static_cast<GLint>(first_instance));
+            cache.count_call();
+        }
+        if (indexed) {
+            glDrawElementsInstancedBaseVertexBaseInstance(topology, static_cast<GLsizei>(count), index_type,
+                                                          reinterpret_cast<const void*>(index_offset),
+                                                          static_cast<GLsizei>(instance_count), base_vertex, first_instance);
+        } else {
+            glDrawArraysInstancedBaseInstance(topology, static_cast<GLint>(first), static_cast<GLsizei>(count),
+                                              static_cast<GLsizei>(instance_count), first_instance);
+        }
+        cache.count_call();
+        cache.count_draw();
+    });
+}
+
+void GlCommandList::dispatch(uint32_t groups_x, uint32_t groups_y, uint32_t groups_z) {
+    if (pass_) {
+        fail(ErrorCode::InvalidState, where("dispatch") + "dispatches must be outside render passes");
+        return;
+    }
+    GlPipeline* p = current_pipeline("dispatch", true);
+    if (!p) return;
+    if (groups_x == 0 || groups_y == 0 || groups_z == 0) return;
+    std::vector<ResolvedBinding> bindings;
+    if (!resolve_bindings(*p, "dispatch", bindings)) return;
+    const GLuint program = p->program;
+    record([=](GlStateCache& cache) {
+        cache.use_program(program);
+        apply_bindings(cache, bindings);
+        glDispatchCompute(groups_x, groups_y, groups_z);
+        cache.count_call();
+        cache.count_dispatch();
+    });
+}
+
+// ---- copies and transitions ------------------------------------------------------------------
+
+void GlCommandList::copy_buffer(rhi::BufferHandle src, uint64_t src_offset, rhi::BufferHandle dst, uint64_t dst_offset,
+                                uint64_t size) {
+    if (pass_) {
+        fail(ErrorCode::InvalidState, where("copy_buffer") + "copies must be outside render passes");
+        return;
+    }
+    auto s = device_->buffers().get(src);
+    if (!s.ok()) {
+        fail(ErrorCode::InvalidHandle, "copy_buffer source: " + s.error().message);
+        return;
+    }
+    auto d = device_->buffers().get(dst);
+    if (!d.ok()) {
+        fail(ErrorCode::InvalidHandle, "copy_buffer destination: " + d.error().message);
+        return;
+    }
+    const GlBuffer& sb = **s;
+    const GlBuffer& db = **d;
+    if (src_offset > sb.desc.size || size > sb.desc.size - src_offset || dst_offset > db.desc.size ||
+        size > db.desc.size - dst_offset) {
+        fail(ErrorCode::InvalidArgument, "copy_buffer: " + std::to_string(size) + " bytes from " + quote_name(sb.desc.name) + "+" +
+                                             std::to_string(src_offset) + " to " + quote_name(db.desc.name) + "+" +
+                                             std::to_string(dst_offset) + " run past the end of a buffer");
+        return;
+    }
+    if (sb.name == db.name && src_offset < dst_offset + size && dst_offset < src_offset + size) {
+        fail(ErrorCode::InvalidArgument, "copy_buffer: source and destination ranges of " + quote_name(sb.desc.name) + " overlap");
+        return;
+    }
+    if (size == 0) return;
+    const GLuint from = sb.name, to = db.name;
+    record([=](GlStateCache& cache) {
+        glCopyNamedBufferSubData(from, to, static_cast<GLintptr>(src_offset), static_cast<GLintptr>(dst_offset),
+                                 static_cast<GLsizeiptr>(size));
+        cache.count_call();
+    });
+}
+
+void GlCommandList::copy_texture(const rhi::TextureCopy& copy) {
+    if (pass_) {
+        fail(ErrorCode::InvalidState, where("copy_texture") + "copies must be outside render passes");
+        return;
+    }
+    auto s = device_->textures().get(copy.src);
+    if (!s.ok()) {
+        fail(ErrorCode::InvalidHandle, "copy_texture source: " + s.error().message);
+        return;
+    }
+    auto d = device_->textures().get(copy.dst);
+    if (!d.ok()) {
+        fail(ErrorCode::InvalidHandle, "copy_texture destination: " + d.error().message);
+        return;
+    }
+    GlTexture& st = **s;
+    GlTexture& dt = **d;
+    const std::string what = "copy_texture from " + quote_name(st.desc.name) + " to " + quote_name(dt.desc.name) + ": ";
+    if (rhi::format_info(st.desc.format).bytes_per_texel != rhi::format_info(dt.desc.format).bytes_per_texel ||
+        rhi::format_info(st.desc.format).is_depth_stencil() != rhi::format_info(dt.desc.format).is_depth_stencil() ||
+        (rhi::format_info(st.desc.format).is_depth_stencil() && st.desc.format != dt.desc.format)) {
+        fail(ErrorCode::InvalidArgument, what + "formats " + std::string(rhi::format_name(st.desc.format)) + " and " +
+                                             std::string(rhi::format_name(dt.desc.format)) + " are not copy-compatible");
+        return;
+    }
+    if (st.desc.samples != dt.desc.samples) {
+        fail(ErrorCode::InvalidArgument, what + "sample counts differ");
+        return;
+    }
+    const rhi::TextureRegion& sr = copy.src_region;
+    const rhi::TextureRegion& dr = copy.dst_region;
+    if (sr.mip >= st.desc.mip_levels || dr.mip >= dt.desc.mip_levels) {
+        fail(ErrorCode::InvalidArgument, what + "mip out of range");
+        return;
+    }
+    const bool s3d = st.desc.dimension == rhi::TextureDimension::Tex3D;
+    const bool d3d = dt.desc.dimension == rhi::TextureDimension::Tex3D;
+    const uint32_t smw = mip_extent(st.desc.width, sr.mip), smh = mip_extent(st.desc.height, sr.mip);
+    const uint32_t dmw = mip_extent(dt.desc.width, dr.mip), dmh = mip_extent(dt.desc.height, dr.mip);
+    const uint32_t w = sr.extent.width ? sr.extent.width : smw - std::min(smw, sr.origin.x);
+    const uint32_t h = sr.extent.height ? sr.extent.height : smh - std::min(smh, sr.origin.y);
+    const uint32_t depth = s3d ? (sr.extent.depth ? sr.extent.depth : 1) : 1;
+    const uint32_t sz = s3d ? sr.origin.z : sr.layer;
+    const uint32_t dz = d3d ? dr.origin.z : dr.layer;
+    const bool fits = w > 0 && h > 0 && uint64_t{sr.origin.x} + w <= smw && uint64_t{sr.origin.y} + h <= smh &&
+                      uint64_t{dr.origin.x} + w <= dmw && uint64_t{dr.origin.y} + h <= dmh &&
+                      uint64_t{sz} + depth <= layer_count(st.desc, sr.mip) && uint64_t{dz} + depth <= layer_count(dt.desc, dr.mip);
+    if (!fits) {
+        fail(ErrorCode::InvalidArgument, what + "the " + std::to_string(w) + "x" + std::to_string(h) + "x" +
+                                             std::to_string(depth) + " region does not fit the source or destination");
+        return;
+    }
+    if (st.state == ResourceState::Storage || dt.state == ResourceState::Storage) {
+        const GLbitfield bits = barrier_after_storage(ResourceState::CopySrc);
+        record([bits](GlStateCache& cache) {
+            glMemoryBarrier(bits);
+            cache.count_call();
+        });
+    }
+    st.state = ResourceState::CopySrc;
+    dt.state = ResourceState::CopyDst;
+    const GLuint from = st.name, to = dt.name;
+    const GLenum from_target = st.target, to_target = dt.target;
+    record([=](GlStateCache& cache) {
+        glCopyImageSubData(from, from_target, static_cast<GLint>(sr.mip), static_cast<GLint>(sr.origin.x),
+                           static_cast<GLint>(sr.origin.y), static_cast<GLint>(sz), to, to_target, static_cast<GLint>(dr.mip),
+                           static_cast<GLint>(dr.origin.x), static_cast<GLint>(dr.origin.y), static_cast<GLint>(dz),
+                           static_cast<GLsizei>(w), static_cast<GLsizei>(h), static_cast<GLsizei>(depth));
+        cache.count_call();
+    });
+}
+
+void GlCommandList::transition(rhi::TextureHandle texture, ResourceState state) {
+    auto found = device_->textures().get(texture);
+    if (!found.ok()) {
+        fail(ErrorCode::InvalidHandle, where("transition") + found.error().message);
+        return;
+    }
+    GlTexture& t = **found;
+    if (pass_) {
+        fail(ErrorCode::InvalidState, where("transition") + "texture " + quote_name(t.desc.name) +
+                                          " cannot change state inside a render pass");
+        return;
+    }
+    if (t.state == ResourceState::Storage) {
+        // Storage writes are the only accesses GL does not order by itself.
+        const GLbitfield bits = barrier_after_storage(state);
+        if (bits != 0) {
+            record([bits](GlStateCache& cache) {
+                glMemoryBarrier(bits);
+                cache.count_call();
+            });
+        }
+    }
+    t.state = state;
+}
+
+void GlCommandList::transition(rhi::BufferHandle buffer, ResourceState state) {
+    auto found = device_->buffers().get(buffer);
+    if (!found.ok()) {
+        fail(ErrorCode::InvalidHandle, where("transition") + found.error().message);
+        return;
+    }
+    GlBuffer& b = **found;
+    if (pass_) {
+        fail(ErrorCode::InvalidState, where("transition") + "buffer " + quote_name(b.desc.name) +
+                                          " cannot change state inside a render pass");
+        return;
+    }
+    if (b.state == ResourceState::Storage) {
+        const GLbitfield bits = barrier_after_storage(state);
+        if (bits != 0) {
+            record([bits](GlStateCache& cache) {
+                glMemoryBarrier(bits);
+                cache.count_call();
+            });
+        }
+    }
+    b.state = state;
+}
+
+// ---- timers and debug groups -----------------------------------------------------------------
+
+void GlCommandList::begin_timer(std::string_view label) {
+    if (open_timer_) {
+        fail(ErrorCode::InvalidState, "begin_timer " + quote_name(std::string(label)) + ": timer " + quote_name(*open_timer_) +
+                                          " is still open (timers do not nest)");
+        return;
+    }
+    const GLuint query = device_->acquire_query();
+    open_timer_ = std::string(label);
+    timers_.emplace_back(std::string(label), query);
+    record([query](GlStateCache& cache) {
+        glBeginQuery(GL_TIME_ELAPSED, query);
+        cache.count_call();
+    });
+}
+
+void GlCommandList::end_timer() {
+    if (!open_timer_) {
+        fail(ErrorCode::InvalidState, "end_timer: no timer is open");
+        return;
+    }
+    open_timer_.reset();
+    record([](GlStateCache& cache) {
+        glEndQuery(GL_TIME_ELAPSED);
+        cache.count_call();
+    });
+}
+
+void GlCommandList::push_debug_group(std::string_view label) {
+    ++debug_depth_;
+    std::string text(label);
+    record([text](GlStateCache& cache) {
+        glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, static_cast<GLsizei>(text.size()), text.data());
+        cache.count_call();
+    });
+}
+
+void GlCommandList::pop_debug_group() {
+    if (debug_depth_ == 0) {
+        fail(ErrorCode::InvalidState, "pop_debug_group: no debug group is open");
+        return;
+    }
+    --debug_depth_;
+    record([](GlStateCache& cache) {
+        glPopDebugGroup();
+        cache.count_call();
+    });
+}
+
+}  // namespace loom::gl

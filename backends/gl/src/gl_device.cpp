@@ -1,0 +1,135 @@
+// GlDevice: creation, capabilities, the window, and the public factory.
+#include "gl_device.hpp"
+
+#include <algorithm>
+
+#include "gl_debug.hpp"
+#include "loom/rhi/log.hpp"
+
+namespace loom::gl {
+
+Result<std::unique_ptr<rhi::Device>> create_gl_device(const rhi::DeviceDesc& desc) {
+    auto device = GlDevice::create(desc);
+    if (!device.ok()) return device.take_error();
+    return std::unique_ptr<rhi::Device>(std::move(*device));
+}
+
+std::optional<GlCacheStats> gl_cache_stats(const rhi::Device& device) {
+    if (const auto* gl = dynamic_cast<const GlDevice*>(&device)) return gl->cache_stats();
+    return std::nullopt;
+}
+
+Result<std::unique_ptr<GlDevice>> GlDevice::create(const rhi::DeviceDesc& desc) {
+    auto context = desc.headless ? GlContext::create_headless(desc.debug)
+                                 : GlContext::create_windowed(desc.window, desc.debug);
+    if (!context.ok()) return context.take_error();
+    std::unique_ptr<GlDevice> device(new GlDevice());
+    device->context_ = std::move(*context);
+
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major < 4 || (major == 4 && minor < 5)) {
+        return Error{ErrorCode::Unsupported, "OpenGL 4.5 is required, the context is " + std::to_string(major) + "." +
+                                                 std::to_string(minor)};
+    }
+    if (desc.debug) install_debug_output();
+
+    // loom's conventions: NDC y=+1 lands on row 0 (the top row in memory), depth 0..1.
+    glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);
+    // Tightly packed rows for every upload and readback.
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    // Writes to sRGB attachments encode, as they do on Vulkan.
+    glEnable(GL_FRAMEBUFFER_SRGB);
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+
+    device->init_capabilities();
+    device->cache_ = std::make_unique<GlStateCache>(device->counters_);
+    device->list_ = std::make_unique<GlCommandList>(*device);
+    log_info("gl", "device: " + device->caps_.device_name + " | " + device->caps_.api_version);
+    return device;
+}
+
+void GlDevice::init_capabilities() {
+    auto integer = [](GLenum pname) {
+        GLint v = 0;
+        glGetIntegerv(pname, &v);
+        return static_cast<uint32_t>(std::max(v, 0));
+    };
+    caps_.backend = rhi::Backend::OpenGL;
+    caps_.device_name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    caps_.api_version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    caps_.formats = query_format_capabilities();
+    caps_.placed_resources = false;
+    GLint timer_bits = 0;
+    glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &timer_bits);
+    caps_.timestamps = timer_bits > 0;
+    caps_.max_texture_size = integer(GL_MAX_TEXTURE_SIZE);
+    caps_.max_color_attachments = std::min({integer(GL_MAX_COLOR_ATTACHMENTS), integer(GL_MAX_DRAW_BUFFERS),
+                                            kMaxColorAttachments});
+    caps_.uniform_buffer_offset_alignment = std::max<uint32_t>(1, integer(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT));
+    caps_.storage_buffer_offset_alignment = std::max<uint32_t>(1, integer(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT));
+    limits_.max_image_units = integer(GL_MAX_IMAGE_UNITS);
+    limits_.max_storage_buffer_bindings = integer(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS);
+    limits_.max_samples = integer(GL_MAX_SAMPLES);
+    limits_.max_3d_texture_size = integer(GL_MAX_3D_TEXTURE_SIZE);
+    limits_.max_array_layers = integer(GL_MAX_ARRAY_TEXTURE_LAYERS);
+    limits_.max_cube_size = integer(GL_MAX_CUBE_MAP_TEXTURE_SIZE);
+}
+
+GlDevice::~GlDevice() {
+    context_->make_current();
+    glFinish();
+    list_.reset();
+    for (auto& destroy_gl : deferred_deletes_) destroy_gl();
+    deferred_deletes_.clear();
+    for (auto& [key, fbo] : framebuffers_) glDeleteFramebuffers(1, &fbo);
+    framebuffers_.clear();
+    if (backbuffer_fbo_) glDeleteFramebuffers(1, &backbuffer_fbo_);
+    for (auto& [key, entry] : vertex_arrays_) glDeleteVertexArrays(1, &entry.vao);
+    vertex_arrays_.clear();
+    auto drop_chunk = [](TransientChunk& c) {
+        if (c.fence) glDeleteSync(c.fence);
+    };
+    for (auto& c : free_chunks_) drop_chunk(c);
+    for (auto& c : frame_chunks_) drop_chunk(c);
+    for (auto& c : busy_chunks_) drop_chunk(c);
+    for (auto& frame : pending_timers_) {
+        for (auto& [label, query] : frame.queries) free_queries_.push_back(query);
+    }
+    if (!free_queries_.empty()) glDeleteQueries(static_cast<GLsizei>(free_queries_.size()), free_queries_.data());
+    // Whatever the user did not destroy goes with the device.
+    textures_.clear([](rhi::TextureHandle, GlTexture& t) { glDeleteTextures(1, &t.name); });
+    buffers_.clear([](rhi::BufferHandle, GlBuffer& b) { glDeleteBuffers(1, &b.name); });
+    samplers_.clear([](rhi::SamplerHandle, GlSampler& s) { glDeleteSamplers(1, &s.name); });
+    pipelines_.clear([](rhi::PipelineHandle, GlPipeline& p) { glDeleteProgram(p.program); });
+    shaders_.clear([](rhi::ShaderHandle, GlShader& s) { glDeleteShader(s.name_gl); });
+    glFinish();
+}
+
+Result<rhi::HeapHandle> GlDevice::create_heap(const rhi::HeapDesc& desc) {
+    return Error{ErrorCode::Unsupported,
+                 "heap '" + desc.name + "': the OpenGL backend has no placed resources (Capabilities::placed_resources is false)"};
+}
+
+Result<rhi::MemoryRequirements> GlDevice::texture_memory_requirements(const rhi::TextureDesc& desc) {
+    return Error{ErrorCode::Unsupported, "texture '" + desc.name +
+                                             "': memory requirements need placed resources, which the OpenGL backend lacks"};
+}
+
+Status GlDevice::destroy(rhi::HeapHandle heap) {
+    (void)heap;
+    return Error{ErrorCode::InvalidHandle, "heap handle: the OpenGL backend creates no heaps"};
+}
+
+bool GlDevice::poll_window() { return context_->poll_events(); }
+
+rhi::Extent3D GlDevice::window_size() const { return context_->framebuffer_size(); }
+
+rhi::TextureHandle GlDevice::backbuffer() {
+    return (context_->windowed() && list_->recording()) ? backbuffer_ : rhi::TextureHandle{};
+}
+
+}  // namespace loom::gl

@@ -1,0 +1,276 @@
+#pragma once
+// The GL implementation of rhi::Device and rhi::CommandList.
+//
+// Commands are recorded (validated, resolved to GL names, state-tracked) into a list of
+// closures and executed at end_frame(), so that, as on Vulkan, uploads made while a frame is
+// recorded land before the frame's commands, and a misused command is skipped while the rest
+// of the frame still runs.
+
+#include <array>
+#include <deque>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <epoxy/gl.h>
+
+#include "gl_context.hpp"
+#include "gl_objects.hpp"
+#include "gl_state_cache.hpp"
+#include "loom/gl/gl_device.hpp"
+#include "loom/rhi/handle_pool.hpp"
+
+namespace loom::gl {
+
+class GlDevice;
+
+/// A recorded GL command, run against the state cache at end_frame().
+using GlCommand = std::function<void(GlStateCache&)>;
+
+/// Largest push-constant block supported (Vulkan guarantees 128 bytes; lavapipe has 256).
+inline constexpr uint32_t kMaxPushConstantBytes = 256;
+
+class GlCommandList final : public rhi::CommandList {
+public:
+    explicit GlCommandList(GlDevice& device) : device_(&device) {}
+
+    void begin_render_pass(const rhi::RenderPassDesc& desc) override;
+    void end_render_pass() override;
+    void set_pipeline(rhi::PipelineHandle pipeline) override;
+    void set_viewport(const rhi::Viewport& viewport) override;
+    void set_scissor(const rhi::Rect& rect) override;
+    void set_bind_group(uint32_t set, const rhi::BindGroup& group) override;
+    void push_constants(std::span<const std::byte> data, uint32_t offset) override;
+    void set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, uint64_t offset) override;
+    void set_index_buffer(rhi::BufferHandle buffer, rhi::IndexType type, uint64_t offset) override;
+    rhi::BufferBinding transient_uniforms(std::span<const std::byte> data) override;
+    void draw(uint32_t vertex_count, uint32_t instance_count, uint32_t first_vertex, uint32_t first_instance) override;
+    void draw_indexed(uint32_t index_count, uint32_t instance_count, uint32_t first_index, int32_t base_vertex,
+                      uint32_t first_instance) override;
+    void dispatch(uint32_t groups_x, uint32_t groups_y, uint32_t groups_z) override;
+    void copy_buffer(rhi::BufferHandle src, uint64_t src_offset, rhi::BufferHandle dst, uint64_t dst_offset,
+                     uint64_t size) override;
+    void copy_texture(const rhi::TextureCopy& copy) override;
+    void transition(rhi::TextureHandle texture, rhi::ResourceState state) override;
+    void transition(rhi::BufferHandle buffer, rhi::ResourceState state) override;
+    void begin_timer(std::string_view label) override;
+    void end_timer() override;
+    void push_debug_group(std::string_view label) override;
+    void pop_debug_group() override;
+
+    // -- used by GlDevice ---------------------------------------------------------------
+    void begin(uint64_t frame_index);
+    /// Closes what was left open (recording an error for each) and hands over the commands.
+    std::vector<GlCommand> finish();
+    [[nodiscard]] bool recording() const { return recording_; }
+    /// The first error recorded in this frame, if any.
+    std::optional<Error>& first_error() { return first_error_; }
+    /// Timer queries recorded this frame, in order.
+    std::vector<std::pair<std::string, GLuint>>& timers() { return timers_; }
+    /// Records an error from outside (e.g. begin_frame called twice).
+    void fail(ErrorCode code, std::string message);
+
+private:
+    struct PassState {
+        std::string label;
+        GLuint framebuffer = 0;
+        std::vector<rhi::Format> color_formats;
+        rhi::Format depth_format = rhi::Format::Undefined;
+        uint32_t samples = 1;
+        uint32_t width = 0;
+        uint32_t height = 0;
+        std::vector<GLenum> discard_after;  ///< attachments whose store op is DontCare
+    };
+    struct VertexBufferSlot {
+        rhi::BufferHandle buffer;
+        uint64_t offset = 0;
+    };
+    struct IndexBufferState {
+        rhi::BufferHandle buffer;
+        rhi::IndexType type = rhi::IndexType::Uint32;
+        uint64_t offset = 0;
+    };
+    /// A binding resolved to GL names, ready to be applied through the state cache.
+    struct ResolvedBinding {
+        BindingKind kind = BindingKind::UniformBuffer;
+        uint32_t point = 0;
+        GLuint object = 0;
+        GLuint sampler = 0;
+        GLintptr offset = 0;
+        GLsizeiptr size = 0;
+        GLint level = 0;
+        bool layered = false;
+        GLenum access = GL_READ_WRITE;
+        GLenum format = 0;
+    };
+
+    void record(GlCommand command) { commands_.push_back(std::move(command)); }
+    /// Prefix of error messages: which command of which pass.
+    [[nodiscard]] std::string where(std::string_view command) const;
+    /// Resolves the current pipeline's bindings from the bound groups (and push constants);
+    /// false (with an error recorded) when something is missing or in the wrong state.
+    bool resolve_bindings(const GlPipeline& pipeline, std::string_view command, std::vector<ResolvedBinding>& out);
+    GlPipeline* current_pipeline(std::string_view command, bool compute);
+    void draw_common(bool indexed, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
+                     uint32_t first_instance);
+    static void apply_bindings(GlStateCache& cache, const std::vector<ResolvedBinding>& bindings);
+
+    GlDevice* device_;
+    bool recording_ = false;
+    uint64_t frame_index_ = 0;
+    std::vector<GlCommand> commands_;
+    std::optional<Error> first_error_;
+    std::optional<PassState> pass_;
+    rhi::PipelineHandle pipeline_;
+    std::array<std::optional<rhi::BindGroup>, rhi::kMaxBindGroups> groups_;
+    std::array<VertexBufferSlot, 16> vertex_buffers_{};
+    IndexBufferState index_buffer_;
+    std::array<std::byte, kMaxPushConstantBytes> push_data_{};
+    uint32_t push_size_ = 0;  ///< bytes written so far (high-water mark)
+    bool push_dirty_ = false;
+    std::optional<rhi::BufferBinding> push_binding_;
+    std::optional<std::string> open_timer_;
+    std::vector<std::pair<std::string, GLuint>> timers_;
+    uint32_t debug_depth_ = 0;
+};
+
+class GlDevice final : public rhi::Device {
+public:
+    static Result<std::unique_ptr<GlDevice>> create(const rhi::DeviceDesc& desc);
+    ~GlDevice() override;
+
+    [[nodiscard]] rhi::Backend backend() const override { return rhi::Backend::OpenGL; }
+    [[nodiscard]] const rhi::Capabilities& capabilities() const override { return caps_; }
+
+    Result<rhi::TextureHandle> create_texture(const rhi::TextureDesc& desc) override;
+    Result<rhi::BufferHandle> create_buffer(const rhi::BufferDesc& desc) override;
+    Result<rhi::SamplerHandle> create_sampler(const rhi::SamplerDesc& desc) override;
+    Result<rhi::ShaderHandle> create_shader(const rhi::ShaderModule& module) override;
+    Result<rhi::PipelineHandle> create_graphics_pipeline(const rhi::GraphicsPipelineDesc& desc) override;
+    Result<rhi::PipelineHandle> create_compute_pipeline(const rhi::ComputePipelineDesc& desc) override;
+    Result<rhi::HeapHandle> create_heap(const rhi::HeapDesc& desc) override;
+    Result<rhi::MemoryRequirements> texture_memory_requirements(const rhi::TextureDesc& desc) override;
+
+    Status destroy(rhi::TextureHandle texture) override;
+    Status destroy(rhi::BufferHandle buffer) override;
+    Status destroy(rhi::SamplerHandle sampler) override;
+    Status destroy(rhi::ShaderHandle shader) override;
+    Status destroy(rhi::PipelineHandle pipeline) override;
+    Status destroy(rhi::HeapHandle heap) override;
+
+    Result<rhi::TextureDesc> texture_desc(rhi::TextureHandle texture) override;
+
+    Status write_buffer(rhi::BufferHandle buffer, uint64_t offset, std::span<const std::byte> data) override;
+    Status write_texture(rhi::TextureHandle texture, const rhi::TextureRegion& region,
+                         std::span<const std::byte> data) override;
+    Result<rhi::Image> read_texture(rhi::TextureHandle texture, uint32_t mip, uint32_t layer) override;
+    Result<std::vector<std::byte>> read_buffer(rhi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
+
+    rhi::CommandList& begin_frame() override;
+    Status end_frame() override;
+    Status wait_idle() override;
+    std::vector<rhi::TimerResult> timer_results() override;
+
+    [[nodiscard]] rhi::ResourceStats resource_stats() const override { return stats_; }
+    [[nodiscard]] rhi::FrameStats last_frame_stats() const override { return last_frame_; }
+
+    bool poll_window() override;
+    [[nodiscard]] rhi::Extent3D window_size() const override;
+    rhi::TextureHandle backbuffer() override;
+
+    [[nodiscard]] GlCacheStats cache_stats() const { return {framebuffers_.size(), vertex_arrays_.size()}; }
+
+    // -- used by GlCommandList ----------------------------------------------------------
+    rhi::HandlePool<rhi::TextureTag, GlTexture>& textures() { return textures_; }
+    rhi::HandlePool<rhi::BufferTag, GlBuffer>& buffers() { return buffers_; }
+    rhi::HandlePool<rhi::SamplerTag, GlSampler>& samplers() { return samplers_; }
+    rhi::HandlePool<rhi::PipelineTag, GlPipeline>& pipelines() { return pipelines_; }
+    /// The framebuffer object for this attachment set (created on first use).
+    GLuint framebuffer_for(const std::vector<std::pair<const GlTexture*, std::array<uint32_t, 2>>>& colors,
+                           const GlTexture* depth, std::array<uint32_t, 2> depth_mip_layer);
+    /// Copies `data` into this frame's transient uniform memory.
+    rhi::BufferBinding allocate_transient(std::span<const std::byte> data);
+    GLuint acquire_query();
+    /// Counts upload bytes into the frame being prepared.
+    void count_upload(uint64_t bytes) { pending_uploads_ += bytes; }
+    void count_render_pass() { ++render_passes_in_frame_; }
+    struct Limits {
+        uint32_t max_image_units = 8;
+        uint32_t max_storage_buffer_bindings = 8;
+        uint32_t max_samples = 1;
+        uint32_t max_3d_texture_size = 0;
+        uint32_t max_array_layers = 0;
+        uint32_t max_cube_size = 0;
+    };
+    [[nodiscard]] const Limits& limits() const { return limits_; }
+
+private:
+    GlDevice() : textures_(id_), buffers_(id_), samplers_(id_), shaders_(id_), pipelines_(id_) {}
+
+    void init_capabilities();
+    /// Runs `destroy_gl` now, or after the recorded frame has executed.
+    void delete_later(std::function<void()> destroy_gl);
+    void forget_framebuffers_with(GLuint texture);
+    Result<GLuint> vertex_array_for(const std::vector<rhi::VertexBufferLayout>& layout, std::vector<uint32_t>& key);
+    void release_vertex_array(const std::vector<uint32_t>& key);
+    Status check_texture_desc(const rhi::TextureDesc& desc) const;
+    Result<rhi::TextureHandle> create_texture_internal(const rhi::TextureDesc& desc, bool internal);
+    void collect_timers(bool wait);
+    void recycle_transient_chunks(bool wait);
+    void ensure_backbuffer();
+    Result<rhi::Image> read_texture_gl(GlTexture& texture, uint32_t mip, uint32_t layer);
+
+    struct TransientChunk {
+        rhi::BufferHandle buffer;
+        GLuint name = 0;
+        uint64_t size = 0;
+        uint64_t used = 0;
+        std::vector<std::byte> staging;
+        GLsync fence = nullptr;
+    };
+    struct FrameTimers {
+        std::vector<std::pair<std::string, GLuint>> queries;
+    };
+    struct VertexArrayEntry {
+        GLuint vao = 0;
+        uint32_t users = 0;
+    };
+
+    uint16_t id_ = rhi::next_device_id();
+    std::unique_ptr<GlContext> context_;
+    rhi::Capabilities caps_;
+    Limits limits_;
+    rhi::HandlePool<rhi::TextureTag, GlTexture> textures_;
+    rhi::HandlePool<rhi::BufferTag, GlBuffer> buffers_;
+    rhi::HandlePool<rhi::SamplerTag, GlSampler> samplers_;
+    rhi::HandlePool<rhi::ShaderTag, GlShader> shaders_;
+    rhi::HandlePool<rhi::PipelineTag, GlPipeline> pipelines_;
+    rhi::ResourceStats stats_;
+    rhi::FrameStats last_frame_;
+    uint64_t pending_uploads_ = 0;
+    uint64_t render_passes_in_frame_ = 0;
+    GlCallCounters counters_;
+    std::unique_ptr<GlStateCache> cache_;
+    std::unique_ptr<GlCommandList> list_;
+    uint64_t frame_index_ = 0;
+    std::vector<std::function<void()>> deferred_deletes_;
+
+    std::map<std::vector<GLuint>, GLuint> framebuffers_;
+    std::map<std::vector<uint32_t>, VertexArrayEntry> vertex_arrays_;
+
+    std::vector<TransientChunk> free_chunks_;
+    std::vector<TransientChunk> frame_chunks_;
+    std::deque<TransientChunk> busy_chunks_;
+
+    std::vector<GLuint> free_queries_;
+    std::deque<FrameTimers> pending_timers_;
+    std::vector<rhi::TimerResult> latest_timers_;
+
+    rhi::TextureHandle backbuffer_;
+    GLuint backbuffer_fbo_ = 0;
+};
+
+}  // namespace loom::gl

@@ -1,0 +1,735 @@
+// GlDevice: creating and destroying textures, buffers, samplers, shaders and pipelines, and the
+// framebuffer-object and vertex-array caches.
+#include <algorithm>
+#include <bit>
+#include <set>
+
+#include "gl_device.hpp"
+
+namespace loom::gl {
+namespace {
+
+using rhi::has_any;
+
+std::string quote_name(const std::string& name) { return "'" + name + "'"; }
+
+uint32_t mip_extent(uint32_t size, uint32_t mip) { return std::max(1u, size >> mip); }
+
+uint64_t texture_bytes(const rhi::TextureDesc& d) {
+    uint64_t total = 0;
+    const uint64_t bpt = rhi::format_info(d.format).bytes_per_texel;
+    for (uint32_t m = 0; m < d.mip_levels; ++m) {
+        const uint64_t depth = d.dimension == rhi::TextureDimension::Tex3D ? mip_extent(d.depth_or_layers, m) : d.depth_or_layers;
+        total += uint64_t{mip_extent(d.width, m)} * mip_extent(d.height, m) * depth * bpt * d.samples;
+    }
+    return total;
+}
+
+GLenum texture_target(const rhi::TextureDesc& d) {
+    switch (d.dimension) {
+        case rhi::TextureDimension::Tex2D: return d.samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+        case rhi::TextureDimension::Tex2DArray: return GL_TEXTURE_2D_ARRAY;
+        case rhi::TextureDimension::Tex3D: return GL_TEXTURE_3D;
+        case rhi::TextureDimension::Cube: return GL_TEXTURE_CUBE_MAP;
+    }
+    return GL_TEXTURE_2D;
+}
+
+GLenum gl_filter(rhi::Filter f) { return f == rhi::Filter::Linear ? GL_LINEAR : GL_NEAREST; }
+
+GLenum gl_address(rhi::AddressMode m) {
+    switch (m) {
+        case rhi::AddressMode::Repeat: return GL_REPEAT;
+        case rhi::AddressMode::MirroredRepeat: return GL_MIRRORED_REPEAT;
+        case rhi::AddressMode::ClampToEdge: return GL_CLAMP_TO_EDGE;
+        case rhi::AddressMode::ClampToBorder: return GL_CLAMP_TO_BORDER;
+    }
+    return GL_CLAMP_TO_EDGE;
+}
+
+GLenum gl_compare(rhi::CompareOp op) {
+    switch (op) {
+        case rhi::CompareOp::Never: return GL_NEVER;
+        case rhi::CompareOp::Less: return GL_LESS;
+        case rhi::CompareOp::Equal: return GL_EQUAL;
+        case rhi::CompareOp::LessEqual: return GL_LEQUAL;
+        case rhi::CompareOp::Greater: return GL_GREATER;
+        case rhi::CompareOp::NotEqual: return GL_NOTEQUAL;
+        case rhi::CompareOp::GreaterEqual: return GL_GEQUAL;
+        case rhi::CompareOp::Always: return GL_ALWAYS;
+    }
+    return GL_LESS;
+}
+
+GLenum gl_blend_factor(rhi::BlendFactor f) {
+    switch (f) {
+        case rhi::BlendFactor::Zero: return GL_ZERO;
+        case rhi::BlendFactor::One: return GL_ONE;
+        case rhi::BlendFactor::SrcColor: return GL_SRC_COLOR;
+        case rhi::BlendFactor::OneMinusSrcColor: return GL_ONE_MINUS_SRC_COLOR;
+        case rhi::BlendFactor::DstColor: return GL_DST_COLOR;
+        case rhi::BlendFactor::OneMinusDstColor: return GL_ONE_MINUS_DST_COLOR;
+        case rhi::BlendFactor::SrcAlpha: return GL_SRC_ALPHA;
+        case rhi::BlendFactor::OneMinusSrcAlpha: return GL_ONE_MINUS_SRC_ALPHA;
+        case rhi::BlendFactor::DstAlpha: return GL_DST_ALPHA;
+        case rhi::BlendFactor::OneMinusDstAlpha: return GL_ONE_MINUS_DST_ALPHA;
+        case rhi::BlendFactor::ConstantColor: return GL_CONSTANT_COLOR;
+        case rhi::BlendFactor::OneMinusConstantColor: return GL_ONE_MINUS_CONSTANT_COLOR;
+    }
+    return GL_ONE;
+}
+
+GLenum gl_blend_op(rhi::BlendOp op) {
+    switch (op) {
+        case rhi::BlendOp::Add: return GL_FUNC_ADD;
+        case rhi::BlendOp::Subtract: return GL_FUNC_SUBTRACT;
+        case rhi::BlendOp::ReverseSubtract: return GL_FUNC_REVERSE_SUBTRACT;
+        case rhi::BlendOp::Min: return GL_MIN;
+        case rhi::BlendOp::Max: return GL_MAX;
+    }
+    return GL_FUNC_ADD;
+}
+
+GLenum gl_topology(rhi::PrimitiveTopology t) {
+    switch (t) {
+        case rhi::PrimitiveTopology::TriangleList: return GL_TRIANGLES;
+        case rhi::PrimitiveTopology::TriangleStrip: return GL_TRIANGLE_STRIP;
+        case rhi::PrimitiveTopology::LineList: return GL_LINES;
+        case rhi::PrimitiveTopology::LineStrip: return GL_LINE_STRIP;
+        case rhi::PrimitiveTopology::PointList: return GL_POINTS;
+    }
+    return GL_TRIANGLES;
+}
+
+/// Components, GL type, normalised, integer (glVertexArrayAttribIFormat) of a vertex format.
+struct VertexFormatInfo {
+    GLint components;
+    GLenum type;
+    bool normalized;
+    bool integer;
+};
+
+VertexFormatInfo vertex_format_info(rhi::VertexFormat f) {
+    using V = rhi::VertexFormat;
+    switch (f) {
+        case V::Float: return {1, GL_FLOAT, false, false};
+        case V::Float2: return {2, GL_FLOAT, false, false};
+        case V::Float3: return {3, GL_FLOAT, false, false};
+        case V::Float4: return {4, GL_FLOAT, false, false};
+        case V::Int: return {1, GL_INT, false, true};
+        case V::Int2: return {2, GL_INT, false, true};
+        case V::Int3: return {3, GL_INT, false, true};
+        case V::Int4: return {4, GL_INT, false, true};
+        case V::Uint: return {1, GL_UNSIGNED_INT, false, true};
+        case V::Uint2: return {2, GL_UNSIGNED_INT, false, true};
+        case V::Uint3: return {3, GL_UNSIGNED_INT, false, true};
+        case V::Uint4: return {4, GL_UNSIGNED_INT, false, true};
+        case V::UByte4Norm: return {4, GL_UNSIGNED_BYTE, true, false};
+        case V::Byte4Norm: return {4, GL_BYTE, true, false};
+        case V::UShort2Norm: return {2, GL_UNSIGNED_SHORT, true, false};
+        case V::Short2Norm: return {2, GL_SHORT, true, false};
+        case V::UShort4Norm: return {4, GL_UNSIGNED_SHORT, true, false};
+        case V::Short4Norm: return {4, GL_SHORT, true, false};
+    }
+    return {4, GL_FLOAT, false, false};
+}
+
+std::string info_log(GLuint object, bool program) {
+    GLint length = 0;
+    if (program) {
+        glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length);
+    } else {
+        glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
+    }
+    std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+    if (program) {
+        glGetProgramInfoLog(object, length, nullptr, log.data());
+    } else {
+        glGetShaderInfoLog(object, length, nullptr, log.data());
+    }
+    while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
+    return log;
+}
+
+void set_label(GLenum kind, GLuint object, const std::string& name) {
+    if (!name.empty()) glObjectLabel(kind, object, static_cast<GLsizei>(name.size()), name.data());
+}
+
+}  // namespace
+
+// ---- textures --------------------------------------------------------------------------------
+
+Status GlDevice::check_texture_desc(const rhi::TextureDesc& d) const {
+    const std::string what = "texture " + quote_name(d.name) + ": ";
+    auto invalid = [&](const std::string& message) { return Error{ErrorCode::InvalidArgument, what + message}; };
+    if (d.placement) {
+        return Error{ErrorCode::Unsupported, what + "placement in a heap needs placed resources, which the OpenGL backend lacks"};
+    }
+    if (d.format == rhi::Format::Undefined) return invalid("format is Undefined");
+    if (d.width == 0 || d.height == 0 || d.depth_or_layers == 0) {
+        return invalid("size " + std::to_string(d.width) + "x" + std::to_string(d.height) + "x" +
+                       std::to_string(d.depth_or_layers) + " has a zero dimension");
+    }
+    if (d.mip_levels == 0) return invalid("mip_levels is 0");
+    const uint32_t largest = std::max({d.width, d.height, d.dimension == rhi::TextureDimension::Tex3D ? d.depth_or_layers : 1u});
+    const uint32_t max_mips = static_cast<uint32_t>(std::bit_width(largest));
+    if (d.mip_levels > max_mips) {
+        return invalid("mip_levels " + std::to_string(d.mip_levels) + " exceeds the " + std::to_string(max_mips) +
+                       " levels of a " + std::to_string(largest) + "-texel texture");
+    }
+    const uint32_t max_size = d.dimension == rhi::TextureDimension::Tex3D ? limits_.max_3d_texture_size
+                              : d.dimension == rhi::TextureDimension::Cube ? limits_.max_cube_size
+                                                                           : caps_.max_texture_size;
+    if (d.width > max_size || d.height > max_size) {
+        return invalid("size " + std::to_string(d.width) + "x" + std::to_string(d.height) + " exceeds the limit " +
+                       std::to_string(max_size));
+    }
+    switch (d.dimension) {
+        case rhi::TextureDimension::Tex2D:
+            if (d.depth_or_layers != 1) return invalid("depth_or_layers must be 1 for a 2D texture");
+            break;
+        case rhi::TextureDimension::Tex2DArray:
+            if (d.depth_or_layers > limits_.max_array_layers) return invalid("too many layers");
+            break;
+        case rhi::TextureDimension::Tex3D:
+            if (d.depth_or_layers > limits_.max_3d_texture_size) return invalid("depth exceeds the 3D texture limit");
+            if (rhi::format_info(d.format).is_depth_stencil()) return invalid("a 3D texture cannot have a depth format");
+            break;
+        case rhi::TextureDimension::Cube:
+            if (d.depth_or_layers != 6) return invalid("a cube texture has depth_or_layers 6");
+            if (d.width != d.height) return invalid("cube faces must be square");
+            break;
+    }
+    if (d.samples == 0 || !std::has_single_bit(d.samples)) return invalid("samples must be a power of two");
+    if (d.samples > 1) {
+        if (d.dimension != rhi::TextureDimension::Tex2D) return invalid("only 2D textures can be multisampled");
+        if (d.mip_levels != 1) return invalid("a multisampled texture has exactly one mip level");
+        if (d.samples > limits_.max_samples) {
+            return Error{ErrorCode::Unsupported, what + std::to_string(d.samples) + " samples exceed the limit " +
+                                                     std::to_string(limits_.max_samples)};
+        }
+        if (has_any(d.usage, rhi::TextureUsage::Storage)) return invalid("a multisampled texture cannot be a storage image");
+    }
+    const rhi::FormatInfo& info = rhi::format_info(d.format);
+    const rhi::FormatCapabilities& fc = caps_.format(d.format);
+    const std::string format = std::string(rhi::format_name(d.format));
+    if (has_any(d.usage, rhi::TextureUsage::Sampled) && !fc.sampled) {
+        return Error{ErrorCode::Unsupported, what + format + " cannot be sampled on this device"};
+    }
+    if (has_any(d.usage, rhi::TextureUsage::ColorAttachment)) {
+        if (!info.is_color()) return invalid(format + " is not a colour format (usage ColorAttachment)");
+        if (!fc.color_attachment) return Error{ErrorCode::Unsupported, what + format + " cannot be rendered to on this device"};
+    }
+    if (has_any(d.usage, rhi::TextureUsage::DepthStencilAttachment)) {
+        if (!info.is_depth_stencil()) return invalid(format + " is not a depth/stencil format (usage DepthStencilAttachment)");
+        if (!fc.depth_stencil_attachment) {
+            return Error{ErrorCode::Unsupported, what + format + " cannot be a depth attachment on this device"};
+        }
+    }
+    if (has_any(d.usage, rhi::TextureUsage::Storage) && !fc.storage) {
+        return Error{ErrorCode::Unsupported, what + format + " cannot be a storage image on this device"};
+    }
+    return {};
+}
+
+Result<rhi::TextureHandle> GlDevice::create_texture(const rhi::TextureDesc& desc) {
+    context_->make_current();
+    return create_texture_internal(desc, false);
+}
+
+Result<rhi::TextureHandle> GlDevice::create_texture_internal(const rhi::TextureDesc& desc, bool internal) {
+    LOOM_TRY(check_texture_desc(desc));
+    GlTexture t;
+    t.desc = desc;
+    t.target = texture_target(desc);
+    t.format = gl_format(desc.format);
+    t.bytes = texture_bytes(desc);
+    t.internal = internal;
+    glCreateTextures(t.target, 1, &t.name);
+    const auto w = static_cast<GLsizei>(desc.width), h = static_cast<GLsizei>(desc.height);
+    const auto levels = static_cast<GLsizei>(desc.mip_levels);
+    switch (t.target) {
+        case GL_TEXTURE_2D:
+        case GL_TEXTURE_CUBE_MAP: glTextureStorage2D(t.name, levels, t.format->internal_format, w, h); break;
+        case GL_TEXTURE_2D_MULTISAMPLE:
+            glTextureStorage2DMultisample(t.name, static_cast<GLsizei>(desc.samples), t.format->internal_format, w, h, GL_TRUE);
+            break;
+        default:
+            glTextureStorage3D(t.name, levels, t.format->internal_format, w, h, static_cast<GLsizei>(desc.depth_or_layers));
+            break;
+    }
+    set_label(GL_TEXTURE, t.name, desc.name);
+    if (!internal) {
+        ++stats_.textures;
+        stats_.texture_bytes += t.bytes;
+    }
+    return textures_.insert(std::move(t));
+}
+
+Status GlDevice::destroy(rhi::TextureHandle texture) {
+    context_->make_current();
+    auto found = textures_.get(texture);
+    if (!found.ok()) return found.take_error();
+    if ((*found)->internal) {
+        return Error{ErrorCode::InvalidArgument, "texture " + quote_name((*found)->desc.name) + " belongs to the device"};
+    }
+    GlTexture t = std::move(*textures_.remove(texture));
+    --stats_.textures;
+    stats_.texture_bytes -= t.bytes;
+    const GLuint name = t.name;
+    delete_later([this, name] {
+        forget_framebuffers_with(name);
+        glDeleteTextures(1, &name);
+    });
+    return {};
+}
+
+Result<rhi::TextureDesc> GlDevice::texture_desc(rhi::TextureHandle texture) {
+    auto found = textures_.get(texture);
+    if (!found.ok()) return found.take_error();
+    return (*found)->desc;
+}
+
+// ---- buffers and samplers --------------------------------------------------------------------
+
+Result<rhi::BufferHandle> GlDevice::create_buffer(const rhi::BufferDesc& desc) {
+    context_->make_current();
+    if (desc.size == 0) return Error{ErrorCode::InvalidArgument, "buffer " + quote_name(desc.name) + ": size is 0"};
+    GlBuffer b;
+    b.desc = desc;
+    glCreateBuffers(1, &b.name);
+    // Dynamic storage: write_buffer updates it with glNamedBufferSubData.
+    glNamedBufferStorage(b.name, static_cast<GLsizeiptr>(desc.size), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    set_label(GL_BUFFER, b.name, desc.name);
+    ++stats_.buffers;
+    stats_.buffer_bytes += desc.size;
+    return buffers_.insert(std::move(b));
+}
+
+Status GlDevice::destroy(rhi::BufferHandle buffer) {
+    context_->make_current();
+    auto found = buffers_.get(buffer);
+    if (!found.ok()) return found.take_error();
+    if ((*found)->internal) {
+        return Error{ErrorCode::InvalidArgument, "buffer " + quote_name((*found)->desc.name) + " belongs to the device"};
+    }
+    GlBuffer b = std::move(*buffers_.remove(buffer));
+    --stats_.buffers;
+    stats_.buffer_bytes -= b.desc.size;
+    const GLuint name = b.name;
+    delete_later([name] { glDeleteBuffers(1, &name); });
+    return {};
+}
+
+Result<rhi::SamplerHandle> GlDevice::create_sampler(const rhi::SamplerDesc& desc) {
+    context_->make_current();
+    const std::string what = "sampler " + quote_name(desc.name) + ": ";
+    if (!(desc.min_lod <= desc.max_lod)) return Error{ErrorCode::InvalidArgument, what + "min_lod is above max_lod"};
+    if (!(desc.max_anisotropy >= 1.0f)) return Error{ErrorCode::InvalidArgument, what + "max_anisotropy is below 1"};
+    GlSampler s;
+    s.desc = desc;
+    glCreateSamplers(1, &s.name);
+    const GLenum min_filter = desc.min_filter == rhi::Filter::Linear
+                                  ? (desc.mipmap_filter == rhi::Filter::Linear ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR_MIPMAP_NEAREST)
+                                  : (desc.mipmap_filter == rhi::Filter::Linear ? GL_NEAREST_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_NEAREST);
+    glSamplerParameteri(s.name, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(min_filter));
+    glSamplerParameteri(s.name, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(gl_filter(desc.mag_filter)));
+    glSamplerParameteri(s.name, GL_TEXTURE_WRAP_S, static_cast<GLint>(gl_address(desc.address_u)));
+    glSamplerParameteri(s.name, GL_TEXTURE_WRAP_T, static_cast<GLint>(gl_address(desc.address_v)));
+    glSamplerParameteri(s.name, GL_TEXTURE_WRAP_R, static_cast<GLint>(gl_address(desc.address_w)));
+    glSamplerParameterf(s.name, GL_TEXTURE_MIN_LOD, desc.min_lod);
+    glSamplerParameterf(s.name, GL_TEXTURE_MAX_LOD, desc.max_lod);
+    if (desc.max_anisotropy > 1.0f && (epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic") ||
+                                       epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic"))) {
+        glSamplerParameterf(s.name, GL_TEXTURE_MAX_ANISOTROPY_EXT, desc.max_anisotropy);
+    }
+    if (desc.compare) {
+        glSamplerParameteri(s.name, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glSamplerParameteri(s.name, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(gl_compare(*desc.compare)));
+    }
+    const float black[4] = {0, 0, 0, 0}, opaque[4] = {0, 0, 0, 1}, white[4] = {1, 1, 1, 1};
+    glSamplerParameterfv(s.name, GL_TEXTURE_BORDER_COLOR,
+                         desc.border == rhi::BorderColor::OpaqueWhite   ? white
+                         : desc.border == rhi::BorderColor::OpaqueBlack ? opaque
+                                                                        : black);
+    set_label(GL_SAMPLER, s.name, desc.name);
+    ++stats_.samplers;
+    return samplers_.insert(std::move(s));
+}
+
+Status GlDevice::destroy(rhi::SamplerHandle sampler) {
+    context_->make_current();
+    auto removed = samplers_.remove(sampler);
+    if (!removed.ok()) return removed.take_error();
+    --stats_.samplers;
+    const GLuint name = removed->name;
+    delete_later([name] { glDeleteSamplers(1, &name); });
+    return {};
+}
+
+// ---- shaders and pipelines -------------------------------------------------------------------
+
+Result<rhi::ShaderHandle> GlDevice::create_shader(const rhi::ShaderModule& module) {
+    context_->make_current();
+    const std::string what = "shader " + quote_name(module.name) + " (" + std::string(rhi::shader_stage_name(module.stage)) + ")";
+    if (module.gl_source.empty()) return Error{ErrorCode::InvalidArgument, what + ": gl_source is empty"};
+    const GLenum type = module.stage == rhi::ShaderStage::Vertex     ? GL_VERTEX_SHADER
+                        : module.stage == rhi::ShaderStage::Fragment ? GL_FRAGMENT_SHADER
+                                                                     : GL_COMPUTE_SHADER;
+    const GLuint shader = glCreateShader(type);
+    const GLchar* source = module.gl_source.c_str();
+    glShaderSource(shader, 1, &source, nullptr);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        std::string log = info_log(shader, false);
+        glDeleteShader(shader);
+        return Error{ErrorCode::ShaderCompile, what + ": the GL driver rejected the generated GLSL:\n" + log};
+    }
+    set_label(GL_SHADER, shader, module.name);
+    GlShader s;
+    s.name = module.name;
+    s.stage = module.stage;
+    s.reflection = module.reflection;
+    s.name_gl = shader;
+    ++stats_.shaders;
+    return shaders_.insert(std::move(s));
+}
+
+Status GlDevice::destroy(rhi::ShaderHandle shader) {
+    context_->make_current();
+    auto removed = shaders_.remove(shader);
+    if (!removed.ok()) return removed.take_error();
+    --stats_.shaders;
+    const GLuint name = removed->name_gl;
+    delete_later([name] { glDeleteShader(name); });
+    return {};
+}
+
+namespace {
+
+/// Links `shaders` into a program and collects the bindings of their reflections.
+Result<GlPipeline> link_program(const std::string& pipeline_name, std::initializer_list<const GlShader*> shaders,
+                                const GlDevice::Limits& limits) {
+    GlPipeline p;
+    p.name = pipeline_name;
+    const std::string what = "pipeline " + quote_name(pipeline_name);
+    auto add_binding = [&](uint32_t set, uint32_t binding, BindingKind kind, const std::string& name,
+                           const GlShader& shader, GLenum access) -> Status {
+        if (set >= rhi::kMaxBindGroups || binding >= rhi::kMaxBindingsPerGroup) {
+            return Error{ErrorCode::Unsupported, what + ": shader " + quote_name(shader.name) + " uses set " +
+                                                     std::to_string(set) + " binding " + std::to_string(binding) +
+                                                     " beyond loom's " + std::to_string(rhi::kMaxBindGroups) + " sets of " +
+                                                     std::to_string(rhi::kMaxBindingsPerGroup) + " bindings"};
+        }
+        const uint32_t point = rhi::gl_binding_point(set, binding);
+        if (kind == BindingKind::StorageImage && point >= limits.max_image_units) {
+            return Error{ErrorCode::Unsupported, what + ": storage image " + quote_name(name) + " of shader " + quote_name(shader.name) +
+                                                     " (set " + std::to_string(set) + ", binding " + std::to_string(binding) +
+                                                     ") maps to GL image unit " + std::to_string(point) + " but the driver has " +
+                                                     std::to_string(limits.max_image_units)};
+        }
+        if (kind == BindingKind::StorageBuffer && point >= limits.max_storage_buffer_bindings) {
+            return Error{ErrorCode::Unsupported, what + ": storage buffer " + quote_name(name) + " of shader " +
+                                                     quote_name(shader.name) + " (set " + std::to_string(set) + ", binding " +
+                                                     std::to_string(binding) + ") maps to GL storage binding " +
+                                                     std::to_string(point) + " but the driver has " +
+                                                     std::to_string(limits.max_storage_buffer_bindings)};
+        }
+        for (const PipelineBinding& existing : p.bindings) {
+            if (existing.set == set && existing.binding == binding) {
+                if (existing.kind != kind) {
+                    return Error{ErrorCode::ShaderLink, what + ": set " + std::to_string(set) + " binding " +
+                                                            std::to_string(binding) + " has different kinds in its stages"};
+                }
+                return {};
+            }
+        }
+        p.bindings.push_back({set, binding, kind, name, access});
+        return {};
+    };
+    for (const GlShader* shader : shaders) {
+        const rhi::ShaderReflection& r = shader->reflection;
+        for (const auto& u : r.uniform_blocks) LOOM_TRY(add_binding(u.set, u.binding, BindingKind::UniformBuffer, u.name, *shader, 0));
+        for (const auto& s : r.storage_buffers) LOOM_TRY(add_binding(s.set, s.binding, BindingKind::StorageBuffer, s.name, *shader, 0));
+        for (const auto& t : r.textures) LOOM_TRY(add_binding(t.set, t.binding, BindingKind::SampledTexture, t.name, *shader, 0));
+        for (const auto& i : r.storage_images) {
+            const GLenum access = i.read_only ? GL_READ_ONLY : i.write_only ? GL_WRITE_ONLY : GL_READ_WRITE;
+            LOOM_TRY(add_binding(i.set, i.binding, BindingKind::StorageImage, i.name, *shader, access));
+        }
+        for (const auto& pc : r.push_constants) p.push_constant_size = std::max(p.push_constant_size, pc.size);
+    }
+    if (p.push_constant_size > kMaxPushConstantBytes) {
+        return Error{ErrorCode::Unsupported, what + ": push constants of " + std::to_string(p.push_constant_size) +
+                                                 " bytes exceed the " + std::to_string(kMaxPushConstantBytes) + " supported"};
+    }
+    p.program = glCreateProgram();
+    for (const GlShader* shader : shaders) glAttachShader(p.program, shader->name_gl);
+    glLinkProgram(p.program);
+    for (const GlShader* shader : shaders) glDetachShader(p.program, shader->name_gl);
+    GLint ok = GL_FALSE;
+    glGetProgramiv(p.program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        std::string log = info_log(p.program, true);
+        glDeleteProgram(p.program);
+        std::string names;
+        for (const GlShader* shader : shaders) names += (names.empty() ? "" : " + ") + quote_name(shader->name);
+        return Error{ErrorCode::ShaderLink, what + ": linking " + names + " failed:\n" + log};
+    }
+    set_label(GL_PROGRAM, p.program, pipeline_name);
+    p.base_instance_location = glGetUniformLocation(p.program, "SPIRV_Cross_BaseInstance");
+    return p;
+}
+
+}  // namespace
+
+Result<rhi::PipelineHandle> GlDevice::create_graphics_pipeline(const rhi::GraphicsPipelineDesc& desc) {
+    context_->make_current();
+    const std::string what = "pipeline " + quote_name(desc.name);
+    auto invalid = [&](const std::string& message) { return Error{ErrorCode::InvalidArgument, what + ": " + message}; };
+    auto vs = shaders_.get(desc.vertex);
+    if (!vs.ok()) return Error{ErrorCode::InvalidHandle, what + ": vertex shader: " + vs.error().message};
+    auto fs = shaders_.get(desc.fragment);
+    if (!fs.ok()) return Error{ErrorCode::InvalidHandle, what + ": fragment shader: " + fs.error().message};
+    if ((*vs)->stage != rhi::ShaderStage::Vertex) return invalid("shader " + quote_name((*vs)->name) + " is not a vertex shader");
+    if ((*fs)->stage != rhi::ShaderStage::Fragment) return invalid("shader " + quote_name((*fs)->name) + " is not a fragment shader");
+    if (desc.color_formats.size() > caps_.max_color_attachments) {
+        return invalid(std::to_string(desc.color_formats.size()) + " colour formats exceed the limit of " +
+                       std::to_string(caps_.max_color_attachments));
+    }
+    for (std::size_t i = 0; i < desc.color_formats.size(); ++i) {
+        const rhi::Format f = desc.color_formats[i];
+        if (!rhi::format_info(f).is_color() || !caps_.format(f).color_attachment) {
+            return invalid("color_formats[" + std::to_string(i) + "] " + std::string(rhi::format_name(f)) +
+                           " is not a renderable colour format");
+        }
+    }
+    if (desc.depth_format != rhi::Format::Undefined && !rhi::format_info(desc.depth_format).is_depth_stencil()) {
+        return invalid("depth_format " + std::string(rhi::format_name(desc.depth_format)) + " is not a depth format");
+    }
+    if (desc.color_formats.empty() && desc.depth_format == rhi::Format::Undefined) {
+        return invalid("no colour formats and no depth format");
+    }
+    if (!desc.blend.empty() && desc.blend.size() != desc.color_formats.size()) {
+        return invalid("blend has " + std::to_string(desc.blend.size()) + " entries for " +
+                       std::to_string(desc.color_formats.size()) + " colour formats");
+    }
+    for (std::size_t i = 0; i < desc.blend.size(); ++i) {
+        if (desc.blend[i].enabled && !caps_.format(desc.color_formats[i]).blendable) {
+            return invalid("blend[" + std::to_string(i) + "] is enabled but " +
+                           std::string(rhi::format_name(desc.color_formats[i])) + " cannot be blended");
+        }
+    }
+    if (desc.samples == 0 || !std::has_single_bit(desc.samples)) return invalid("samples must be a power of two");
+    if (desc.vertex_buffers.size() > 16) return invalid("more than 16 vertex buffers");
+    std::set<uint32_t> locations;
+    for (std::size_t slot = 0; slot < desc.vertex_buffers.size(); ++slot) {
+        for (const rhi::VertexAttribute& a : desc.vertex_buffers[slot].attributes) {
+            if (!locations.insert(a.location).second) {
+                return invalid("vertex attribute location " + std::to_string(a.location) + " is given twice");
+            }
+        }
+    }
+    for (const rhi::StageVariable& input : (*vs)->reflection.inputs) {
+        if (!locations.contains(input.location)) {
+            return invalid("vertex input " + quote_name(input.name) + " (location " + std::to_string(input.location) +
+                           ") of shader " + quote_name((*vs)->name) + " is not fed by any vertex buffer");
+        }
+    }
+
+    auto linked = link_program(desc.name, {*vs, *fs}, limits_);
+    if (!linked.ok()) return linked.take_error();
+    GlPipeline p = std::move(*linked);
+    auto vao = vertex_array_for(desc.vertex_buffers, p.vao_key);
+    if (!vao.ok()) {
+        glDeleteProgram(p.program);
+        return vao.take_error();
+    }
+    p.vao = *vao;
+    for (const auto& layout : desc.vertex_buffers) p.strides.push_back(layout.stride);
+    p.topology = gl_topology(desc.topology);
+    GlRasterState& r = p.raster;
+    r.cull_enabled = desc.raster.cull != rhi::CullMode::None;
+    r.cull_face = desc.raster.cull == rhi::CullMode::Front ? GL_FRONT : GL_BACK;
+    // glClipControl(GL_UPPER_LEFT) flips y between NDC and window coordinates, but GL 4.5
+    // (section 14.6.1, from ARB_clip_control) negates the polygon area term when the origin is
+    // upper-left, so facing is decided as in y-up NDC and glFrontFace needs no correction. The
+    // culling render test proves that a counter-clockwise NDC triangle is front-facing.
+    r.front_face = desc.raster.front_face == rhi::FrontFace::CounterClockwise ? GL_CCW : GL_CW;
+    r.polygon_mode = desc.raster.polygon == rhi::PolygonMode::Line ? GL_LINE : GL_FILL;
+    r.depth_clamp = desc.raster.depth_clamp;
+    r.depth_bias_constant = desc.raster.depth_bias_constant;
+    r.depth_bias_slope = desc.raster.depth_bias_slope;
+    r.depth_test = desc.depth.test;
+    r.depth_write = desc.depth.write;
+    r.depth_func = gl_compare(desc.depth.compare);
+    for (std::size_t i = 0; i < desc.color_formats.size(); ++i) {
+        GlBlendState b;
+        if (i < desc.blend.size()) {
+            const rhi::BlendState& s = desc.blend[i];
+            b.enabled = s.enabled;
+            b.src_color = gl_blend_factor(s.src_color);
+            b.dst_color = gl_blend_factor(s.dst_color);
+            b.color_op = gl_blend_op(s.color_op);
+            b.src_alpha = gl_blend_factor(s.src_alpha);
+            b.dst_alpha = gl_blend_factor(s.dst_alpha);
+            b.alpha_op = gl_blend_op(s.alpha_op);
+            b.write_mask = static_cast<uint8_t>(s.write_mask);
+        }
+        p.blend.push_back(b);
+    }
+    p.color_formats = desc.color_formats;
+    p.depth_format = desc.depth_format;
+    p.samples = desc.samples;
+    ++stats_.pipelines;
+    return pipelines_.insert(std::move(p));
+}
+
+Result<rhi::PipelineHandle> GlDevice::create_compute_pipeline(const rhi::ComputePipelineDesc& desc) {
+    context_->make_current();
+    const std::string what = "pipeline " + quote_name(desc.name);
+    auto cs = shaders_.get(desc.compute);
+    if (!cs.ok()) return Error{ErrorCode::InvalidHandle, what + ": compute shader: " + cs.error().message};
+    if ((*cs)->stage != rhi::ShaderStage::Compute) {
+        return Error{ErrorCode::InvalidArgument, what + ": shader " + quote_name((*cs)->name) + " is not a compute shader"};
+    }
+    auto linked = link_program(desc.name, {*cs}, limits_);
+    if (!linked.ok()) return linked.take_error();
+    linked->compute = true;
+    ++stats_.pipelines;
+    return pipelines_.insert(std::move(*linked));
+}
+
+Status GlDevice::destroy(rhi::PipelineHandle pipeline) {
+    context_->make_current();
+    auto removed = pipelines_.remove(pipeline);
+    if (!removed.ok()) return removed.take_error();
+    --stats_.pipelines;
+    const GLuint program = removed->program;
+    std::vector<uint32_t> key = removed->compute ? std::vector<uint32_t>{} : removed->vao_key;
+    const bool compute = removed->compute;
+    delete_later([this, program, key, compute] {
+        glDeleteProgram(program);
+        if (!compute) release_vertex_array(key);
+    });
+    return {};
+}
+
+// ---- caches ----------------------------------------------------------------------------------
+
+Result<GLuint> GlDevice::vertex_array_for(const std::vector<rhi::VertexBufferLayout>& layout, std::vector<uint32_t>& key) {
+    key.clear();
+    for (const auto& slot : layout) {
+        key.push_back(slot.stride);
+        key.push_back(static_cast<uint32_t>(slot.step));
+        key.push_back(static_cast<uint32_t>(slot.attributes.size()));
+        for (const auto& a : slot.attributes) {
+            key.push_back(a.location);
+            key.push_back(static_cast<uint32_t>(a.format));
+            key.push_back(a.offset);
+        }
+    }
+    auto it = vertex_arrays_.find(key);
+    if (it != vertex_arrays_.end()) {
+        ++it->second.users;
+        return it->second.vao;
+    }
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    for (std::size_t slot = 0; slot < layout.size(); ++slot) {
+        const auto s = static_cast<GLuint>(slot);
+        glVertexArrayBindingDivisor(vao, s, layout[slot].step == rhi::VertexStepMode::PerInstance ? 1 : 0);
+        for (const auto& a : layout[slot].attributes) {
+            const VertexFormatInfo f = vertex_format_info(a.format);
+            glEnableVertexArrayAttrib(vao, a.location);
+            if (f.integer) {
+                glVertexArrayAttribIFormat(vao, a.location, f.components, f.type, a.offset);
+            } else {
+                glVertexArrayAttribFormat(vao, a.location, f.components, f.type, f.normalized ? GL_TRUE : GL_FALSE, a.offset);
+            }
+            glVertexArrayAttribBinding(vao, a.location, s);
+        }
+    }
+    vertex_arrays_[key] = VertexArrayEntry{vao, 1};
+    return vao;
+}
+
+void GlDevice::release_vertex_array(const std::vector<uint32_t>& key) {
+    auto it = vertex_arrays_.find(key);
+    if (it == vertex_arrays_.end()) return;
+    if (--it->second.users == 0) {
+        glDeleteVertexArrays(1, &it->second.vao);
+        vertex_arrays_.erase(it);
+    }
+}
+
+GLuint GlDevice::framebuffer_for(const std::vector<std::pair<const GlTexture*, std::array<uint32_t, 2>>>& colors,
+                                 const GlTexture* depth, std::array<uint32_t, 2> depth_mip_layer) {
+    std::vector<GLuint> key;
+    for (const auto& [texture, mip_layer] : colors) key.insert(key.end(), {texture->name, mip_layer[0], mip_layer[1]});
+    key.push_back(0);  // separates colours from depth
+    if (depth) key.insert(key.end(), {depth->name, depth_mip_layer[0], depth_mip_layer[1]});
+    auto it = framebuffers_.find(key);
+    if (it != framebuffers_.end()) return it->second;
+
+    GLuint fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    auto attach = [fbo](GLenum point, const GlTexture& t, uint32_t mip, uint32_t layer) {
+        if (t.target == GL_TEXTURE_2D || t.target == GL_TEXTURE_2D_MULTISAMPLE) {
+            glNamedFramebufferTexture(fbo, point, t.name, static_cast<GLint>(mip));
+        } else {
+            glNamedFramebufferTextureLayer(fbo, point, t.name, static_cast<GLint>(mip), static_cast<GLint>(layer));
+        }
+    };
+    std::vector<GLenum> draw_buffers;
+    for (std::size_t i = 0; i < colors.size(); ++i) {
+        const GLenum point = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
+        attach(point, *colors[i].first, colors[i].second[0], colors[i].second[1]);
+        draw_buffers.push_back(point);
+    }
+    if (depth) attach(attachment_point(depth->desc.format, 0), *depth, depth_mip_layer[0], depth_mip_layer[1]);
+    if (draw_buffers.empty()) {
+        glNamedFramebufferDrawBuffer(fbo, GL_NONE);
+    } else {
+        glNamedFramebufferDrawBuffers(fbo, static_cast<GLsizei>(draw_buffers.size()), draw_buffers.data());
+    }
+    glNamedFramebufferReadBuffer(fbo, draw_buffers.empty() ? GL_NONE : GL_COLOR_ATTACHMENT0);
+    framebuffers_[key] = fbo;
+    return fbo;
+}
+
+void GlDevice::forget_framebuffers_with(GLuint texture) {
+    for (auto it = framebuffers_.begin(); it != framebuffers_.end();) {
+        const auto& key = it->first;
+        bool uses = false;
+        // Keys are triples (name, mip, layer) with one 0 separator before the depth triple.
+        std::size_t i = 0;
+        while (i < key.size()) {
+            if (key[i] == 0) {
+                ++i;
+                continue;
+            }
+            if (key[i] == texture) uses = true;
+            i += 3;
+        }
+        if (uses) {
+            glDeleteFramebuffers(1, &it->second);
+            it = framebuffers_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+}
+
+void GlDevice::delete_later(std::function<void()> destroy_gl) {
+    if (list_ && list_->recording()) {
+        deferred_deletes_.push_back(std::move(destroy_gl));
+        return;
+    }
+    destroy_gl();
+    // GL may hand the deleted names out again; the cache must not trust them.
+    cache_->invalidate();
+}
+
+}  // namespace loom::gl
