@@ -1,0 +1,67 @@
+#pragma once
+// Allocators decide which logical resources share which physical texture (and, for APIs that
+// can alias memory, where each texture lives inside a heap). They all see the same problem
+// and are selectable by name:
+//   "paper"    — the port colouring of Hafner (ELS 2019) §6.2, the reference;
+//   "interval" — interval-graph colouring per spec class: for the given order, the fewest
+//                textures (the peak number of live resources of each class);
+//   "heap"     — one texture per resource, placed at byte offsets in heaps so that resources
+//                alive at the same time never overlap in memory; aims for the peak live bytes.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "loom/framegraph/plan.hpp"
+#include "loom/rhi/result.hpp"
+
+namespace loom::fg {
+
+/// A scheduled pass as an allocator sees it: resource indices, each list in port order.
+struct AllocationPass {
+    std::vector<uint32_t> inputs;      ///< resources read (input and inout ports)
+    std::vector<uint32_t> non_inputs;  ///< resources written (output and inout ports)
+    std::vector<uint32_t> begins;      ///< resources that start at this pass (their producer)
+};
+
+/// A logical resource as an allocator sees it.
+struct AllocationResource {
+    uint32_t spec_class = 0;  ///< resources may share a texture only within one class
+    Lifetime lifetime;        ///< positions in the order; graph outputs last until the end
+    uint64_t bytes = 0;
+    uint64_t alignment = 1;
+};
+
+struct AllocationProblem {
+    std::vector<AllocationPass> passes;          ///< in execution order
+    std::vector<AllocationResource> resources;
+    std::vector<uint32_t> graph_outputs;         ///< resources read after the frame, in marking order
+    uint32_t spec_class_count = 0;
+    uint64_t max_heap_bytes = 0;                 ///< heaps: 0 means one heap as large as needed
+};
+
+struct Allocation {
+    std::vector<uint32_t> texture_of_resource;  ///< per resource, a texture index < texture_count
+    uint32_t texture_count = 0;
+    std::vector<HeapRange> texture_placement;   ///< per texture where the allocator places, else empty
+    std::vector<uint64_t> heap_sizes;
+};
+
+class Allocator {
+public:
+    virtual ~Allocator() = default;
+    [[nodiscard]] virtual std::string_view name() const = 0;
+    /// Assigns textures (and placements) to the problem's resources. Two resources whose
+    /// lifetimes overlap never share a texture, nor overlapping heap bytes.
+    [[nodiscard]] virtual Result<Allocation> allocate(const AllocationProblem& problem) const = 0;
+};
+
+/// "paper", "interval", "heap".
+std::span<const std::string_view> allocator_names();
+
+/// The allocator called `name`; an InvalidArgument error lists the known names.
+Result<std::unique_ptr<Allocator>> make_allocator(std::string_view name);
+
+}  // namespace loom::fg

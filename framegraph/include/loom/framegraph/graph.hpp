@@ -1,0 +1,144 @@
+#pragma once
+// The frame graph: passes, the connections between their ports, the ports whose textures
+// leave the graph (graph outputs), and a cache of the last plan. Declaration and connection
+// happen here; planning is in planner.hpp; nothing here touches a GPU.
+//
+//   FrameGraph graph;
+//   graph.add_pass(Pass("geometry").output("albedo", TextureSpec::of(rhi::Format::RGBA8Unorm)));
+//   graph.add_pass(Pass("composite").input("color").output("final"));
+//   graph.connect(port("geometry", "albedo"), port("composite", "color"));
+//   graph.mark_output(port("composite", "final"));
+//   auto plan = graph.plan({.frame = {1280, 720}});
+
+#include <concepts>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "loom/framegraph/pass.hpp"
+#include "loom/framegraph/plan.hpp"
+#include "loom/framegraph/planner.hpp"
+#include "loom/rhi/result.hpp"
+
+namespace loom::fg {
+
+/// Names a port by pass name and port name, as `connect` and `mark_output` take it.
+struct PortRef {
+    std::string pass;
+    std::string port;
+
+    /// "pass.port"
+    [[nodiscard]] std::string to_string() const { return pass + "." + port; }
+    friend bool operator==(const PortRef&, const PortRef&) = default;
+};
+
+/// The port `name` of `pass` (the paper's `(port pass 'name)`).
+inline PortRef port(const Pass& pass, std::string_view name) { return {pass.name(), std::string(name)}; }
+inline PortRef port(std::string_view pass, std::string_view name) { return {std::string(pass), std::string(name)}; }
+
+/// "pass.port" split at the last dot; nullopt when there is no dot or a side is empty.
+std::optional<PortRef> parse_port_ref(std::string_view text);
+
+/// Index of a pass in a graph (declaration order).
+struct PassId {
+    uint32_t index = 0;
+    friend bool operator==(const PassId&, const PassId&) = default;
+};
+
+/// A port of a graph by indices: pass (declaration order) and port (Pass::ports() order).
+struct PortAddress {
+    uint32_t pass = 0;
+    uint32_t port = 0;
+    friend bool operator==(const PortAddress&, const PortAddress&) = default;
+    friend auto operator<=>(const PortAddress&, const PortAddress&) = default;
+};
+
+/// An edge from an output/inout port to an input/inout port.
+struct Connection {
+    PortAddress from;
+    PortAddress to;
+    friend bool operator==(const Connection&, const Connection&) = default;
+};
+
+class FrameGraph {
+public:
+    FrameGraph();
+    ~FrameGraph();
+    FrameGraph(FrameGraph&&) noexcept;
+    FrameGraph& operator=(FrameGraph&&) noexcept;
+    FrameGraph(const FrameGraph&) = delete;
+    FrameGraph& operator=(const FrameGraph&) = delete;
+
+    /// Adds a pass; its ports are fixed from now on. Errors: the pass's own declaration error
+    /// (Pass::status), an empty name, or a name already used (ErrorCode::Graph).
+    Result<PassId> add_pass(std::unique_ptr<Pass> pass);
+    template <std::derived_from<Pass> P>
+    Result<PassId> add_pass(P pass) {
+        return add_pass(std::make_unique<P>(std::move(pass)));
+    }
+
+    /// Feeds `to` (an input or inout) from `from` (an output or inout). An output feeds any
+    /// number of inputs, but at most one inout (a texture is modified in place by one pass;
+    /// chain inouts to modify it again); an input or inout takes one source. Errors
+    /// (ErrorCode::Graph) name both ports: unknown pass or port, wrong direction, a second
+    /// source, a second in-place modification.
+    Status connect(const PortRef& from, const PortRef& to);
+
+    /// Marks an output or inout port as a graph output: its texture is read after the frame
+    /// (presented, read back), so its pass is never culled and it lives until the last pass.
+    Status mark_output(const PortRef& port);
+
+    /// Marks a pass as having side effects (never culled), or clears the mark.
+    Status set_side_effect(std::string_view pass, bool side_effect = true);
+
+    [[nodiscard]] uint32_t pass_count() const { return static_cast<uint32_t>(passes_.size()); }
+    [[nodiscard]] const Pass& pass(PassId id) const { return *passes_[id.index]; }
+    [[nodiscard]] std::optional<PassId> find_pass(std::string_view name) const;
+    [[nodiscard]] const std::vector<Connection>& connections() const { return connections_; }
+    [[nodiscard]] const std::vector<PortAddress>& outputs() const { return outputs_; }
+    [[nodiscard]] const Port& port_at(PortAddress address) const;
+    /// The port feeding `address` (an input or inout), if connected.
+    [[nodiscard]] std::optional<PortAddress> source(PortAddress address) const;
+    /// The ports `address` feeds, in connection order.
+    [[nodiscard]] std::span<const PortAddress> consumers(PortAddress address) const;
+    /// "pass.port"
+    [[nodiscard]] std::string port_name(PortAddress address) const;
+    /// The address of a port by names; ErrorCode::Graph naming the unknown pass or port.
+    [[nodiscard]] Result<PortAddress> resolve(const PortRef& ref) const;
+
+    /// Checks that need no frame size: required inputs connected, no cycle (named in order),
+    /// no pass reading a texture it modifies in place. Planning runs them too.
+    [[nodiscard]] Status validate() const;
+
+    /// Plans the graph (build_plan), or returns the previous plan when neither the graph nor
+    /// the options changed since: the same shared object, not a copy.
+    Result<std::shared_ptr<const Plan>> plan(const PlanOptions& options = {});
+    /// How many times plan() actually planned (for tests of the reuse).
+    [[nodiscard]] uint64_t plans_built() const { return plans_built_; }
+    /// Increases with every change to the graph.
+    [[nodiscard]] uint64_t revision() const { return revision_; }
+
+private:
+    uint32_t flat(PortAddress address) const { return port_offset_[address.pass] + address.port; }
+
+    std::vector<std::unique_ptr<Pass>> passes_;
+    std::unordered_map<std::string, uint32_t> pass_index_;
+    std::vector<uint32_t> port_offset_;                 // first flat port index of each pass
+    std::vector<std::optional<PortAddress>> sources_;   // per flat port
+    std::vector<std::vector<PortAddress>> consumers_;   // per flat port
+    std::vector<Connection> connections_;
+    std::vector<PortAddress> outputs_;
+
+    uint64_t revision_ = 0;
+    uint64_t plans_built_ = 0;
+    std::shared_ptr<const Plan> cached_plan_;
+    uint64_t cached_revision_ = 0;
+    PlanOptions cached_options_;
+};
+
+}  // namespace loom::fg

@@ -1,0 +1,49 @@
+#pragma once
+// Frame graphs described in JSON:
+//
+//   { "frame": {"width": 1920, "height": 1080},
+//     "passes": [
+//       {"name": "shadow", "outputs": [{"name": "shadow_map", "format": "Depth32F", "size": [2048, 2048]}]},
+//       {"name": "deferred", "inputs": [{"name": "shadow_map"}],
+//        "outputs": [{"name": "color", "format": "RGBA16F", "scale": 1.0}],
+//        "parts": [{"name": "high_pass", "outputs": [{"name": "high_pass", "format": "RGBA16F"}]}]},
+//       {"name": "tint", "inouts": [{"name": "color"}], "side_effect": false}],
+//     "connections": [["shadow.shadow_map", "deferred.shadow_map"], ["deferred.color", "tint.color"]],
+//     "outputs": ["tint.color"] }
+//
+// A port object has "name" and any of: "format" (an rhi::format_name or a short alias such as
+// "RGBA16F", "RGBA8", "D32F"), or partial format constraints "channels" (1-4), "bits", "kind"
+// (unorm, snorm, float, uint, sint), "srgb", "depth" (bits), "stencil" (bits); "size" [w, h]
+// or "scale" (a number or [sx, sy]); "samples", "mips", "layers"; "optional"; "usage" (a list
+// of sampled, color_attachment, depth_stencil_attachment, storage, copy_src, copy_dst).
+// Unknown keys and bad values are ErrorCode::Parse errors with the JSON path, e.g.
+// `graph.json: passes[2].outputs[0].format: unknown format "RGBA17F"`.
+
+#include <filesystem>
+#include <optional>
+#include <string_view>
+
+#include "loom/framegraph/graph.hpp"
+#include "loom/rhi/format.hpp"
+#include "loom/rhi/result.hpp"
+
+namespace loom::fg {
+
+/// A graph read from a file, with the frame size the file asks for (default 1920x1080).
+struct GraphFile {
+    FrameGraph graph;
+    Extent2D frame{1920, 1080};
+};
+
+/// Parses a JSON graph. `source` names the text in error messages (usually the file name).
+Result<GraphFile> parse_graph_json(std::string_view text, std::string_view source = "graph");
+
+/// Reads and parses a JSON graph file (ErrorCode::Io when it cannot be read).
+Result<GraphFile> load_graph_file(const std::filesystem::path& path);
+
+/// A format by rhi name ("RGBA16Float") or short alias: a trailing "F" for Float ("RGBA16F",
+/// "R11G11B10F"), no suffix for Unorm ("RGBA8", "R16"), "D16", "D24", "D32F", "D24S8",
+/// "D32FS8", "S8"; names are also matched ignoring case.
+std::optional<rhi::Format> parse_format_alias(std::string_view name);
+
+}  // namespace loom::fg

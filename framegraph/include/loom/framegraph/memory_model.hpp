@@ -1,0 +1,42 @@
+#pragma once
+// How many bytes a texture takes and how it must be aligned inside a heap. The planner asks a
+// MemoryModel for every resource and texture; the executor plugs in the device's real
+// rhi::Device::texture_memory_requirements, tests and tools use DefaultMemoryModel.
+
+#include <cstdint>
+
+#include "loom/rhi/descriptions.hpp"
+#include "loom/rhi/result.hpp"
+
+namespace loom::fg {
+
+class MemoryModel {
+public:
+    virtual ~MemoryModel() = default;
+    /// Size and alignment of a texture described by `desc` inside a heap.
+    virtual Result<rhi::MemoryRequirements> requirements(const rhi::TextureDesc& desc) = 0;
+};
+
+/// bytes_per_texel × width × height × layers × samples, summed over the mip chain, rounded up
+/// to the alignment (64 KiB by default, the usual granularity of GPU memory pages).
+class DefaultMemoryModel final : public MemoryModel {
+public:
+    static constexpr uint64_t kDefaultAlignment = 64 * 1024;
+
+    explicit DefaultMemoryModel(uint64_t alignment = kDefaultAlignment) : alignment_(alignment) {}
+
+    Result<rhi::MemoryRequirements> requirements(const rhi::TextureDesc& desc) override;
+
+    /// The unaligned byte count of a texture.
+    static uint64_t texture_bytes(const rhi::TextureDesc& desc);
+
+private:
+    uint64_t alignment_;
+};
+
+/// `value` rounded up to a multiple of `alignment` (alignment 0 or 1: unchanged).
+constexpr uint64_t align_up(uint64_t value, uint64_t alignment) {
+    return alignment <= 1 ? value : (value + alignment - 1) / alignment * alignment;
+}
+
+}  // namespace loom::fg

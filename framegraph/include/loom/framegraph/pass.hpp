@@ -1,0 +1,136 @@
+#pragma once
+// Passes and their ports. A pass is a node of the frame graph with named ports: `input` (reads a
+// texture), `output` (produces a new texture), `inout` (reads a texture and modifies it in
+// place, e.g. drawing shadows onto an existing colour target). Ports are declared in parts, and
+// a pass is composed from parts the way the paper (Hafner, ELS 2019, §5, Listings 3-5) builds
+// its deferred pass from a deferred, a shadow-receiving and a high-pass part.
+//
+// Setup only: declaring and composing ports touches no GPU. The executor adds an execute step
+// to Pass later; ports are resolved to real textures then.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "loom/framegraph/texture_spec.hpp"
+#include "loom/rhi/result.hpp"
+
+namespace loom::fg {
+
+enum class PortKind : uint8_t {
+    Input,   ///< reads the texture produced by the port connected to it
+    Output,  ///< produces a new texture
+    InOut,   ///< reads the texture of its source and modifies it in the same physical texture
+};
+
+/// "input", "output", "inout".
+std::string_view port_kind_name(PortKind kind);
+
+/// True for the kinds that take a source (input, inout).
+inline bool port_reads(PortKind kind) { return kind != PortKind::Output; }
+/// True for the kinds that produce a texture others can read (output, inout).
+inline bool port_writes(PortKind kind) { return kind != PortKind::Input; }
+
+/// One declared port.
+struct Port {
+    std::string name;
+    PortKind kind = PortKind::Input;
+    TextureSpec spec;
+    /// Input/inout: may stay unconnected (the pass then runs without it; an unconnected
+    /// optional inout starts a fresh texture). Output: when nothing reads it and it is not a
+    /// graph output, no texture is allocated for it.
+    bool optional = false;
+    /// Names of the parts that declared this port, in the order they did.
+    std::vector<std::string> parts;
+
+    friend bool operator==(const Port&, const Port&) = default;
+};
+
+/// A named set of port declarations that passes are composed from.
+class Part {
+public:
+    explicit Part(std::string name) : name_(std::move(name)) {}
+
+    /// Records a port declaration; Pass::add merges repeated names.
+    Part& declare(std::string port, PortKind kind, TextureSpec spec = {}, bool optional = false);
+    Part& input(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Input, std::move(spec)); }
+    Part& output(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Output, std::move(spec)); }
+    Part& inout(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::InOut, std::move(spec)); }
+    Part& optional_input(std::string port, TextureSpec spec = {}) {
+        return declare(std::move(port), PortKind::Input, std::move(spec), true);
+    }
+    Part& optional_output(std::string port, TextureSpec spec = {}) {
+        return declare(std::move(port), PortKind::Output, std::move(spec), true);
+    }
+
+    [[nodiscard]] const std::string& name() const { return name_; }
+    /// Declarations in the order they were made (not merged).
+    [[nodiscard]] const std::vector<Port>& declarations() const { return declarations_; }
+
+private:
+    std::string name_;
+    std::vector<Port> declarations_;
+};
+
+/// A node of the frame graph. Ports come from parts; the pass's own declarations (input(),
+/// output(), ...) form a part named after the pass.
+///
+/// Two declarations of the same port name (from two parts, or twice from one) merge when they
+/// have the same kind: the specs are joined (join.hpp, without a frame size) and the port is
+/// optional only if every declaration says so. Different kinds, or specs that do not join, are
+/// an error naming the pass, the port and both parts. Declaration methods chain; the first
+/// error is kept and reported by status() and by FrameGraph::add_pass.
+class Pass {
+public:
+    explicit Pass(std::string name);
+    virtual ~Pass();
+    Pass(const Pass&) = default;
+    Pass& operator=(const Pass&) = default;
+    Pass(Pass&&) noexcept = default;
+    Pass& operator=(Pass&&) noexcept = default;
+
+    /// Adds every port of `part`, merging names declared before.
+    Pass& add(const Part& part);
+
+    // Declarations on the pass's own part.
+    Pass& declare(std::string port, PortKind kind, TextureSpec spec = {}, bool optional = false);
+    Pass& input(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Input, std::move(spec)); }
+    Pass& output(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Output, std::move(spec)); }
+    Pass& inout(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::InOut, std::move(spec)); }
+    Pass& optional_input(std::string port, TextureSpec spec = {}) {
+        return declare(std::move(port), PortKind::Input, std::move(spec), true);
+    }
+    Pass& optional_output(std::string port, TextureSpec spec = {}) {
+        return declare(std::move(port), PortKind::Output, std::move(spec), true);
+    }
+
+    /// Marks the pass as having effects outside the graph (present, readback, writes to a
+    /// buffer): it is never culled.
+    Pass& set_side_effect(bool side_effect = true) {
+        side_effect_ = side_effect;
+        return *this;
+    }
+    [[nodiscard]] bool side_effect() const { return side_effect_; }
+
+    [[nodiscard]] const std::string& name() const { return name_; }
+    /// Merged ports, in the order their names were first declared.
+    [[nodiscard]] const std::vector<Port>& ports() const { return ports_; }
+    /// The port called `name`, or nullptr.
+    [[nodiscard]] const Port* find_port(std::string_view name) const;
+    /// Index of the port called `name` in ports().
+    [[nodiscard]] std::optional<uint32_t> port_index(std::string_view name) const;
+    /// Success, or the first declaration error.
+    [[nodiscard]] Status status() const;
+
+private:
+    void merge(const Port& declaration, const std::string& part);
+
+    std::string name_;
+    std::vector<Port> ports_;
+    bool side_effect_ = false;
+    std::optional<Error> error_;
+};
+
+}  // namespace loom::fg

@@ -1,0 +1,158 @@
+#pragma once
+// A plan: everything the planner decided about one graph for one frame size, as plain data.
+// It can be printed, compared (==), hashed, and exported as JSON and DOT (export.hpp). The
+// executor realises it on a device: one rhi texture per PlanTexture (placed at its heap
+// offset where the plan has heaps), each pass's ports resolved through PlanPort::resource →
+// PlanResource::texture.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "loom/framegraph/pass.hpp"
+#include "loom/framegraph/resolved_spec.hpp"
+#include "loom/framegraph/texture_spec.hpp"
+
+namespace loom::fg {
+
+/// Which logical resources may share a physical texture.
+enum class SpecSharing : uint8_t {
+    Equal,     ///< only resources with the same resolved format, size, samples, mips and layers
+    Joinable,  ///< also resources whose specs join (§6.2 allows it); the texture gets the join
+};
+
+std::string_view spec_sharing_name(SpecSharing sharing);
+
+/// An inclusive range of positions in Plan::order during which a resource must exist.
+struct Lifetime {
+    uint32_t first = 0;
+    uint32_t last = 0;
+
+    [[nodiscard]] bool overlaps(const Lifetime& other) const { return first <= other.last && other.first <= last; }
+    friend bool operator==(const Lifetime&, const Lifetime&) = default;
+};
+
+/// One port of a scheduled pass.
+struct PlanPort {
+    std::string name;
+    PortKind kind = PortKind::Input;
+    bool optional = false;
+    /// Index into Plan::resources; empty for an unconnected optional input, or an optional
+    /// output nobody reads (no texture is allocated for it).
+    std::optional<uint32_t> resource;
+    /// How this port uses the texture (Sampled, ColorAttachment, DepthStencilAttachment, Storage).
+    rhi::TextureUsage usage = rhi::TextureUsage::None;
+
+    friend bool operator==(const PlanPort&, const PlanPort&) = default;
+};
+
+/// A pass that runs, in execution order.
+struct PlanPass {
+    std::string name;
+    uint32_t declaration_index = 0;  ///< position among the graph's passes
+    bool side_effect = false;
+    std::vector<PlanPort> ports;     ///< in the pass's port order
+
+    friend bool operator==(const PlanPass&, const PlanPass&) = default;
+};
+
+/// A logical texture: one output (or unconnected optional inout) with everything it feeds,
+/// directly or through in-place modifications (inouts). Its ports share one physical texture.
+struct PlanResource {
+    std::string name;                ///< "pass.port" of the port that starts it
+    std::vector<std::string> ports;  ///< every port on it that runs, "pass.port", the starting port first
+    /// The joined format features before resolution; empty when no port constrained the format.
+    std::optional<rhi::FormatFeatures> requested_format;
+    ResolvedSpec spec;               ///< the joined spec made concrete; usage is what the ports need
+    Lifetime lifetime;
+    bool graph_output = false;       ///< read after the frame: lives until the last pass
+    uint32_t spec_class = 0;         ///< index into Plan::spec_classes
+    uint64_t bytes = 0;              ///< memory model size of a texture of `spec`
+    uint64_t alignment = 0;
+    uint32_t texture = 0;            ///< index into Plan::textures
+
+    friend bool operator==(const PlanResource&, const PlanResource&) = default;
+};
+
+/// A connection between two scheduled ports, by position in Plan::order and port index.
+struct PlanEdge {
+    uint32_t from_pass = 0;
+    uint32_t from_port = 0;
+    uint32_t to_pass = 0;
+    uint32_t to_port = 0;
+    uint32_t resource = 0;  ///< the resource flowing along it
+
+    friend bool operator==(const PlanEdge&, const PlanEdge&) = default;
+};
+
+/// Where a texture lives inside a heap.
+struct HeapRange {
+    uint32_t heap = 0;
+    uint64_t offset = 0;
+
+    friend bool operator==(const HeapRange&, const HeapRange&) = default;
+};
+
+/// A physical texture to create.
+struct PlanTexture {
+    std::string name;                 ///< "t0", "t1", ...
+    ResolvedSpec spec;                ///< the join of its resources' specs; usage is their union
+    std::vector<uint32_t> resources;  ///< resources it holds, in order of their lifetimes
+    uint64_t bytes = 0;
+    uint64_t alignment = 0;
+    std::optional<HeapRange> placement;  ///< set by allocators that place textures in heaps
+
+    friend bool operator==(const PlanTexture&, const PlanTexture&) = default;
+};
+
+/// The resources that may share textures with each other (see SpecSharing).
+struct SpecClass {
+    ResolvedSpec spec;                ///< the join of its members (usage: union)
+    std::vector<uint32_t> resources;
+    uint32_t peak_live = 0;           ///< most members alive at once over the order
+
+    friend bool operator==(const SpecClass&, const SpecClass&) = default;
+};
+
+/// The figures that make allocators comparable.
+struct PlanSummary {
+    uint32_t textures = 0;              ///< physical textures allocated
+    uint64_t bytes = 0;                 ///< their memory (for heaps: the heap sizes)
+    uint32_t naive_textures = 0;        ///< one texture per resource (per output)
+    uint64_t naive_bytes = 0;
+    uint32_t lower_bound_textures = 0;  ///< sum over spec classes of the peak live count
+    uint64_t lower_bound_bytes = 0;     ///< peak over the order of the bytes of live resources
+
+    friend bool operator==(const PlanSummary&, const PlanSummary&) = default;
+};
+
+struct Plan {
+    std::string allocator;            ///< name of the allocator that made it
+    Extent2D frame{};
+    SpecSharing sharing = SpecSharing::Equal;
+    std::vector<PlanPass> order;      ///< passes that run, in execution order
+    std::vector<std::string> culled;  ///< passes that do not run, in declaration order
+    std::vector<PlanEdge> edges;      ///< connections between passes that run, in connection order
+    std::vector<std::string> graph_outputs;  ///< "pass.port" of each graph output, in marking order
+    std::vector<PlanResource> resources;  ///< ordered by (first use, starting port)
+    std::vector<SpecClass> spec_classes;
+    std::vector<PlanTexture> textures;
+    std::vector<uint64_t> heaps;      ///< heap sizes in bytes; empty unless the allocator places
+    PlanSummary summary;
+
+    /// The scheduled pass called `name`, or nullptr (also for culled passes).
+    [[nodiscard]] const PlanPass* find_pass(std::string_view name) const;
+    /// The resource behind `pass`.`port`, or nullptr.
+    [[nodiscard]] const PlanResource* resource_of(std::string_view pass, std::string_view port) const;
+    /// The physical texture behind `pass`.`port`.
+    [[nodiscard]] std::optional<uint32_t> texture_of(std::string_view pass, std::string_view port) const;
+
+    friend bool operator==(const Plan&, const Plan&) = default;
+};
+
+/// A 64-bit hash of every field of the plan; equal plans hash equal, on every platform.
+uint64_t plan_hash(const Plan& plan);
+
+}  // namespace loom::fg

@@ -1,0 +1,33 @@
+#pragma once
+// Planning: validate the graph, cull, order, join the specs of connected ports, measure
+// lifetimes, run an allocator, and summarise. All of it before any GPU work.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "loom/framegraph/memory_model.hpp"
+#include "loom/framegraph/plan.hpp"
+#include "loom/rhi/result.hpp"
+
+namespace loom::fg {
+
+class FrameGraph;
+
+struct PlanOptions {
+    Extent2D frame{1920, 1080};      ///< the size relative sizes scale
+    std::string allocator = "interval";  ///< see allocator_names()
+    SpecSharing sharing = SpecSharing::Equal;
+    /// Sizes and alignments; null means DefaultMemoryModel. Compared by identity.
+    std::shared_ptr<MemoryModel> memory_model;
+    uint64_t max_heap_bytes = 0;     ///< "heap" allocator: 0 means a single heap of any size
+
+    friend bool operator==(const PlanOptions&, const PlanOptions&) = default;
+};
+
+/// Plans `graph` from scratch. Errors: ErrorCode::Graph (cycle, unconnected required input,
+/// nothing to run, ...) and ErrorCode::Join (ports whose specs conflict), each naming the
+/// passes and ports at fault; InvalidArgument for bad options (unknown allocator, empty frame).
+Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options);
+
+}  // namespace loom::fg

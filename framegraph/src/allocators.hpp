@@ -1,0 +1,28 @@
+#pragma once
+// Internal: the allocators behind make_allocator().
+
+#include <memory>
+
+#include "loom/framegraph/allocator.hpp"
+
+namespace loom::fg::detail {
+
+std::unique_ptr<Allocator> make_paper_allocator();
+std::unique_ptr<Allocator> make_interval_allocator();
+std::unique_ptr<Allocator> make_heap_allocator();
+
+/// Hands out the lowest free number: what "the first available colour" of an array of
+/// colours is, without scanning the array.
+class LowestFreeNumber {
+public:
+    uint32_t take();
+    void release(uint32_t number);
+    /// How many distinct numbers were ever handed out.
+    [[nodiscard]] uint32_t used() const { return next_; }
+
+private:
+    std::vector<uint32_t> free_;  // a min-heap
+    uint32_t next_ = 0;
+};
+
+}  // namespace loom::fg::detail

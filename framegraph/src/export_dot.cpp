@@ -1,0 +1,99 @@
+#include <array>
+#include <string_view>
+
+#include "loom/framegraph/export.hpp"
+
+namespace loom::fg {
+namespace {
+
+// Distinct colours for textures; texture t uses kPalette[t % size].
+constexpr std::array<std::string_view, 12> kPalette{
+    "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
+    "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#393b79", "#637939",
+};
+
+// Escapes text for a record label, where { } | < > and quotes are syntax.
+std::string record_escape(std::string_view text) {
+    std::string out;
+    for (char c : text) {
+        if (c == '{' || c == '}' || c == '|' || c == '<' || c == '>' || c == '"' || c == '\\') out += '\\';
+        out += c;
+    }
+    return out;
+}
+
+std::string quoted(std::string_view text) {
+    std::string out = "\"";
+    for (char c : text) {
+        if (c == '"' || c == '\\') out += '\\';
+        out += c;
+    }
+    return out + "\"";
+}
+
+std::string pass_node(uint32_t position) { return "p" + std::to_string(position); }
+
+}  // namespace
+
+std::string plan_to_dot(const Plan& plan) {
+    std::string out = "digraph plan {\n";
+    out += "  rankdir=LR;\n";
+    out += "  node [shape=record, fontname=\"Helvetica\", fontsize=10];\n";
+    out += "  edge [fontname=\"Helvetica\", fontsize=9];\n";
+    out += "  label=" + quoted(plan.allocator + " allocator: " + std::to_string(plan.summary.textures) +
+                              " textures, " + format_bytes(plan.summary.bytes) + " (naive " +
+                              std::to_string(plan.summary.naive_textures) + ", " +
+                              format_bytes(plan.summary.naive_bytes) + ")") + ";\n";
+
+    for (uint32_t at = 0; at < plan.order.size(); ++at) {
+        const PlanPass& pass = plan.order[at];
+        std::string inputs;
+        std::string outputs;
+        for (uint32_t i = 0; i < pass.ports.size(); ++i) {
+            const PlanPort& port = pass.ports[i];
+            std::string field = "<" + std::to_string(i) + "> " + record_escape(port.name);
+            if (port.resource) field += " (t" + std::to_string(plan.resources[*port.resource].texture) + ")";
+            std::string& side = port.kind == PortKind::Input ? inputs : outputs;
+            if (!side.empty()) side += '|';
+            side += field;
+        }
+        std::string label = "{";
+        if (!inputs.empty()) label += "{" + inputs + "}|";
+        label += std::to_string(at) + ": " + record_escape(pass.name);
+        if (pass.side_effect) label += " (side effect)";
+        if (!outputs.empty()) label += "|{" + outputs + "}";
+        label += "}";
+        out += "  " + pass_node(at) + " [label=\"" + label + "\"];\n";
+    }
+    for (std::size_t i = 0; i < plan.culled.size(); ++i) {
+        out += "  c" + std::to_string(i) + " [label=" + quoted(plan.culled[i] + " (culled)") +
+               ", style=dashed, color=gray, fontcolor=gray];\n";
+    }
+    for (const PlanEdge& e : plan.edges) {
+        const PlanResource& resource = plan.resources[e.resource];
+        const std::string colour(kPalette[resource.texture % kPalette.size()]);
+        out += "  " + pass_node(e.from_pass) + ":" + std::to_string(e.from_port) + ":e -> " + pass_node(e.to_pass) +
+               ":" + std::to_string(e.to_port) + ":w [color=" + quoted(colour) + ", fontcolor=" + quoted(colour) +
+               ", label=" + quoted("t" + std::to_string(resource.texture)) + "];\n";
+    }
+    if (!plan.graph_outputs.empty()) {
+        out += "  output [shape=doublecircle, label=\"output\"];\n";
+        for (uint32_t at = 0; at < plan.order.size(); ++at) {
+            const PlanPass& pass = plan.order[at];
+            for (uint32_t i = 0; i < pass.ports.size(); ++i) {
+                const std::string name = pass.name + "." + pass.ports[i].name;
+                bool marked = false;
+                for (const std::string& output : plan.graph_outputs) marked = marked || output == name;
+                if (!marked || !pass.ports[i].resource) continue;
+                const uint32_t texture = plan.resources[*pass.ports[i].resource].texture;
+                const std::string colour(kPalette[texture % kPalette.size()]);
+                out += "  " + pass_node(at) + ":" + std::to_string(i) + ":e -> output [color=" + quoted(colour) +
+                       ", label=" + quoted("t" + std::to_string(texture)) + "];\n";
+            }
+        }
+    }
+    out += "}\n";
+    return out;
+}
+
+}  // namespace loom::fg

@@ -1,0 +1,138 @@
+#include "graph_analysis.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <queue>
+
+namespace loom::fg::detail {
+namespace {
+
+Error graph_error(std::string message) { return make_error(ErrorCode::Graph, std::move(message)); }
+
+void sort_unique(std::vector<uint32_t>& values) {
+    std::sort(values.begin(), values.end());
+    values.erase(std::unique(values.begin(), values.end()), values.end());
+}
+
+// Why `from` must run before `to`: the connection between them, or the texture `from` reads
+// before `to` modifies it in place.
+std::string edge_reason(const FrameGraph& graph, uint32_t from, uint32_t to) {
+    for (const Connection& c : graph.connections()) {
+        if (c.from.pass == from && c.to.pass == to) return graph.port_name(c.from) + " feeds " + graph.port_name(c.to);
+    }
+    for (const Connection& c : graph.connections()) {
+        if (c.to.pass != to || graph.port_at(c.to).kind != PortKind::InOut) continue;
+        for (const PortAddress& reader : graph.consumers(c.from)) {
+            if (reader.pass == from) {
+                return graph.port_name(reader) + " reads " + graph.port_name(c.from) + " before " +
+                       graph.port_name(c.to) + " modifies it in place";
+            }
+        }
+    }
+    return "dependency";
+}
+
+// Finds a cycle among the passes Kahn's algorithm could not order (each has a predecessor
+// among them) and names it in order, starting at the first declared pass on it.
+Error cycle_error(const FrameGraph& graph, const Dependencies& dependencies, const std::vector<uint32_t>& in_degree) {
+    const uint32_t count = graph.pass_count();
+    std::vector<std::vector<uint32_t>> predecessors(count);
+    for (uint32_t from = 0; from < count; ++from) {
+        for (uint32_t to : dependencies.successors[from]) predecessors[to].push_back(from);
+    }
+    auto stuck = [&](uint32_t pass) { return in_degree[pass] > 0; };
+    uint32_t start = 0;
+    while (!stuck(start)) ++start;
+
+    // Walk backwards through stuck predecessors until a pass repeats.
+    std::vector<int64_t> seen_at(count, -1);
+    std::vector<uint32_t> walk;
+    uint32_t current = start;
+    while (seen_at[current] < 0) {
+        seen_at[current] = static_cast<int64_t>(walk.size());
+        walk.push_back(current);
+        for (uint32_t p : predecessors[current]) {
+            if (stuck(p)) {
+                current = p;
+                break;
+            }
+        }
+    }
+    std::vector<uint32_t> cycle(walk.begin() + seen_at[current], walk.end());
+    std::reverse(cycle.begin(), cycle.end());  // the walk went against the edges
+    std::rotate(cycle.begin(), std::min_element(cycle.begin(), cycle.end()), cycle.end());
+
+    std::string names;
+    std::string reasons;
+    for (std::size_t i = 0; i < cycle.size(); ++i) {
+        const uint32_t from = cycle[i];
+        const uint32_t to = cycle[(i + 1) % cycle.size()];
+        names += graph.pass(PassId{from}).name() + " -> ";
+        if (!reasons.empty()) reasons += "; ";
+        reasons += edge_reason(graph, from, to);
+    }
+    names += graph.pass(PassId{cycle.front()}).name();
+    return graph_error("cycle: " + names + " (" + reasons + ")");
+}
+
+}  // namespace
+
+Result<Dependencies> analyze(const FrameGraph& graph) {
+    const uint32_t count = graph.pass_count();
+    Dependencies out;
+    out.successors.resize(count);
+    out.producers.resize(count);
+
+    for (uint32_t pass_index = 0; pass_index < count; ++pass_index) {
+        const Pass& pass = graph.pass(PassId{pass_index});
+        for (uint32_t port_index = 0; port_index < pass.ports().size(); ++port_index) {
+            const PortAddress address{pass_index, port_index};
+            const Port& port = pass.ports()[port_index];
+            if (!port_reads(port.kind)) continue;
+            auto source = graph.source(address);
+            if (!source) {
+                if (port.optional) continue;
+                return graph_error("required " + std::string(port_kind_name(port.kind)) + " " +
+                                   graph.port_name(address) + " is not connected");
+            }
+            out.successors[source->pass].push_back(pass_index);
+            out.producers[pass_index].push_back(source->pass);
+            if (port.kind != PortKind::InOut) continue;
+            // Every other reader of the texture before this in-place modification runs first.
+            for (const PortAddress& reader : graph.consumers(*source)) {
+                if (reader == address) continue;
+                if (reader.pass == pass_index) {
+                    return graph_error("pass '" + pass.name() + "' reads " + graph.port_name(*source) + " through " +
+                                       graph.port_name(reader) + " while modifying it in place through " +
+                                       graph.port_name(address));
+                }
+                out.successors[reader.pass].push_back(pass_index);
+            }
+        }
+    }
+    for (auto& list : out.successors) sort_unique(list);
+    for (auto& list : out.producers) sort_unique(list);
+
+    // Kahn's algorithm over every pass; whatever it cannot order lies on or behind a cycle.
+    std::vector<uint32_t> in_degree(count, 0);
+    for (const auto& list : out.successors) {
+        for (uint32_t to : list) ++in_degree[to];
+    }
+    std::vector<uint32_t> ready;
+    for (uint32_t i = 0; i < count; ++i) {
+        if (in_degree[i] == 0) ready.push_back(i);
+    }
+    uint32_t ordered = 0;
+    while (!ready.empty()) {
+        const uint32_t pass = ready.back();
+        ready.pop_back();
+        ++ordered;
+        for (uint32_t next : out.successors[pass]) {
+            if (--in_degree[next] == 0) ready.push_back(next);
+        }
+    }
+    if (ordered != count) return cycle_error(graph, out, in_degree);
+    return out;
+}
+
+}  // namespace loom::fg::detail

@@ -1,0 +1,388 @@
+#include "loom/framegraph/graph_file.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace loom::fg {
+namespace {
+
+using nlohmann::json;
+
+std::string lowercase(std::string_view text) {
+    std::string out(text);
+    std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return out;
+}
+
+// Reads one JSON document into a FrameGraph, keeping the JSON path for error messages.
+class GraphReader {
+public:
+    explicit GraphReader(std::string_view source) : source_(source) {}
+
+    Result<GraphFile> read(const json& root) {
+        GraphFile file;
+        if (!root.is_object()) return fail("", "the top level must be an object");
+        LOOM_TRY(only_keys(root, "", {"frame", "passes", "connections", "outputs"}));
+
+        if (root.contains("frame")) {
+            const json& frame = root["frame"];
+            if (!frame.is_object()) return fail("frame", "must be an object {\"width\": W, \"height\": H}");
+            LOOM_TRY(only_keys(frame, "frame", {"width", "height"}));
+            auto width = positive(frame, "frame", "width", true);
+            if (!width) return width.take_error();
+            auto height = positive(frame, "frame", "height", true);
+            if (!height) return height.take_error();
+            file.frame = {**width, **height};
+        }
+
+        if (!root.contains("passes")) return fail("", "missing \"passes\"");
+        const json& passes = root["passes"];
+        if (!passes.is_array()) return fail("passes", "must be an array");
+        for (std::size_t i = 0; i < passes.size(); ++i) {
+            const std::string path = "passes[" + std::to_string(i) + "]";
+            auto pass = read_pass(passes[i], path);
+            if (!pass) return pass.take_error();
+            auto added = file.graph.add_pass(std::move(*pass));
+            if (!added) return at(path, added.take_error());
+        }
+
+        if (root.contains("connections")) {
+            const json& connections = root["connections"];
+            if (!connections.is_array()) return fail("connections", "must be an array of [\"pass.port\", \"pass.port\"]");
+            for (std::size_t i = 0; i < connections.size(); ++i) {
+                const std::string path = "connections[" + std::to_string(i) + "]";
+                const json& pair = connections[i];
+                if (!pair.is_array() || pair.size() != 2) return fail(path, "must be [\"pass.port\", \"pass.port\"]");
+                auto from = port_ref(pair[0], path + "[0]");
+                if (!from) return from.take_error();
+                auto to = port_ref(pair[1], path + "[1]");
+                if (!to) return to.take_error();
+                auto connected = file.graph.connect(*from, *to);
+                if (!connected) return at(path, connected.take_error());
+            }
+        }
+
+        if (root.contains("outputs")) {
+            const json& outputs = root["outputs"];
+            if (!outputs.is_array()) return fail("outputs", "must be an array of \"pass.port\"");
+            for (std::size_t i = 0; i < outputs.size(); ++i) {
+                const std::string path = "outputs[" + std::to_string(i) + "]";
+                auto ref = port_ref(outputs[i], path);
+                if (!ref) return ref.take_error();
+                auto marked = file.graph.mark_output(*ref);
+                if (!marked) return at(path, marked.take_error());
+            }
+        }
+        return file;
+    }
+
+private:
+    Error fail(const std::string& path, const std::string& problem) const {
+        return make_error(ErrorCode::Parse, std::string(source_) + ": " + (path.empty() ? "" : path + ": ") + problem);
+    }
+
+    // An error from the graph itself (ErrorCode::Graph, Join) located at a JSON path.
+    Error at(const std::string& path, Error error) const {
+        error.message = std::string(source_) + ": " + path + ": " + error.message;
+        return error;
+    }
+
+    Status only_keys(const json& object, const std::string& path, std::initializer_list<std::string_view> allowed) const {
+        for (auto it = object.begin(); it != object.end(); ++it) {
+            if (std::find(allowed.begin(), allowed.end(), it.key()) != allowed.end()) continue;
+            std::string known;
+            for (std::string_view key : allowed) known += (known.empty() ? "" : ", ") + std::string(key);
+            return fail(path.empty() ? it.key() : path + "." + it.key(), "unknown key (expected one of: " + known + ")");
+        }
+        return {};
+    }
+
+    // A positive integer member; nullopt when absent and not required.
+    Result<std::optional<uint32_t>> positive(const json& object, const std::string& path, const char* key,
+                                             bool required = false) const {
+        if (!object.contains(key)) {
+            if (required) return fail(path, std::string("missing \"") + key + "\"");
+            return std::optional<uint32_t>{};
+        }
+        const json& value = object[key];
+        const std::string where = path + "." + key;
+        if (!value.is_number_integer()) return fail(where, "must be a positive integer, not " + value.dump());
+        const auto number = value.get<int64_t>();
+        if (number < 1 || number > 1 << 30) return fail(where, "must be a positive integer, not " + value.dump());
+        return std::optional<uint32_t>(static_cast<uint32_t>(number));
+    }
+
+    Result<bool> boolean(const json& object, const std::string& path, const char* key) const {
+        if (!object.contains(key)) return false;
+        if (!object[key].is_boolean()) return fail(path + "." + key, "must be true or false, not " + object[key].dump());
+        return object[key].get<bool>();
+    }
+
+    Result<PortRef> port_ref(const json& value, const std::string& path) const {
+        if (!value.is_string()) return fail(path, "must be a \"pass.port\" string, not " + value.dump());
+        auto ref = parse_port_ref(value.get<std::string>());
+        if (!ref) return fail(path, "\"" + value.get<std::string>() + "\" is not of the form \"pass.port\"");
+        return *ref;
+    }
+
+    Result<Pass> read_pass(const json& object, const std::string& path) const {
+        if (!object.is_object()) return fail(path, "a pass must be an object");
+        LOOM_TRY(only_keys(object, path, {"name", "inputs", "outputs", "inouts", "parts", "side_effect"}));
+        if (!object.contains("name") || !object["name"].is_string() || object["name"].get<std::string>().empty()) {
+            return fail(path + ".name", "a pass needs a non-empty string name");
+        }
+        Pass pass(object["name"].get<std::string>());
+        auto side_effect = boolean(object, path, "side_effect");
+        if (!side_effect) return side_effect.take_error();
+        pass.set_side_effect(*side_effect);
+
+        // The pass's own ports first, then each part, as Pass::add composes them.
+        auto own = read_part(object, path, pass.name());
+        if (!own) return own.take_error();
+        pass.add(*own);
+        if (object.contains("parts")) {
+            const json& parts = object["parts"];
+            if (!parts.is_array()) return fail(path + ".parts", "must be an array of parts");
+            for (std::size_t i = 0; i < parts.size(); ++i) {
+                const std::string part_path = path + ".parts[" + std::to_string(i) + "]";
+                const json& part = parts[i];
+                if (!part.is_object()) return fail(part_path, "a part must be an object");
+                LOOM_TRY(only_keys(part, part_path, {"name", "inputs", "outputs", "inouts"}));
+                if (!part.contains("name") || !part["name"].is_string()) {
+                    return fail(part_path + ".name", "a part needs a string name");
+                }
+                auto read = read_part(part, part_path, part["name"].get<std::string>());
+                if (!read) return read.take_error();
+                pass.add(*read);
+            }
+        }
+        if (auto status = pass.status(); !status) return at(path, status.take_error());
+        return pass;
+    }
+
+    Result<Part> read_part(const json& object, const std::string& path, std::string name) const {
+        Part part(std::move(name));
+        static constexpr std::array<std::pair<const char*, PortKind>, 3> kLists{
+            {{"inputs", PortKind::Input}, {"outputs", PortKind::Output}, {"inouts", PortKind::InOut}}};
+        for (const auto& [key, kind] : kLists) {
+            if (!object.contains(key)) continue;
+            const json& list = object[key];
+            const std::string list_path = path + "." + key;
+            if (!list.is_array()) return fail(list_path, "must be an array of ports");
+            for (std::size_t i = 0; i < list.size(); ++i) {
+                const std::string port_path = list_path + "[" + std::to_string(i) + "]";
+                auto port = read_port(list[i], port_path);
+                if (!port) return port.take_error();
+                part.declare(port->name, kind, port->spec, port->optional);
+            }
+        }
+        return part;
+    }
+
+    Result<Port> read_port(const json& object, const std::string& path) const {
+        if (!object.is_object()) return fail(path, "a port must be an object with a \"name\"");
+        LOOM_TRY(only_keys(object, path,
+                           {"name", "format", "channels", "bits", "kind", "srgb", "depth", "stencil", "size", "scale",
+                            "samples", "mips", "layers", "optional", "usage"}));
+        if (!object.contains("name") || !object["name"].is_string() || object["name"].get<std::string>().empty()) {
+            return fail(path + ".name", "a port needs a non-empty string name");
+        }
+        Port port;
+        port.name = object["name"].get<std::string>();
+        TextureSpec& spec = port.spec;
+
+        auto format = read_format(object, path);
+        if (!format) return format.take_error();
+        spec.format = *format;
+
+        if (object.contains("size") && object.contains("scale")) return fail(path, "give \"size\" or \"scale\", not both");
+        if (object.contains("size")) {
+            const json& size = object["size"];
+            const bool valid = size.is_array() && size.size() == 2 &&
+                               std::all_of(size.begin(), size.end(), [](const json& v) {
+                                   return v.is_number_integer() && v.get<int64_t>() >= 1 && v.get<int64_t>() <= 1 << 16;
+                               });
+            if (!valid) return fail(path + ".size", "must be [width, height] in texels, not " + size.dump());
+            spec.size = SizeSpec::absolute(size[0].get<uint32_t>(), size[1].get<uint32_t>());
+        }
+        if (object.contains("scale")) {
+            const json& scale = object["scale"];
+            auto valid_scale = [](const json& v) { return v.is_number() && v.get<double>() > 0.0 && v.get<double>() <= 16.0; };
+            if (valid_scale(scale)) {
+                spec.size = SizeSpec::relative(scale.get<float>());
+            } else if (scale.is_array() && scale.size() == 2 && valid_scale(scale[0]) && valid_scale(scale[1])) {
+                spec.size = SizeSpec::relative(scale[0].get<float>(), scale[1].get<float>());
+            } else {
+                return fail(path + ".scale", "must be a number in (0, 16] or [sx, sy], not " + scale.dump());
+            }
+        }
+        for (const char* key : {"samples", "mips", "layers"}) {
+            auto count = positive(object, path, key);
+            if (!count) return count.take_error();
+            if (!*count) continue;
+            if (std::string_view(key) == "samples") spec.samples = **count;
+            if (std::string_view(key) == "mips") spec.mips = **count;
+            if (std::string_view(key) == "layers") spec.layers = **count;
+        }
+        auto optional = boolean(object, path, "optional");
+        if (!optional) return optional.take_error();
+        port.optional = *optional;
+
+        if (object.contains("usage")) {
+            const json& usage = object["usage"];
+            if (!usage.is_array()) return fail(path + ".usage", "must be an array of usage names");
+            for (std::size_t i = 0; i < usage.size(); ++i) {
+                const std::string where = path + ".usage[" + std::to_string(i) + "]";
+                if (!usage[i].is_string()) return fail(where, "must be a usage name, not " + usage[i].dump());
+                auto flag = parse_usage_flag(usage[i].get<std::string>());
+                if (!flag) {
+                    return fail(where, "unknown usage \"" + usage[i].get<std::string>() +
+                                           "\" (sampled, color_attachment, depth_stencil_attachment, storage, "
+                                           "copy_src, copy_dst)");
+                }
+                spec.usage |= *flag;
+            }
+        }
+        return port;
+    }
+
+    Result<std::optional<rhi::FormatFeatures>> read_format(const json& object, const std::string& path) const {
+        const bool partial_color = object.contains("channels") || object.contains("bits") || object.contains("kind") ||
+                                   object.contains("srgb");
+        const bool partial_depth = object.contains("depth") || object.contains("stencil");
+        if (object.contains("format")) {
+            if (partial_color || partial_depth) {
+                return fail(path, "give \"format\" or partial constraints (channels, bits, kind, srgb, depth, "
+                                  "stencil), not both");
+            }
+            const json& value = object["format"];
+            if (!value.is_string()) return fail(path + ".format", "must be a format name, not " + value.dump());
+            auto format = parse_format_alias(value.get<std::string>());
+            if (!format) return fail(path + ".format", "unknown format \"" + value.get<std::string>() + "\"");
+            return std::optional(rhi::format_info(*format).features);
+        }
+        if (!partial_color && !partial_depth) return std::optional<rhi::FormatFeatures>{};
+
+        std::optional<rhi::ChannelKind> kind;
+        if (object.contains("kind")) {
+            static constexpr std::array<rhi::ChannelKind, 5> kKinds{rhi::ChannelKind::Unorm, rhi::ChannelKind::Snorm,
+                                                                    rhi::ChannelKind::Float, rhi::ChannelKind::Uint,
+                                                                    rhi::ChannelKind::Sint};
+            const json& value = object["kind"];
+            for (rhi::ChannelKind k : kKinds) {
+                if (value.is_string() && value.get<std::string>() == rhi::channel_kind_name(k)) kind = k;
+            }
+            if (!kind) return fail(path + ".kind", "must be one of unorm, snorm, float, uint, sint, not " + value.dump());
+        }
+        auto bits_of = [&](const char* key, uint32_t max) -> Result<std::optional<uint32_t>> {
+            auto bits = positive(object, path, key);
+            if (!bits) return bits.take_error();
+            if (*bits && **bits > max) {
+                return fail(path + "." + key, "must be at most " + std::to_string(max) + ", not " +
+                                                  std::to_string(**bits));
+            }
+            return *bits;
+        };
+
+        if (partial_depth) {
+            if (object.contains("channels") || object.contains("bits") || object.contains("srgb")) {
+                return fail(path, "depth/stencil constraints do not take channels, bits or srgb");
+            }
+            auto depth = bits_of("depth", 32);
+            if (!depth) return depth.take_error();
+            auto stencil = bits_of("stencil", 8);
+            if (!stencil) return stencil.take_error();
+            if (kind && *kind != rhi::ChannelKind::Unorm && *kind != rhi::ChannelKind::Float) {
+                return fail(path + ".kind", "depth is unorm or float");
+            }
+            rhi::FormatFeatures features{};
+            if (*depth) {
+                const rhi::ChannelKind depth_kind =
+                    kind.value_or(**depth == 32 ? rhi::ChannelKind::Float : rhi::ChannelKind::Unorm);
+                features.depth = rhi::Channel{static_cast<uint8_t>(**depth), depth_kind};
+            }
+            if (*stencil) features.stencil_bits = static_cast<uint8_t>(**stencil);
+            return std::optional(features);
+        }
+
+        auto channels = bits_of("channels", 4);
+        if (!channels) return channels.take_error();
+        auto bits = bits_of("bits", 32);
+        if (!bits) return bits.take_error();
+        auto srgb = boolean(object, path, "srgb");
+        if (!srgb) return srgb.take_error();
+        rhi::FormatFeatures features =
+            color_features(channels->value_or(4), bits->value_or(8), kind.value_or(rhi::ChannelKind::Unorm));
+        features.srgb = *srgb;
+        return std::optional(features);
+    }
+
+    std::string_view source_;
+};
+
+}  // namespace
+
+std::optional<rhi::Format> parse_format_alias(std::string_view name) {
+    if (auto exact = rhi::parse_format(name)) return exact;
+    static constexpr std::array<std::pair<std::string_view, rhi::Format>, 6> kDepth{{
+        {"D16", rhi::Format::Depth16},
+        {"D24", rhi::Format::Depth24},
+        {"D32F", rhi::Format::Depth32F},
+        {"D24S8", rhi::Format::Depth24Stencil8},
+        {"D32FS8", rhi::Format::Depth32FStencil8},
+        {"S8", rhi::Format::Stencil8},
+    }};
+    const std::string wanted = lowercase(name);
+    for (const auto& [alias, format] : kDepth) {
+        if (lowercase(alias) == wanted) return format;
+    }
+    std::vector<std::string> candidates{wanted, wanted + "unorm"};
+    if (!wanted.empty() && wanted.back() == 'f') candidates.push_back(wanted.substr(0, wanted.size() - 1) + "float");
+    for (rhi::Format format : rhi::all_formats()) {
+        const std::string known = lowercase(rhi::format_name(format));
+        if (std::find(candidates.begin(), candidates.end(), known) != candidates.end()) return format;
+    }
+    return std::nullopt;
+}
+
+Result<GraphFile> parse_graph_json(std::string_view text, std::string_view source) {
+    json root;
+    try {
+        root = json::parse(text.begin(), text.end());
+    } catch (const json::parse_error& error) {
+        // Turn the byte offset into a line and column.
+        const std::size_t offset = std::min<std::size_t>(error.byte == 0 ? 0 : error.byte - 1, text.size());
+        std::size_t line = 1;
+        std::size_t column = 1;
+        for (std::size_t i = 0; i < offset; ++i) {
+            if (text[i] == '\n') {
+                ++line;
+                column = 1;
+            } else {
+                ++column;
+            }
+        }
+        std::string what = error.what();
+        if (auto colon = what.rfind(": "); colon != std::string::npos) what = what.substr(colon + 2);
+        return make_error(ErrorCode::Parse, std::string(source) + ":" + std::to_string(line) + ":" +
+                                                std::to_string(column) + ": invalid JSON: " + what);
+    }
+    return GraphReader(source).read(root);
+}
+
+Result<GraphFile> load_graph_file(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return make_error(ErrorCode::Io, "cannot read graph file " + path.string());
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) return make_error(ErrorCode::Io, "error while reading graph file " + path.string());
+    return parse_graph_json(text.str(), path.string());
+}
+
+}  // namespace loom::fg

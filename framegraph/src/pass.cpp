@@ -1,0 +1,90 @@
+#include "loom/framegraph/pass.hpp"
+
+#include <algorithm>
+
+#include "loom/framegraph/join.hpp"
+
+namespace loom::fg {
+
+std::string_view port_kind_name(PortKind kind) {
+    switch (kind) {
+        case PortKind::Input: return "input";
+        case PortKind::Output: return "output";
+        case PortKind::InOut: return "inout";
+    }
+    return "unknown";
+}
+
+Part& Part::declare(std::string port, PortKind kind, TextureSpec spec, bool optional) {
+    declarations_.push_back(Port{std::move(port), kind, std::move(spec), optional, {name_}});
+    return *this;
+}
+
+Pass::Pass(std::string name) : name_(std::move(name)) {}
+
+Pass::~Pass() = default;
+
+Pass& Pass::add(const Part& part) {
+    for (const Port& declaration : part.declarations()) merge(declaration, part.name());
+    return *this;
+}
+
+Pass& Pass::declare(std::string port, PortKind kind, TextureSpec spec, bool optional) {
+    merge(Port{std::move(port), kind, std::move(spec), optional, {name_}}, name_);
+    return *this;
+}
+
+const Port* Pass::find_port(std::string_view name) const {
+    auto index = port_index(name);
+    return index ? &ports_[*index] : nullptr;
+}
+
+std::optional<uint32_t> Pass::port_index(std::string_view name) const {
+    for (std::size_t i = 0; i < ports_.size(); ++i) {
+        if (ports_[i].name == name) return static_cast<uint32_t>(i);
+    }
+    return std::nullopt;
+}
+
+Status Pass::status() const {
+    if (error_) return *error_;
+    return {};
+}
+
+void Pass::merge(const Port& declaration, const std::string& part) {
+    auto it = std::find_if(ports_.begin(), ports_.end(), [&](const Port& p) { return p.name == declaration.name; });
+    if (it == ports_.end()) {
+        ports_.push_back(declaration);
+        ports_.back().parts = {part};
+        return;
+    }
+    if (error_) return;  // keep the first error; later ones are usually consequences
+
+    Port& existing = *it;
+    const std::string& first_part = existing.parts.front();
+    if (existing.kind != declaration.kind) {
+        error_ = make_error(ErrorCode::Graph, "pass '" + name_ + "': port '" + declaration.name + "' is declared as " +
+                                                  std::string(port_kind_name(existing.kind)) + " by part '" +
+                                                  first_part + "' and as " +
+                                                  std::string(port_kind_name(declaration.kind)) + " by part '" +
+                                                  part + "'");
+        return;
+    }
+    const std::string a_name = name_ + "." + existing.name + " (part '" + first_part + "')";
+    const std::string b_name = name_ + "." + declaration.name + " (part '" + part + "')";
+    JoinContext context;
+    context.a_name = a_name;
+    context.b_name = b_name;
+    auto joined = join(existing.spec, declaration.spec, context);
+    if (!joined) {
+        error_ = joined.take_error();
+        return;
+    }
+    existing.spec = std::move(*joined);
+    existing.optional = existing.optional && declaration.optional;
+    if (std::find(existing.parts.begin(), existing.parts.end(), part) == existing.parts.end()) {
+        existing.parts.push_back(part);
+    }
+}
+
+}  // namespace loom::fg

@@ -1,0 +1,177 @@
+#include "loom/framegraph/plan.hpp"
+
+#include <type_traits>
+
+namespace loom::fg {
+namespace {
+
+// FNV-1a over every field, fed in a fixed order with explicit sizes, so the value is the same
+// on every platform and run.
+class Hasher {
+public:
+    void bytes(const void* data, std::size_t size) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i < size; ++i) {
+            state_ ^= p[i];
+            state_ *= 1099511628211ull;
+        }
+    }
+    template <class T>
+        requires std::is_integral_v<T> || std::is_enum_v<T>
+    void add(T value) {
+        const auto wide = static_cast<uint64_t>(value);
+        unsigned char little_endian[8];
+        for (int i = 0; i < 8; ++i) little_endian[i] = static_cast<unsigned char>(wide >> (8 * i));
+        bytes(little_endian, sizeof little_endian);
+    }
+    void add(std::string_view text) {
+        add(text.size());
+        bytes(text.data(), text.size());
+    }
+    template <class T>
+    void add(const std::optional<T>& value) {
+        add(value.has_value());
+        if (value) add(*value);
+    }
+    void add(const rhi::FormatFeatures& f) {
+        for (const rhi::Channel& c : f.color) {
+            add(c.bits);
+            add(c.kind);
+        }
+        add(f.depth.bits);
+        add(f.depth.kind);
+        add(f.stencil_bits);
+        add(f.shared_exponent_bits);
+        add(f.srgb);
+        add(f.compressed);
+        add(f.bgra);
+    }
+    void add(const ResolvedSpec& s) {
+        add(s.format);
+        add(s.format_match);
+        add(s.extent.width);
+        add(s.extent.height);
+        add(s.samples);
+        add(s.mips);
+        add(s.layers);
+        add(s.usage);
+    }
+    void add(const HeapRange& r) {
+        add(r.heap);
+        add(r.offset);
+    }
+    [[nodiscard]] uint64_t value() const { return state_; }
+
+private:
+    uint64_t state_ = 14695981039346656037ull;
+};
+
+}  // namespace
+
+std::string_view spec_sharing_name(SpecSharing sharing) {
+    switch (sharing) {
+        case SpecSharing::Equal: return "equal";
+        case SpecSharing::Joinable: return "joinable";
+    }
+    return "unknown";
+}
+
+const PlanPass* Plan::find_pass(std::string_view name) const {
+    for (const PlanPass& pass : order) {
+        if (pass.name == name) return &pass;
+    }
+    return nullptr;
+}
+
+const PlanResource* Plan::resource_of(std::string_view pass_name, std::string_view port_name) const {
+    const PlanPass* pass = find_pass(pass_name);
+    if (!pass) return nullptr;
+    for (const PlanPort& port : pass->ports) {
+        if (port.name == port_name) return port.resource ? &resources[*port.resource] : nullptr;
+    }
+    return nullptr;
+}
+
+std::optional<uint32_t> Plan::texture_of(std::string_view pass_name, std::string_view port_name) const {
+    const PlanResource* resource = resource_of(pass_name, port_name);
+    if (!resource) return std::nullopt;
+    return resource->texture;
+}
+
+uint64_t plan_hash(const Plan& plan) {
+    Hasher h;
+    h.add(plan.allocator);
+    h.add(plan.frame.width);
+    h.add(plan.frame.height);
+    h.add(plan.sharing);
+    h.add(plan.order.size());
+    for (const PlanPass& pass : plan.order) {
+        h.add(pass.name);
+        h.add(pass.declaration_index);
+        h.add(pass.side_effect);
+        h.add(pass.ports.size());
+        for (const PlanPort& port : pass.ports) {
+            h.add(port.name);
+            h.add(port.kind);
+            h.add(port.optional);
+            h.add(port.resource);
+            h.add(port.usage);
+        }
+    }
+    h.add(plan.culled.size());
+    for (const std::string& name : plan.culled) h.add(name);
+    h.add(plan.edges.size());
+    for (const PlanEdge& e : plan.edges) {
+        h.add(e.from_pass);
+        h.add(e.from_port);
+        h.add(e.to_pass);
+        h.add(e.to_port);
+        h.add(e.resource);
+    }
+    h.add(plan.graph_outputs.size());
+    for (const std::string& name : plan.graph_outputs) h.add(name);
+    h.add(plan.resources.size());
+    for (const PlanResource& r : plan.resources) {
+        h.add(r.name);
+        h.add(r.ports.size());
+        for (const std::string& p : r.ports) h.add(p);
+        h.add(r.requested_format);
+        h.add(r.spec);
+        h.add(r.lifetime.first);
+        h.add(r.lifetime.last);
+        h.add(r.graph_output);
+        h.add(r.spec_class);
+        h.add(r.bytes);
+        h.add(r.alignment);
+        h.add(r.texture);
+    }
+    h.add(plan.spec_classes.size());
+    for (const SpecClass& c : plan.spec_classes) {
+        h.add(c.spec);
+        h.add(c.resources.size());
+        for (uint32_t r : c.resources) h.add(r);
+        h.add(c.peak_live);
+    }
+    h.add(plan.textures.size());
+    for (const PlanTexture& t : plan.textures) {
+        h.add(t.name);
+        h.add(t.spec);
+        h.add(t.resources.size());
+        for (uint32_t r : t.resources) h.add(r);
+        h.add(t.bytes);
+        h.add(t.alignment);
+        h.add(t.placement);
+    }
+    h.add(plan.heaps.size());
+    for (uint64_t size : plan.heaps) h.add(size);
+    const PlanSummary& s = plan.summary;
+    h.add(s.textures);
+    h.add(s.bytes);
+    h.add(s.naive_textures);
+    h.add(s.naive_bytes);
+    h.add(s.lower_bound_textures);
+    h.add(s.lower_bound_bytes);
+    return h.value();
+}
+
+}  // namespace loom::fg
