@@ -1,0 +1,780 @@
+#include "command_list.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "formats.hpp"
+#include "vulkan_device.hpp"
+
+namespace loom::vulkan {
+
+using rhi::ResourceState;
+
+namespace {
+
+std::string state_name(ResourceState s) {
+    switch (s) {
+        case ResourceState::Undefined: return "Undefined";
+        case ResourceState::ShaderRead: return "ShaderRead";
+        case ResourceState::RenderTarget: return "RenderTarget";
+        case ResourceState::DepthWrite: return "DepthWrite";
+        case ResourceState::DepthRead: return "DepthRead";
+        case ResourceState::Storage: return "Storage";
+        case ResourceState::CopySrc: return "CopySrc";
+        case ResourceState::CopyDst: return "CopyDst";
+        case ResourceState::Present: return "Present";
+        case ResourceState::VertexBuffer: return "VertexBuffer";
+        case ResourceState::IndexBuffer: return "IndexBuffer";
+        case ResourceState::IndirectArgument: return "IndirectArgument";
+    }
+    return "?";
+}
+
+std::string in_quotes(const std::string& name) { return "'" + name + "'"; }
+
+rhi::Extent3D mip_extent(const rhi::TextureDesc& desc, uint32_t mip) {
+    return {std::max(1u, desc.width >> mip), std::max(1u, desc.height >> mip),
+            desc.dimension == rhi::TextureDimension::Tex3D ? std::max(1u, desc.depth_or_layers >> mip) : 1u};
+}
+
+}  // namespace
+
+void VulkanCommandList::begin(VkCommandBuffer cmd, bool new_frame) {
+    cmd_ = cmd;
+    bound_graphics_ = VK_NULL_HANDLE;
+    bound_compute_ = VK_NULL_HANDLE;
+    bound_layout_ = VK_NULL_HANDLE;
+    for (GroupState& g : groups_) g.dirty = true;
+    push_dirty_ = true;
+    if (new_frame) {
+        error_.reset();
+        stats_ = {};
+        in_render_pass_ = false;
+        pipeline_handle_ = {};
+        pipeline_ = nullptr;
+        for (GroupState& g : groups_) g = {};
+        push_size_ = 0;
+        push_dirty_ = false;
+        vertex_buffers_ = {};
+        index_buffer_ = {};
+        timer_open_ = false;
+        debug_depth_ = 0;
+        return;
+    }
+    // The continuation of a frame split by a readback: command buffer state starts empty, so
+    // what was bound is bound again.
+    if (pipeline_) {
+        const bool graphics = pipeline_->bind_point == VK_PIPELINE_BIND_POINT_GRAPHICS;
+        vkCmdBindPipeline(cmd_, pipeline_->bind_point, pipeline_->pipeline);
+        (graphics ? bound_graphics_ : bound_compute_) = pipeline_->pipeline;
+    }
+    for (uint32_t slot = 0; slot < vertex_buffers_.size(); ++slot) {
+        if (const Buffer* b = device_.buffers().find(vertex_buffers_[slot].buffer)) {
+            VkDeviceSize offset = vertex_buffers_[slot].offset;
+            vkCmdBindVertexBuffers(cmd_, slot, 1, &b->buffer, &offset);
+        }
+    }
+    if (const Buffer* b = device_.buffers().find(index_buffer_)) {
+        vkCmdBindIndexBuffer(cmd_, b->buffer, index_offset_, to_vk(index_type_));
+    }
+}
+
+void VulkanCommandList::fail(ErrorCode code, std::string message) {
+    if (!error_) error_ = Error{code, std::move(message)};
+}
+
+std::optional<Error> VulkanCommandList::take_error() {
+    auto e = std::move(error_);
+    error_.reset();
+    return e;
+}
+
+bool VulkanCommandList::require_outside_pass(std::string_view what) {
+    if (!in_render_pass_) return true;
+    fail(ErrorCode::InvalidState, std::string(what) + " inside render pass " + in_quotes(pass_label_) + "; call it before begin_render_pass or after end_render_pass");
+    return false;
+}
+
+bool VulkanCommandList::require_inside_pass(std::string_view what) {
+    if (in_render_pass_) return true;
+    fail(ErrorCode::InvalidState, std::string(what) + " outside a render pass");
+    return false;
+}
+
+void VulkanCommandList::finish() {
+    if (in_render_pass_) {
+        fail(ErrorCode::InvalidState, "render pass " + in_quotes(pass_label_) + " was not ended before end_frame");
+        end_render_pass();
+    }
+    if (timer_open_) {
+        fail(ErrorCode::InvalidState, "a timer was still open at end_frame");
+        end_timer();
+    }
+    if (debug_depth_ > 0) {
+        fail(ErrorCode::InvalidState, std::to_string(debug_depth_) + " debug group(s) still open at end_frame");
+        while (debug_depth_ > 0) pop_debug_group();
+    }
+}
+
+// ---- render passes ----------------------------------------------------------------------------
+
+void VulkanCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
+    const std::string pass = "render pass " + in_quotes(desc.label);
+    if (!require_outside_pass("begin_render_pass(" + in_quotes(desc.label) + ")")) return;
+    if (desc.colors.empty() && !desc.depth) {
+        fail(ErrorCode::InvalidArgument, pass + " has no attachments");
+        return;
+    }
+    std::optional<rhi::Extent3D> size;
+    uint32_t samples = 0;
+    std::vector<Texture*> color_textures;
+    auto check_attachment = [&](rhi::TextureHandle handle, uint32_t mip, uint32_t layer, bool depth,
+                                const std::string& what) -> Texture* {
+        auto texture = device_.textures().get(handle);
+        if (!texture.ok()) {
+            fail(ErrorCode::InvalidHandle, pass + " " + what + ": " + texture.error().message);
+            return nullptr;
+        }
+        Texture& t = **texture;
+        const std::string tex = "texture " + in_quotes(t.desc.name);
+        const rhi::FormatInfo& info = rhi::format_info(t.desc.format);
+        if (depth ? !info.is_depth_stencil() : !info.is_color()) {
+            fail(ErrorCode::InvalidArgument, pass + " " + what + ": " + tex + " has format " + std::string(rhi::format_name(t.desc.format)) +
+                                                 ", not a " + (depth ? "depth/stencil" : "colour") + " format");
+            return nullptr;
+        }
+        const rhi::TextureUsage needed = depth ? rhi::TextureUsage::DepthStencilAttachment : rhi::TextureUsage::ColorAttachment;
+        if (!rhi::has_all(t.desc.usage, needed)) {
+            fail(ErrorCode::InvalidArgument, pass + " " + what + ": " + tex + " was not created with " +
+                                                 (depth ? "DepthStencilAttachment" : "ColorAttachment") + " usage");
+            return nullptr;
+        }
+        if (mip >= t.desc.mip_levels || layer >= t.array_layers) {
+            fail(ErrorCode::InvalidArgument, pass + " " + what + ": " + tex + " has no mip " + std::to_string(mip) + " layer " +
+                                                 std::to_string(layer));
+            return nullptr;
+        }
+        if (t.desc.dimension == rhi::TextureDimension::Tex3D) {
+            fail(ErrorCode::Unsupported, pass + " " + what + ": rendering into 3D " + tex + " is not supported");
+            return nullptr;
+        }
+        const rhi::Extent3D e = mip_extent(t.desc, mip);
+        if (!size) {
+            size = e;
+            samples = t.desc.samples;
+        } else if (size->width != e.width || size->height != e.height) {
+            fail(ErrorCode::InvalidArgument, pass + " " + what + ": " + tex + " is " + std::to_string(e.width) + "x" +
+                                                 std::to_string(e.height) + " but the other attachments are " +
+                                                 std::to_string(size->width) + "x" + std::to_string(size->height));
+            return nullptr;
+        } else if (samples != t.desc.samples) {
+            fail(ErrorCode::InvalidArgument, pass + " " + what + ": " + tex + " has " + std::to_string(t.desc.samples) +
+                                                 " samples but the other attachments have " + std::to_string(samples));
+            return nullptr;
+        }
+        return &t;
+    };
+
+    for (std::size_t i = 0; i < desc.colors.size(); ++i) {
+        const rhi::ColorAttachment& c = desc.colors[i];
+        Texture* t = check_attachment(c.texture, c.mip, c.layer, false, "colour attachment " + std::to_string(i));
+        if (!t) return;
+        color_textures.push_back(t);
+    }
+    Texture* depth_texture = nullptr;
+    if (desc.depth) {
+        depth_texture = check_attachment(desc.depth->texture, desc.depth->mip, desc.depth->layer, true, "depth attachment");
+        if (!depth_texture) return;
+    }
+
+    // Attachments move into attachment layouts; with a load op other than Load the old
+    // contents are not needed, which is also the hand-over point for aliased (placed) images.
+    BarrierBatch batch;
+    for (std::size_t i = 0; i < desc.colors.size(); ++i) {
+        const rhi::ColorAttachment& c = desc.colors[i];
+        device_.transition_texture(batch, *color_textures[i], c.mip, 1, c.layer, 1, ResourceState::RenderTarget, Stream::Frame,
+                                   c.load != rhi::LoadOp::Load);
+    }
+    if (depth_texture) {
+        const rhi::DepthAttachment& d = *desc.depth;
+        const rhi::FormatInfo& info = rhi::format_info(depth_texture->desc.format);
+        const bool discard = (!info.has_depth() || d.depth_load != rhi::LoadOp::Load) &&
+                             (!info.has_stencil() || d.stencil_load != rhi::LoadOp::Load);
+        device_.transition_texture(batch, *depth_texture, d.mip, 1, d.layer, 1, ResourceState::DepthWrite, Stream::Frame, discard);
+    }
+    stats_.api_calls += batch.flush(cmd_);
+
+    std::vector<VkRenderingAttachmentInfo> colors;
+    for (std::size_t i = 0; i < desc.colors.size(); ++i) {
+        const rhi::ColorAttachment& c = desc.colors[i];
+        auto view = device_.attachment_view(*color_textures[i], c.mip, c.layer);
+        if (!view.ok()) {
+            fail(view.error().code, pass + ": " + view.error().message);
+            return;
+        }
+        auto a = vk_init<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+        a.imageView = *view;
+        a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        a.loadOp = to_vk(c.load);
+        a.storeOp = to_vk(c.store);
+        a.clearValue.color = clear_color(color_textures[i]->desc.format, c.clear);
+        colors.push_back(a);
+    }
+    auto depth = vk_init<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+    auto stencil = vk_init<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+    auto info = vk_init<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
+    if (depth_texture) {
+        const rhi::DepthAttachment& d = *desc.depth;
+        auto view = device_.attachment_view(*depth_texture, d.mip, d.layer);
+        if (!view.ok()) {
+            fail(view.error().code, pass + ": " + view.error().message);
+            return;
+        }
+        const rhi::FormatInfo& format = rhi::format_info(depth_texture->desc.format);
+        depth.imageView = *view;
+        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+        depth.loadOp = to_vk(d.depth_load);
+        depth.storeOp = to_vk(d.depth_store);
+        depth.clearValue.depthStencil = {d.clear_depth, d.clear_stencil};
+        stencil = depth;
+        stencil.loadOp = to_vk(d.stencil_load);
+        stencil.storeOp = to_vk(d.stencil_store);
+        if (format.has_depth()) info.pDepthAttachment = &depth;
+        if (format.has_stencil()) info.pStencilAttachment = &stencil;
+    }
+    info.renderArea = {{0, 0}, {size->width, size->height}};
+    info.layerCount = 1;
+    info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
+    info.pColorAttachments = colors.data();
+    vkCmdBeginRendering(cmd_, &info);
+
+    in_render_pass_ = true;
+    pass_label_ = desc.label;
+    pass_color_formats_.clear();
+    for (const Texture* t : color_textures) pass_color_formats_.push_back(t->desc.format);
+    pass_depth_format_ = depth_texture ? depth_texture->desc.format : rhi::Format::Undefined;
+    pass_samples_ = samples;
+    pass_extent_ = {size->width, size->height};
+    ++stats_.render_passes;
+    ++stats_.api_calls;
+    set_viewport({0.0f, 0.0f, static_cast<float>(size->width), static_cast<float>(size->height), 0.0f, 1.0f});
+    set_scissor({0, 0, size->width, size->height});
+}
+
+void VulkanCommandList::end_render_pass() {
+    if (!require_inside_pass("end_render_pass")) return;
+    vkCmdEndRendering(cmd_);
+    ++stats_.api_calls;
+    in_render_pass_ = false;
+}
+
+// ---- state ------------------------------------------------------------------------------------
+
+void VulkanCommandList::set_pipeline(rhi::PipelineHandle handle) {
+    auto pipeline = device_.pipelines().get(handle);
+    if (!pipeline.ok()) {
+        fail(ErrorCode::InvalidHandle, "set_pipeline: " + pipeline.error().message);
+        return;
+    }
+    const Pipeline* p = *pipeline;
+    pipeline_handle_ = handle;
+    pipeline_ = p;
+    VkPipeline& bound = p->bind_point == VK_PIPELINE_BIND_POINT_GRAPHICS ? bound_graphics_ : bound_compute_;
+    if (bound == p->pipeline) return;
+    vkCmdBindPipeline(cmd_, p->bind_point, p->pipeline);
+    bound = p->pipeline;
+    ++stats_.pipeline_binds;
+    ++stats_.api_calls;
+}
+
+void VulkanCommandList::set_viewport(const rhi::Viewport& v) {
+    if (!require_inside_pass("set_viewport")) return;
+    // Negative height: NDC y up, row 0 at the top (DESIGN.md conventions).
+    VkViewport vp{v.x, v.y + v.height, v.width, -v.height, v.min_depth, v.max_depth};
+    vkCmdSetViewport(cmd_, 0, 1, &vp);
+    ++stats_.api_calls;
+}
+
+void VulkanCommandList::set_scissor(const rhi::Rect& r) {
+    if (!require_inside_pass("set_scissor")) return;
+    // Vulkan forbids negative offsets; clip the rectangle to the framebuffer's quadrant.
+    int64_t x = r.x, y = r.y, w = r.width, h = r.height;
+    if (x < 0) { w += x; x = 0; }
+    if (y < 0) { h += y; y = 0; }
+    VkRect2D rect{{static_cast<int32_t>(x), static_cast<int32_t>(y)},
+                  {static_cast<uint32_t>(std::max<int64_t>(w, 0)), static_cast<uint32_t>(std::max<int64_t>(h, 0))}};
+    vkCmdSetScissor(cmd_, 0, 1, &rect);
+    ++stats_.api_calls;
+}
+
+void VulkanCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
+    if (set >= rhi::kMaxBindGroups) {
+        fail(ErrorCode::InvalidArgument, "set_bind_group: set " + std::to_string(set) + " is beyond the " +
+                                             std::to_string(rhi::kMaxBindGroups) + " sets loom supports");
+        return;
+    }
+    for (const rhi::BindingEntry& e : group.entries) {
+        const std::string where = "set_bind_group(" + std::to_string(set) + "), binding " + std::to_string(e.binding) + ": ";
+        if (const auto* b = std::get_if<rhi::BufferBinding>(&e.resource)) {
+            if (auto r = device_.buffers().get(b->buffer); !r.ok()) return fail(ErrorCode::InvalidHandle, where + r.error().message);
+        } else if (const auto* t = std::get_if<rhi::TextureBinding>(&e.resource)) {
+            if (auto r = device_.textures().get(t->texture); !r.ok()) return fail(ErrorCode::InvalidHandle, where + r.error().message);
+            if (auto r = device_.samplers().get(t->sampler); !r.ok()) return fail(ErrorCode::InvalidHandle, where + r.error().message);
+        } else if (const auto* s = std::get_if<rhi::StorageTextureBinding>(&e.resource)) {
+            if (auto r = device_.textures().get(s->texture); !r.ok()) return fail(ErrorCode::InvalidHandle, where + r.error().message);
+        }
+    }
+    groups_[set].group = group;
+    groups_[set].dirty = true;
+}
+
+void VulkanCommandList::push_constants(std::span<const std::byte> data, uint32_t offset) {
+    if (offset + data.size() > push_data_.size()) {
+        fail(ErrorCode::InvalidArgument, "push_constants: " + std::to_string(offset + data.size()) +
+                                             " bytes exceed the 256 bytes loom supports");
+        return;
+    }
+    std::memcpy(push_data_.data() + offset, data.data(), data.size());
+    push_size_ = std::max(push_size_, static_cast<uint32_t>(offset + data.size()));
+    push_dirty_ = true;
+}
+
+void VulkanCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle handle, uint64_t offset) {
+    if (slot >= vertex_buffers_.size()) {
+        fail(ErrorCode::InvalidArgument, "set_vertex_buffer: slot " + std::to_string(slot) + " is beyond 16");
+        return;
+    }
+    auto buffer = device_.buffers().get(handle);
+    if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, "set_vertex_buffer: " + buffer.error().message);
+    if (!rhi::has_all((*buffer)->desc.usage, rhi::BufferUsage::Vertex)) {
+        return fail(ErrorCode::InvalidArgument, "set_vertex_buffer: buffer " + in_quotes((*buffer)->desc.name) + " lacks Vertex usage");
+    }
+    VkDeviceSize o = offset;
+    vkCmdBindVertexBuffers(cmd_, slot, 1, &(*buffer)->buffer, &o);
+    vertex_buffers_[slot] = {handle, offset};
+    ++stats_.buffer_binds;
+    ++stats_.api_calls;
+}
+
+void VulkanCommandList::set_index_buffer(rhi::BufferHandle handle, rhi::IndexType type, uint64_t offset) {
+    auto buffer = device_.buffers().get(handle);
+    if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, "set_index_buffer: " + buffer.error().message);
+    if (!rhi::has_all((*buffer)->desc.usage, rhi::BufferUsage::Index)) {
+        return fail(ErrorCode::InvalidArgument, "set_index_buffer: buffer " + in_quotes((*buffer)->desc.name) + " lacks Index usage");
+    }
+    vkCmdBindIndexBuffer(cmd_, (*buffer)->buffer, offset, to_vk(type));
+    index_buffer_ = handle;
+    index_type_ = type;
+    index_offset_ = offset;
+    ++stats_.buffer_binds;
+    ++stats_.api_calls;
+}
+
+rhi::BufferBinding VulkanCommandList::transient_uniforms(std::span<const std::byte> data) {
+    auto binding = device_.allocate_transient_uniforms(data);
+    if (!binding.ok()) {
+        fail(binding.error().code, "transient_uniforms: " + binding.error().message);
+        return {};
+    }
+    stats_.bytes_uploaded += data.size();
+    return *binding;
+}
+
+// ---- bindings ---------------------------------------------------------------------------------
+
+bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::string_view what) {
+    const PipelineLayout& layout = *pipeline_->layout;
+    const SetLayout& set_layout = *layout.sets[set];
+    const std::string pipe = "pipeline " + in_quotes(pipeline_->name);
+    if (!groups_[set].group) {
+        fail(ErrorCode::InvalidState, std::string(what) + ": " + pipe + " uses set " + std::to_string(set) + " ('" +
+                                          set_layout.bindings.front().name + "' at binding " +
+                                          std::to_string(set_layout.bindings.front().binding) + ") but no bind group is set for it");
+        return false;
+    }
+    const rhi::BindGroup& group = *groups_[set].group;
+    auto allocated = device_.current_frame().descriptors->allocate(set_layout.layout);
+    if (!allocated.ok()) {
+        fail(allocated.error().code, std::string(what) + ": " + allocated.error().message);
+        return false;
+    }
+    out = *allocated;
+
+    // Storage for the infos that the writes point to (reserved so the pointers stay valid).
+    std::vector<VkDescriptorBufferInfo> buffer_infos;
+    std::vector<VkDescriptorImageInfo> image_infos;
+    buffer_infos.reserve(set_layout.bindings.size());
+    std::size_t image_count = 0;
+    for (const SetBinding& b : set_layout.bindings) image_count += b.count;
+    image_infos.reserve(image_count);
+    std::vector<VkWriteDescriptorSet> writes;
+
+    for (const SetBinding& b : set_layout.bindings) {
+        const std::string where = std::string(what) + ": " + pipe + " set " + std::to_string(set) + " binding " +
+                                  std::to_string(b.binding) + " ('" + b.name + "')";
+        auto entry = std::find_if(group.entries.begin(), group.entries.end(),
+                                  [&](const rhi::BindingEntry& e) { return e.binding == b.binding; });
+        if (entry == group.entries.end()) {
+            fail(ErrorCode::InvalidState, where + " is not in the bind group");
+            return false;
+        }
+        auto w = vk_init<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+        w.dstSet = out;
+        w.dstBinding = b.binding;
+        w.descriptorType = b.type;
+        w.descriptorCount = b.count;
+        if (b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER || b.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) {
+            const auto* binding = std::get_if<rhi::BufferBinding>(&entry->resource);
+            if (!binding) {
+                fail(ErrorCode::InvalidArgument, where + " is a buffer but the bind group has a texture there");
+                return false;
+            }
+            const Buffer* buffer = device_.buffers().find(binding->buffer);
+            if (!buffer) {
+                fail(ErrorCode::InvalidHandle, where + ": the buffer was destroyed");
+                return false;
+            }
+            const bool uniform = b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+            const rhi::BufferUsage usage = uniform ? rhi::BufferUsage::Uniform : rhi::BufferUsage::Storage;
+            if (!rhi::has_all(buffer->desc.usage, usage)) {
+                fail(ErrorCode::InvalidArgument, where + ": buffer " + in_quotes(buffer->desc.name) + " lacks " +
+                                                     (uniform ? "Uniform" : "Storage") + " usage");
+                return false;
+            }
+            const uint64_t alignment = uniform ? device_.min_uniform_alignment() : device_.min_storage_alignment();
+            if (binding->offset % alignment != 0 || binding->offset >= buffer->desc.size) {
+                fail(ErrorCode::InvalidArgument, where + ": offset " + std::to_string(binding->offset) + " into buffer " +
+                                                     in_quotes(buffer->desc.name) + " must be below its size and a multiple of " +
+                                                     std::to_string(alignment));
+                return false;
+            }
+            uint64_t range = binding->size ? binding->size : buffer->desc.size - binding->offset;
+            if (!binding->size && uniform) range = std::min(range, device_.max_uniform_range());
+            if (binding->offset + range > buffer->desc.size) {
+                fail(ErrorCode::InvalidArgument, where + ": range " + std::to_string(binding->offset) + "+" + std::to_string(range) +
+                                                     " is beyond buffer " + in_quotes(buffer->desc.name) + " (" +
+                                                     std::to_string(buffer->desc.size) + " bytes)");
+                return false;
+            }
+            buffer_infos.push_back({buffer->buffer, binding->offset, range});
+            w.descriptorCount = 1;
+            w.pBufferInfo = &buffer_infos.back();
+            ++stats_.buffer_binds;
+        } else if (b.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) {
+            const auto* binding = std::get_if<rhi::TextureBinding>(&entry->resource);
+            if (!binding) {
+                fail(ErrorCode::InvalidArgument, where + " is a sampled texture but the bind group has something else there");
+                return false;
+            }
+            const Texture* texture = device_.textures().find(binding->texture);
+            const Sampler* sampler = device_.samplers().find(binding->sampler);
+            if (!texture || !sampler) {
+                fail(ErrorCode::InvalidHandle, where + ": the texture or sampler was destroyed");
+                return false;
+            }
+            // Sampling needs the texture in ShaderRead (depth textures: DepthRead or ShaderRead).
+            const bool depth_ok = texture->depth_stencil && VulkanDevice::texture_all_in(*texture, ResourceState::DepthRead);
+            if (!depth_ok && !VulkanDevice::texture_all_in(*texture, ResourceState::ShaderRead)) {
+                fail(ErrorCode::InvalidState, "texture " + in_quotes(texture->desc.name) + " is sampled (" + where + ") but is in state " +
+                                                  state_name(texture->states.front()) + "; transition it to " +
+                                                  (texture->depth_stencil ? "DepthRead or ShaderRead" : "ShaderRead") + " first");
+                return false;
+            }
+            if (!texture->sampled_view) {
+                fail(ErrorCode::Unsupported, where + ": texture " + in_quotes(texture->desc.name) + " cannot be sampled");
+                return false;
+            }
+            const VkImageLayout layout_now = depth_ok ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
+                                                      : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+            w.pImageInfo = image_infos.data() + image_infos.size();
+            for (uint32_t i = 0; i < b.count; ++i) image_infos.push_back({sampler->sampler, texture->sampled_view, layout_now});
+            ++stats_.texture_binds;
+        } else if (b.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
+            const auto* binding = std::get_if<rhi::StorageTextureBinding>(&entry->resource);
+            if (!binding) {
+                fail(ErrorCode::InvalidArgument, where + " is a storage image but the bind group has something else there");
+                return false;
+            }
+            Texture* texture = device_.textures().find(binding->texture);
+            if (!texture) {
+                fail(ErrorCode::InvalidHandle, where + ": the texture was destroyed");
+                return false;
+            }
+            if (!rhi::has_all(texture->desc.usage, rhi::TextureUsage::Storage) || binding->mip >= texture->desc.mip_levels) {
+                fail(ErrorCode::InvalidArgument, where + ": texture " + in_quotes(texture->desc.name) +
+                                                     " lacks Storage usage or mip " + std::to_string(binding->mip));
+                return false;
+            }
+            for (uint32_t l = 0; l < texture->array_layers; ++l) {
+                if (texture->states[texture->subresource(binding->mip, l)] != ResourceState::Storage) {
+                    fail(ErrorCode::InvalidState, "texture " + in_quotes(texture->desc.name) + " is used as storage image (" + where +
+                                                      ") but is in state " +
+                                                      state_name(texture->states[texture->subresource(binding->mip, l)]) +
+                                                      "; transition it to Storage first");
+                    return false;
+                }
+            }
+            auto view = device_.storage_view(*texture, binding->mip);
+            if (!view.ok()) {
+                fail(view.error().code, where + ": " + view.error().message);
+                return false;
+            }
+            w.descriptorCount = 1;
+            w.pImageInfo = image_infos.data() + image_infos.size();
+            image_infos.push_back({VK_NULL_HANDLE, *view, VK_IMAGE_LAYOUT_GENERAL});
+            ++stats_.texture_binds;
+        }
+        writes.push_back(w);
+    }
+    vkUpdateDescriptorSets(device_.context().device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+    return true;
+}
+
+bool VulkanCommandList::flush_bindings(VkPipelineBindPoint bind_point, std::string_view what) {
+    const PipelineLayout& layout = *pipeline_->layout;
+    const bool layout_changed = bound_layout_ != layout.layout;
+    for (uint32_t s = 0; s < layout.set_count; ++s) {
+        if (layout.sets[s]->bindings.empty()) continue;
+        if (!groups_[s].dirty && !layout_changed) continue;
+        VkDescriptorSet set = VK_NULL_HANDLE;
+        if (!write_set(s, set, what)) return false;
+        vkCmdBindDescriptorSets(cmd_, bind_point, layout.layout, s, 1, &set, 0, nullptr);
+        ++stats_.api_calls;
+        groups_[s].dirty = false;
+    }
+    if (layout.push_constant_size > 0 && (push_dirty_ || layout_changed)) {
+        vkCmdPushConstants(cmd_, layout.layout, layout.push_constant_stages, 0, layout.push_constant_size, push_data_.data());
+        ++stats_.api_calls;
+        push_dirty_ = false;
+    }
+    bound_layout_ = layout.layout;
+    return true;
+}
+
+bool VulkanCommandList::prepare_draw(std::string_view what) {
+    if (!require_inside_pass(what)) return false;
+    if (!pipeline_ || !device_.pipelines().find(pipeline_handle_)) {
+        fail(ErrorCode::InvalidState, std::string(what) + " in render pass " + in_quotes(pass_label_) + " without a pipeline");
+        return false;
+    }
+    if (pipeline_->bind_point != VK_PIPELINE_BIND_POINT_GRAPHICS) {
+        fail(ErrorCode::InvalidState, std::string(what) + ": pipeline " + in_quotes(pipeline_->name) + " is a compute pipeline");
+        return false;
+    }
+    if (pipeline_->color_formats != pass_color_formats_ || pipeline_->depth_format != pass_depth_format_ ||
+        pipeline_->samples != pass_samples_) {
+        fail(ErrorCode::InvalidState, std::string(what) + ": pipeline " + in_quotes(pipeline_->name) +
+                                          " was made for other attachment formats or sample counts than render pass " +
+                                          in_quotes(pass_label_));
+        return false;
+    }
+    for (uint32_t slot = 0; slot < pipeline_->vertex_buffer_count; ++slot) {
+        if (!device_.buffers().find(vertex_buffers_[slot].buffer)) {
+            fail(ErrorCode::InvalidState, std::string(what) + ": pipeline " + in_quotes(pipeline_->name) + " reads vertex buffer slot " +
+                                              std::to_string(slot) + " but no (live) buffer is bound there");
+            return false;
+        }
+    }
+    return flush_bindings(VK_PIPELINE_BIND_POINT_GRAPHICS, what);
+}
+
+void VulkanCommandList::draw(uint32_t vertex_count, uint32_t instance_count, uint32_t first_vertex, uint32_t first_instance) {
+    if (!prepare_draw("draw")) return;
+    vkCmdDraw(cmd_, vertex_count, instance_count, first_vertex, first_instance);
+    ++stats_.draw_calls;
+    ++stats_.api_calls;
+}
+
+void VulkanCommandList::draw_indexed(uint32_t index_count, uint32_t instance_count, uint32_t first_index, int32_t base_vertex,
+                                     uint32_t first_instance) {
+    if (!prepare_draw("draw_indexed")) return;
+    if (!device_.buffers().find(index_buffer_)) {
+        fail(ErrorCode::InvalidState, "draw_indexed without a (live) index buffer");
+        return;
+    }
+    vkCmdDrawIndexed(cmd_, index_count, instance_count, first_index, base_vertex, first_instance);
+    ++stats_.draw_calls;
+    ++stats_.api_calls;
+}
+
+void VulkanCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
+    if (!require_outside_pass("dispatch")) return;
+    if (!pipeline_ || !device_.pipelines().find(pipeline_handle_) || pipeline_->bind_point != VK_PIPELINE_BIND_POINT_COMPUTE) {
+        fail(ErrorCode::InvalidState, "dispatch without a compute pipeline");
+        return;
+    }
+    if (!flush_bindings(VK_PIPELINE_BIND_POINT_COMPUTE, "dispatch")) return;
+    vkCmdDispatch(cmd_, x, y, z);
+    ++stats_.dispatches;
+    ++stats_.api_calls;
+}
+
+// ---- copies and transitions -------------------------------------------------------------------
+
+void VulkanCommandList::copy_buffer(rhi::BufferHandle src_handle, uint64_t src_offset, rhi::BufferHandle dst_handle,
+                                    uint64_t dst_offset, uint64_t size) {
+    if (!require_outside_pass("copy_buffer")) return;
+    auto src = device_.buffers().get(src_handle);
+    auto dst = device_.buffers().get(dst_handle);
+    if (!src.ok()) return fail(ErrorCode::InvalidHandle, "copy_buffer source: " + src.error().message);
+    if (!dst.ok()) return fail(ErrorCode::InvalidHandle, "copy_buffer destination: " + dst.error().message);
+    Buffer& s = **src;
+    Buffer& d = **dst;
+    if (src_offset + size > s.desc.size || dst_offset + size > d.desc.size || size == 0) {
+        return fail(ErrorCode::InvalidArgument, "copy_buffer of " + std::to_string(size) + " bytes from " + in_quotes(s.desc.name) + "+" +
+                                                    std::to_string(src_offset) + " to " + in_quotes(d.desc.name) + "+" +
+                                                    std::to_string(dst_offset) + " is empty or out of range");
+    }
+    if (&s == &d) return fail(ErrorCode::InvalidArgument, "copy_buffer within buffer " + in_quotes(s.desc.name) + " is not supported");
+    const ResourceState s_state = s.state, d_state = d.state;
+    BarrierBatch batch;
+    batch.buffer(s.buffer, s_state, ResourceState::CopySrc);
+    batch.buffer(d.buffer, d_state, ResourceState::CopyDst);
+    stats_.api_calls += batch.flush(cmd_);
+    VkBufferCopy region{src_offset, dst_offset, size};
+    vkCmdCopyBuffer(cmd_, s.buffer, d.buffer, 1, &region);
+    // Copies leave the buffers in the states they had.
+    batch.buffer(s.buffer, ResourceState::CopySrc, s_state);
+    batch.buffer(d.buffer, ResourceState::CopyDst, d_state);
+    stats_.api_calls += 1 + batch.flush(cmd_);
+}
+
+void VulkanCommandList::copy_texture(const rhi::TextureCopy& copy) {
+    if (!require_outside_pass("copy_texture")) return;
+    auto src = device_.textures().get(copy.src);
+    auto dst = device_.textures().get(copy.dst);
+    if (!src.ok()) return fail(ErrorCode::InvalidHandle, "copy_texture source: " + src.error().message);
+    if (!dst.ok()) return fail(ErrorCode::InvalidHandle, "copy_texture destination: " + dst.error().message);
+    Texture& s = **src;
+    Texture& d = **dst;
+    const std::string what = "copy_texture from " + in_quotes(s.desc.name) + " to " + in_quotes(d.desc.name);
+    if (&s == &d) return fail(ErrorCode::InvalidArgument, what + ": source and destination are the same texture");
+    if (s.desc.format != d.desc.format || s.desc.samples != d.desc.samples) {
+        return fail(ErrorCode::InvalidArgument, what + ": formats or sample counts differ");
+    }
+    const rhi::TextureRegion& sr = copy.src_region;
+    const rhi::TextureRegion& dr = copy.dst_region;
+    if (sr.mip >= s.desc.mip_levels || dr.mip >= d.desc.mip_levels || sr.layer >= s.array_layers || dr.layer >= d.array_layers) {
+        return fail(ErrorCode::InvalidArgument, what + ": mip or layer out of range");
+    }
+    const rhi::Extent3D se = mip_extent(s.desc, sr.mip);
+    const rhi::Extent3D de = mip_extent(d.desc, dr.mip);
+    rhi::Extent3D extent = sr.extent;
+    if (extent.width == 0) extent.width = se.width > sr.origin.x ? se.width - sr.origin.x : 0;
+    if (extent.height == 0) extent.height = se.height > sr.origin.y ? se.height - sr.origin.y : 0;
+    if (extent.depth == 0) extent.depth = se.depth > sr.origin.z ? se.depth - sr.origin.z : 0;
+    if (extent.width == 0 || extent.height == 0 || extent.depth == 0 || sr.origin.x + extent.width > se.width ||
+        sr.origin.y + extent.height > se.height || sr.origin.z + extent.depth > se.depth ||
+        dr.origin.x + extent.width > de.width || dr.origin.y + extent.height > de.height || dr.origin.z + extent.depth > de.depth) {
+        return fail(ErrorCode::InvalidArgument, what + ": region out of range");
+    }
+    const auto s_states = s.states;
+    const auto d_states = d.states;
+    BarrierBatch batch;
+    device_.transition_texture(batch, s, sr.mip, 1, sr.layer, 1, ResourceState::CopySrc, Stream::Frame);
+    device_.transition_texture(batch, d, dr.mip, 1, dr.layer, 1, ResourceState::CopyDst, Stream::Frame);
+    stats_.api_calls += batch.flush(cmd_);
+    VkImageCopy region{};
+    region.srcSubresource = {s.aspect, sr.mip, sr.layer, 1};
+    region.srcOffset = {static_cast<int32_t>(sr.origin.x), static_cast<int32_t>(sr.origin.y), static_cast<int32_t>(sr.origin.z)};
+    region.dstSubresource = {d.aspect, dr.mip, dr.layer, 1};
+    region.dstOffset = {static_cast<int32_t>(dr.origin.x), static_cast<int32_t>(dr.origin.y), static_cast<int32_t>(dr.origin.z)};
+    region.extent = {extent.width, extent.height, extent.depth};
+    vkCmdCopyImage(cmd_, s.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+    // Copies leave textures in the states they had; a destination that was Undefined is
+    // now defined and becomes ShaderRead (as after write_texture).
+    ResourceState s_back = s_states[s.subresource(sr.mip, sr.layer)];
+    ResourceState d_back = d_states[d.subresource(dr.mip, dr.layer)];
+    if (s_back == ResourceState::Undefined) s_back = ResourceState::CopySrc;
+    if (d_back == ResourceState::Undefined) d_back = d.sampled_view ? ResourceState::ShaderRead : ResourceState::CopyDst;
+    device_.transition_texture(batch, s, sr.mip, 1, sr.layer, 1, s_back, Stream::Frame);
+    device_.transition_texture(batch, d, dr.mip, 1, dr.layer, 1, d_back, Stream::Frame);
+    stats_.api_calls += 1 + batch.flush(cmd_);
+}
+
+void VulkanCommandList::transition(rhi::TextureHandle handle, ResourceState state) {
+    if (!require_outside_pass("transition")) return;
+    auto texture = device_.textures().get(handle);
+    if (!texture.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + texture.error().message);
+    Texture& t = **texture;
+    const std::string tex = "texture " + in_quotes(t.desc.name);
+    if (!texture_state_access(state, t.depth_stencil).valid) {
+        return fail(ErrorCode::InvalidArgument, "transition: " + tex + " (" + std::string(rhi::format_name(t.desc.format)) +
+                                                    ") cannot be in state " + state_name(state));
+    }
+    auto needs = [&](rhi::TextureUsage usage, const char* name) {
+        if (rhi::has_all(t.desc.usage, usage)) return true;
+        fail(ErrorCode::InvalidArgument, "transition: " + tex + " to " + state_name(state) + " needs " + name + " usage");
+        return false;
+    };
+    if (state == ResourceState::RenderTarget && !needs(rhi::TextureUsage::ColorAttachment, "ColorAttachment")) return;
+    if (state == ResourceState::DepthWrite && !needs(rhi::TextureUsage::DepthStencilAttachment, "DepthStencilAttachment")) return;
+    if (state == ResourceState::Storage && !needs(rhi::TextureUsage::Storage, "Storage")) return;
+    if ((state == ResourceState::ShaderRead || state == ResourceState::DepthRead) && !t.sampled_view) {
+        return fail(ErrorCode::Unsupported, "transition: " + tex + " has a format that cannot be sampled");
+    }
+    if (state == ResourceState::Undefined) {
+        // Nothing to do on the GPU: the next transition discards the contents.
+        for (auto& s : t.states) s = ResourceState::Undefined;
+        return;
+    }
+    BarrierBatch batch;
+    device_.transition_texture(batch, t, 0, t.desc.mip_levels, 0, t.array_layers, state, Stream::Frame);
+    stats_.api_calls += batch.flush(cmd_);
+}
+
+void VulkanCommandList::transition(rhi::BufferHandle handle, ResourceState state) {
+    if (!require_outside_pass("transition")) return;
+    auto buffer = device_.buffers().get(handle);
+    if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + buffer.error().message);
+    Buffer& b = **buffer;
+    if (!buffer_state_access(state).valid) {
+        return fail(ErrorCode::InvalidArgument, "transition: buffer " + in_quotes(b.desc.name) + " cannot be in state " + state_name(state));
+    }
+    BarrierBatch batch;
+    batch.buffer(b.buffer, b.state, state);
+    b.state = state;
+    stats_.api_calls += batch.flush(cmd_);
+}
+
+// ---- timers and debug groups ----------------------------------------------------------------
+
+void VulkanCommandList::begin_timer(std::string_view label) {
+    if (timer_open_) return fail(ErrorCode::InvalidState, "begin_timer('" + std::string(label) + "'): timers do not nest");
+    FrameSlot& frame = device_.current_frame();
+    if (!frame.timestamps) return;  // no timestamp support: timers report nothing
+    if (frame.timer_labels.size() >= kMaxTimersPerFrame) {
+        return fail(ErrorCode::InvalidState, "begin_timer('" + std::string(label) + "'): more than " +
+                                                 std::to_string(kMaxTimersPerFrame) + " timers in one frame");
+    }
+    const uint32_t index = static_cast<uint32_t>(frame.timer_labels.size());
+    frame.timer_labels.emplace_back(label);
+    vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, frame.timestamps, 2 * index);
+    ++stats_.api_calls;
+    timer_open_ = true;
+}
+
+void VulkanCommandList::end_timer() {
+    FrameSlot& frame = device_.current_frame();
+    if (!frame.timestamps) return;
+    if (!timer_open_) return fail(ErrorCode::InvalidState, "end_timer without begin_timer");
+    const uint32_t index = static_cast<uint32_t>(frame.timer_labels.size() - 1);
+    vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, frame.timestamps, 2 * index + 1);
+    ++stats_.api_calls;
+    timer_open_ = false;
+}
+
+void VulkanCommandList::push_debug_group(std::string_view label) {
+    device_.context().begin_label(cmd_, label);
+    ++debug_depth_;
+    ++stats_.api_calls;
+}
+
+void VulkanCommandList::pop_debug_group() {
+    if (debug_depth_ == 0) return fail(ErrorCode::InvalidState, "pop_debug_group without push_debug_group");
+    device_.context().end_label(cmd_);
+    --debug_depth_;
+    ++stats_.api_calls;
+}
+
+}  // namespace loom::vulkan

@@ -1,0 +1,357 @@
+#include "loom/vulkan/context.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "loom/rhi/log.hpp"
+
+namespace loom::vulkan {
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+// Validation warnings and errors fail tests, so both are logged as errors; the rest is noise
+// kept at Debug.
+VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                              VkDebugUtilsMessageTypeFlagsEXT /*types*/,
+                                              const VkDebugUtilsMessengerCallbackDataEXT* data, void* /*user*/) {
+    std::string message;
+    if (data->pMessageIdName) {
+        message += data->pMessageIdName;
+        message += ": ";
+    }
+    message += data->pMessage ? data->pMessage : "(no message)";
+    const bool severe = (severity & (VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                     VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT)) != 0;
+    loom::log(severe ? LogLevel::Error : LogLevel::Debug, "vulkan", message);
+    return VK_FALSE;
+}
+
+VkDebugUtilsMessengerCreateInfoEXT messenger_info() {
+    auto info = vk_init<VkDebugUtilsMessengerCreateInfoEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
+    info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_VERBOSE_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_INFO_BIT_EXT |
+                           VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    info.pfnUserCallback = debug_callback;
+    return info;
+}
+
+bool has_layer(const char* name) {
+    uint32_t count = 0;
+    vkEnumerateInstanceLayerProperties(&count, nullptr);
+    std::vector<VkLayerProperties> layers(count);
+    vkEnumerateInstanceLayerProperties(&count, layers.data());
+    return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+bool has_instance_extension(const char* layer, const char* name) {
+    uint32_t count = 0;
+    vkEnumerateInstanceExtensionProperties(layer, &count, nullptr);
+    std::vector<VkExtensionProperties> exts(count);
+    vkEnumerateInstanceExtensionProperties(layer, &count, exts.data());
+    return std::any_of(exts.begin(), exts.end(), [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+bool env_is(const char* name, std::string_view value) {
+    const char* v = std::getenv(name);
+    return v != nullptr && std::string_view(v) == value;
+}
+
+// Discrete GPUs first, then integrated, virtual, CPU (lavapipe), other.
+int device_type_rank(VkPhysicalDeviceType type) {
+    switch (type) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
+        default: return 4;
+    }
+}
+
+}  // namespace
+
+std::string_view vk_result_name(VkResult result) {
+    switch (result) {
+#define LOOM_VK_RESULT(name) case name: return #name;
+        LOOM_VK_RESULT(VK_SUCCESS)
+        LOOM_VK_RESULT(VK_NOT_READY)
+        LOOM_VK_RESULT(VK_TIMEOUT)
+        LOOM_VK_RESULT(VK_INCOMPLETE)
+        LOOM_VK_RESULT(VK_SUBOPTIMAL_KHR)
+        LOOM_VK_RESULT(VK_ERROR_OUT_OF_HOST_MEMORY)
+        LOOM_VK_RESULT(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        LOOM_VK_RESULT(VK_ERROR_INITIALIZATION_FAILED)
+        LOOM_VK_RESULT(VK_ERROR_DEVICE_LOST)
+        LOOM_VK_RESULT(VK_ERROR_MEMORY_MAP_FAILED)
+        LOOM_VK_RESULT(VK_ERROR_LAYER_NOT_PRESENT)
+        LOOM_VK_RESULT(VK_ERROR_EXTENSION_NOT_PRESENT)
+        LOOM_VK_RESULT(VK_ERROR_FEATURE_NOT_PRESENT)
+        LOOM_VK_RESULT(VK_ERROR_INCOMPATIBLE_DRIVER)
+        LOOM_VK_RESULT(VK_ERROR_TOO_MANY_OBJECTS)
+        LOOM_VK_RESULT(VK_ERROR_FORMAT_NOT_SUPPORTED)
+        LOOM_VK_RESULT(VK_ERROR_FRAGMENTED_POOL)
+        LOOM_VK_RESULT(VK_ERROR_OUT_OF_POOL_MEMORY)
+        LOOM_VK_RESULT(VK_ERROR_SURFACE_LOST_KHR)
+        LOOM_VK_RESULT(VK_ERROR_NATIVE_WINDOW_IN_USE_KHR)
+        LOOM_VK_RESULT(VK_ERROR_OUT_OF_DATE_KHR)
+#undef LOOM_VK_RESULT
+        default: return "VkResult(unknown)";
+    }
+}
+
+loom::Error vk_error(VkResult result, std::string_view what) {
+    ErrorCode code = ErrorCode::Backend;
+    if (result == VK_ERROR_DEVICE_LOST) code = ErrorCode::DeviceLost;
+    if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY) code = ErrorCode::OutOfMemory;
+    return Error{code, std::string(what) + " failed: " + std::string(vk_result_name(result))};
+}
+
+loom::Result<std::unique_ptr<VulkanContext>> VulkanContext::create(const ContextOptions& options) {
+    std::unique_ptr<VulkanContext> context(new VulkanContext());
+    LOOM_TRY(context->init(options));
+    return context;
+}
+
+loom::Status VulkanContext::init(const ContextOptions& options) {
+    uint32_t loader_version = 0;
+    vkEnumerateInstanceVersion(&loader_version);
+    if (loader_version < VK_API_VERSION_1_3) {
+        return Error{ErrorCode::Unsupported, "the Vulkan loader supports only " +
+                                                 std::to_string(VK_API_VERSION_MAJOR(loader_version)) + "." +
+                                                 std::to_string(VK_API_VERSION_MINOR(loader_version)) + ", loom needs 1.3"};
+    }
+
+    std::vector<const char*> layers;
+    std::vector<const char*> extensions;
+    for (const std::string& e : options.instance_extensions) extensions.push_back(e.c_str());
+    bool debug_utils = false;
+    if (options.validation) {
+        if (has_layer(kValidationLayer)) {
+            layers.push_back(kValidationLayer);
+            validation_enabled_ = true;
+        } else {
+            loom::log_warning("vulkan", "VK_LAYER_KHRONOS_validation is not installed; running without validation");
+        }
+    }
+    if (options.validation && (has_instance_extension(nullptr, VK_EXT_DEBUG_UTILS_EXTENSION_NAME) ||
+                               (validation_enabled_ && has_instance_extension(kValidationLayer, VK_EXT_DEBUG_UTILS_EXTENSION_NAME)))) {
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+        debug_utils = true;
+    }
+    const bool want_sync = validation_enabled_ && options.synchronization_validation &&
+                           !env_is("LOOM_VK_SYNC_VALIDATION", "0") &&
+                           has_instance_extension(kValidationLayer, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+    if (want_sync) extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+
+    auto app = vk_init<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
+    app.pApplicationName = "loom";
+    app.pEngineName = "loom";
+    app.apiVersion = VK_API_VERSION_1_3;
+
+    auto info = vk_init<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
+    info.pApplicationInfo = &app;
+    info.enabledLayerCount = static_cast<uint32_t>(layers.size());
+    info.ppEnabledLayerNames = layers.data();
+    info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+    info.ppEnabledExtensionNames = extensions.data();
+
+    // The messenger in the chain also reports problems of vkCreateInstance itself.
+    VkDebugUtilsMessengerCreateInfoEXT messenger = messenger_info();
+    const VkValidationFeatureEnableEXT sync_feature = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+    auto features = vk_init<VkValidationFeaturesEXT>(VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT);
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = &sync_feature;
+    if (debug_utils) {
+        messenger.pNext = want_sync ? &features : nullptr;
+        info.pNext = &messenger;
+    } else if (want_sync) {
+        info.pNext = &features;
+    }
+    sync_validation_enabled_ = want_sync;
+
+    if (VkResult r = vkCreateInstance(&info, nullptr, &instance_); r != VK_SUCCESS) {
+        if (r == VK_ERROR_INCOMPATIBLE_DRIVER) return Error{ErrorCode::Unsupported, "no Vulkan 1.3 driver found (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER)"};
+        return vk_error(r, "vkCreateInstance");
+    }
+    if (debug_utils) {
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+        VkDebugUtilsMessengerCreateInfoEXT m = messenger_info();
+        if (create) create(instance_, &m, nullptr, &messenger_);
+        set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+            vkGetInstanceProcAddr(instance_, "vkSetDebugUtilsObjectNameEXT"));
+        cmd_begin_label_ = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCmdBeginDebugUtilsLabelEXT"));
+        cmd_end_label_ = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
+    }
+
+    if (options.create_surface) {
+        auto surface = options.create_surface(instance_);
+        if (!surface.ok()) return surface.take_error();
+        surface_ = *surface;
+    }
+
+    // ---- physical device ------------------------------------------------------------------
+    uint32_t count = 0;
+    vkEnumeratePhysicalDevices(instance_, &count, nullptr);
+    std::vector<VkPhysicalDevice> devices(count);
+    vkEnumeratePhysicalDevices(instance_, &count, devices.data());
+
+    struct Candidate {
+        VkPhysicalDevice device;
+        uint32_t index;
+        uint32_t queue_family;
+        VkPhysicalDeviceProperties properties;
+    };
+    std::vector<Candidate> candidates;
+    std::string rejected;
+    for (uint32_t i = 0; i < count; ++i) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(devices[i], &props);
+        if (props.apiVersion < VK_API_VERSION_1_3) {
+            rejected += std::string(" ") + props.deviceName + " (Vulkan " + std::to_string(VK_API_VERSION_MAJOR(props.apiVersion)) +
+                        "." + std::to_string(VK_API_VERSION_MINOR(props.apiVersion)) + ")";
+            continue;
+        }
+        uint32_t qcount = 0;
+        vkGetPhysicalDeviceQueueFamilyProperties(devices[i], &qcount, nullptr);
+        std::vector<VkQueueFamilyProperties> families(qcount);
+        vkGetPhysicalDeviceQueueFamilyProperties(devices[i], &qcount, families.data());
+        const VkQueueFlags needed = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+        for (uint32_t q = 0; q < qcount; ++q) {
+            if ((families[q].queueFlags & needed) != needed) continue;
+            if (surface_) {
+                VkBool32 present = VK_FALSE;
+                vkGetPhysicalDeviceSurfaceSupportKHR(devices[i], q, surface_, &present);
+                if (!present) continue;
+            }
+            candidates.push_back({devices[i], i, q, props});
+            break;
+        }
+    }
+    if (candidates.empty()) {
+        return Error{ErrorCode::Unsupported, "no Vulkan 1.3 device with a graphics+compute queue" +
+                                                 std::string(surface_ ? " able to present to the window" : "") +
+                                                 (rejected.empty() ? std::string() : "; rejected:" + rejected)};
+    }
+    std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+        return device_type_rank(a.properties.deviceType) < device_type_rank(b.properties.deviceType);
+    });
+    const Candidate* chosen = &candidates.front();
+    if (const char* wanted = std::getenv("LOOM_VK_DEVICE"); wanted && *wanted) {
+        const std::string w = wanted;
+        const Candidate* match = nullptr;
+        for (const Candidate& c : candidates) {
+            const bool by_index = std::all_of(w.begin(), w.end(), [](char ch) { return ch >= '0' && ch <= '9'; }) &&
+                                  std::to_string(c.index) == w;
+            if (by_index || std::string(c.properties.deviceName).find(w) != std::string::npos) {
+                match = &c;
+                break;
+            }
+        }
+        if (!match) return Error{ErrorCode::Unsupported, "LOOM_VK_DEVICE=" + w + " matches no Vulkan 1.3 device"};
+        chosen = match;
+    }
+    physical_device_ = chosen->device;
+    queue_family_ = chosen->queue_family;
+    properties_ = chosen->properties;
+    vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_properties_);
+    {
+        uint32_t qcount = 0;
+        vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &qcount, nullptr);
+        std::vector<VkQueueFamilyProperties> families(qcount);
+        vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &qcount, families.data());
+        timestamp_valid_bits_ = families[queue_family_].timestampValidBits;
+    }
+
+    // ---- logical device -------------------------------------------------------------------
+    VkPhysicalDeviceFeatures supported{};
+    vkGetPhysicalDeviceFeatures(physical_device_, &supported);
+    auto supported13 = vk_init<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);
+    auto supported2 = vk_init<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
+    supported2.pNext = &supported13;
+    vkGetPhysicalDeviceFeatures2(physical_device_, &supported2);
+    if (!supported13.dynamicRendering || !supported13.synchronization2) {
+        return Error{ErrorCode::Unsupported, std::string(properties_.deviceName) + " lacks dynamicRendering or synchronization2"};
+    }
+
+    auto enable13 = vk_init<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);
+    enable13.dynamicRendering = VK_TRUE;
+    enable13.synchronization2 = VK_TRUE;
+    auto enable = vk_init<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
+    enable.pNext = &enable13;
+    fill_mode_non_solid_ = supported.fillModeNonSolid;
+    depth_clamp_ = supported.depthClamp;
+    sampler_anisotropy_ = supported.samplerAnisotropy;
+    independent_blend_ = supported.independentBlend;
+    enable.features.fillModeNonSolid = supported.fillModeNonSolid;
+    enable.features.depthClamp = supported.depthClamp;
+    enable.features.samplerAnisotropy = supported.samplerAnisotropy;
+    enable.features.independentBlend = supported.independentBlend;
+    enable.features.depthBiasClamp = supported.depthBiasClamp;
+    enable.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
+    enable.features.shaderStorageImageReadWithoutFormat = supported.shaderStorageImageReadWithoutFormat;
+    enable.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
+    enable.features.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
+    enable.features.imageCubeArray = supported.imageCubeArray;
+
+    const float priority = 1.0f;
+    auto queue_info = vk_init<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
+    queue_info.queueFamilyIndex = queue_family_;
+    queue_info.queueCount = 1;
+    queue_info.pQueuePriorities = &priority;
+
+    std::vector<const char*> device_extensions;
+    if (surface_) device_extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+
+    auto device_info = vk_init<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);
+    device_info.pNext = &enable;
+    device_info.queueCreateInfoCount = 1;
+    device_info.pQueueCreateInfos = &queue_info;
+    device_info.enabledExtensionCount = static_cast<uint32_t>(device_extensions.size());
+    device_info.ppEnabledExtensionNames = device_extensions.data();
+    if (VkResult r = vkCreateDevice(physical_device_, &device_info, nullptr, &device_); r != VK_SUCCESS) {
+        return vk_error(r, std::string("vkCreateDevice on ") + properties_.deviceName);
+    }
+    vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
+    return {};
+}
+
+VulkanContext::~VulkanContext() {
+    if (device_) vkDestroyDevice(device_, nullptr);
+    if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
+    if (messenger_) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroy) destroy(instance_, messenger_, nullptr);
+    }
+    if (instance_) vkDestroyInstance(instance_, nullptr);
+}
+
+void VulkanContext::set_name(VkObjectType type, uint64_t handle, std::string_view name) const {
+    if (!set_object_name_ || name.empty() || handle == 0) return;
+    const std::string copy(name);
+    auto info = vk_init<VkDebugUtilsObjectNameInfoEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT);
+    info.objectType = type;
+    info.objectHandle = handle;
+    info.pObjectName = copy.c_str();
+    set_object_name_(device_, &info);
+}
+
+void VulkanContext::begin_label(VkCommandBuffer cmd, std::string_view label) const {
+    if (!cmd_begin_label_) return;
+    const std::string copy(label);
+    auto info = vk_init<VkDebugUtilsLabelEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT);
+    info.pLabelName = copy.c_str();
+    cmd_begin_label_(cmd, &info);
+}
+
+void VulkanContext::end_label(VkCommandBuffer cmd) const {
+    if (cmd_end_label_) cmd_end_label_(cmd);
+}
+
+}  // namespace loom::vulkan

@@ -1,0 +1,232 @@
+// Frames in flight: per-frame command buffers, descriptor pools, uniform rings and timestamp
+// queries, reused once the frame's fence has signalled (never vkDeviceWaitIdle per frame);
+// swapchain acquire and present on windowed devices.
+#include <algorithm>
+#include <cstring>
+
+#include "loom/rhi/log.hpp"
+#include "vulkan_device.hpp"
+
+namespace loom::vulkan {
+
+using rhi::ResourceState;
+
+loom::Status VulkanDevice::begin_frame_commands() {
+    FrameSlot& slot = current_frame();
+    if (slot.used_command_buffers == slot.command_buffers.size()) {
+        auto info = vk_init<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
+        info.commandPool = slot.command_pool;
+        info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        info.commandBufferCount = 1;
+        VkCommandBuffer cmd = VK_NULL_HANDLE;
+        if (VkResult r = vkAllocateCommandBuffers(context_->device(), &info, &cmd); r != VK_SUCCESS) {
+            return vk_error(r, "vkAllocateCommandBuffers");
+        }
+        slot.command_buffers.push_back(cmd);
+    }
+    const bool new_frame = slot.used_command_buffers == 0;
+    VkCommandBuffer cmd = slot.command_buffers[slot.used_command_buffers++];
+    auto begin = vk_init<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    if (VkResult r = vkBeginCommandBuffer(cmd, &begin); r != VK_SUCCESS) return vk_error(r, "vkBeginCommandBuffer");
+    if (new_frame && slot.timestamps) vkCmdResetQueryPool(cmd, slot.timestamps, 0, 2 * kMaxTimersPerFrame);
+    command_list_->begin(cmd, new_frame);
+    return {};
+}
+
+rhi::CommandList& VulkanDevice::begin_frame() {
+    if (frame_recording_) {
+        loom::log_error("vulkan", "begin_frame called while a frame is being recorded; continuing that frame");
+        return *command_list_;
+    }
+    FrameSlot& slot = current_frame();
+    // The frame that used this slot kFramesInFlight frames ago must be done.
+    if (auto status = submissions_->wait(slot.serial); !status.ok()) loom::log_error("vulkan", status.error().to_string());
+    collect_timers(slot);
+    slot.descriptors->reset();
+    slot.uniform_ring_offset = 0;
+    slot.timer_labels.clear();
+    vkResetCommandPool(context_->device(), slot.command_pool, 0);
+    slot.used_command_buffers = 0;
+    staging_->release(submissions_->completed_serial());
+    recycle_setup_buffers();
+
+    frame_recording_ = true;
+    if (swapchain_) {
+        if (auto status = acquire_backbuffer(); !status.ok()) loom::log_error("vulkan", status.error().to_string());
+    }
+    if (auto status = begin_frame_commands(); !status.ok()) loom::log_error("vulkan", status.error().to_string());
+    return *command_list_;
+}
+
+loom::Status VulkanDevice::end_frame() {
+    if (!frame_recording_) return Error{ErrorCode::InvalidState, "end_frame without begin_frame"};
+    command_list_->finish();
+    FrameSlot& slot = current_frame();
+    VkCommandBuffer cmd = command_list_->command_buffer();
+    const bool presenting = swapchain_ && backbuffer_index_ != UINT32_MAX;
+    if (presenting) {
+        if (Texture* back = textures_.find(backbuffers_[backbuffer_index_])) {
+            BarrierBatch batch;
+            transition_texture(batch, *back, 0, 1, 0, 1, ResourceState::Present, Stream::Frame);
+            batch.flush(cmd);
+        }
+    }
+    Status result;
+    if (VkResult r = vkEndCommandBuffer(cmd); r != VK_SUCCESS) result = vk_error(r, "vkEndCommandBuffer");
+    const VkSemaphore signal = presenting ? swapchain_->render_finished(backbuffer_index_) : VK_NULL_HANDLE;
+    if (result.ok()) result = submit(std::span<const VkCommandBuffer>(&cmd, 1), true, signal);
+    slot.timers_pending = !slot.timer_labels.empty();
+    frame_recording_ = false;
+    if (presenting && result.ok()) {
+        const VkResult r = swapchain_->present(context_->queue(), backbuffer_index_);
+        if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) {
+            swapchain_dirty_ = true;
+        } else if (r != VK_SUCCESS) {
+            result = vk_error(r, "vkQueuePresentKHR");
+        }
+    }
+    backbuffer_index_ = UINT32_MAX;
+    last_frame_stats_ = command_list_->stats();
+    last_frame_stats_.bytes_uploaded += bytes_uploaded_;
+    bytes_uploaded_ = 0;
+    ++frame_index_;
+    submissions_->poll();
+    if (auto error = command_list_->take_error()) return *error;
+    return result;
+}
+
+loom::Status VulkanDevice::split_frame() {
+    VkCommandBuffer cmd = command_list_->command_buffer();
+    if (VkResult r = vkEndCommandBuffer(cmd); r != VK_SUCCESS) return vk_error(r, "vkEndCommandBuffer");
+    LOOM_TRY(submit(std::span<const VkCommandBuffer>(&cmd, 1), true, VK_NULL_HANDLE));
+    return begin_frame_commands();
+}
+
+loom::Status VulkanDevice::wait_idle() {
+    LOOM_TRY(flush_setup());
+    LOOM_TRY(submissions_->wait_all());
+    // Timer results of every finished frame, oldest first, so the newest frame's remain.
+    std::array<FrameSlot*, kFramesInFlight> slots{};
+    for (uint32_t i = 0; i < kFramesInFlight; ++i) slots[i] = &frames_[i];
+    std::sort(slots.begin(), slots.end(), [](const FrameSlot* a, const FrameSlot* b) { return a->serial < b->serial; });
+    for (FrameSlot* slot : slots) {
+        if (!frame_recording_ || slot != &current_frame()) collect_timers(*slot);
+    }
+    staging_->release(submissions_->completed_serial());
+    recycle_setup_buffers();
+    // Nothing recorded is pending: whatever waits for "the commands recorded so far" can go.
+    if (!frame_recording_ && !setup_cmd_) submissions_->run_all_deferred();
+    return {};
+}
+
+void VulkanDevice::collect_timers(FrameSlot& slot) {
+    if (!slot.timers_pending || !slot.timestamps || slot.serial > submissions_->completed_serial()) return;
+    slot.timers_pending = false;
+    const uint32_t count = static_cast<uint32_t>(slot.timer_labels.size());
+    std::vector<uint64_t> values(2 * std::size_t{count});
+    const VkResult r = vkGetQueryPoolResults(context_->device(), slot.timestamps, 0, 2 * count, values.size() * sizeof(uint64_t),
+                                             values.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
+    if (r != VK_SUCCESS) return;
+    const uint32_t bits = context_->timestamp_valid_bits();
+    const uint64_t mask = bits >= 64 ? ~uint64_t{0} : (uint64_t{1} << bits) - 1;
+    const double period_ns = context_->properties().limits.timestampPeriod;
+    timer_results_.clear();
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint64_t begin = values[2 * i] & mask;
+        const uint64_t end = values[2 * i + 1] & mask;
+        const uint64_t ticks = (end - begin) & mask;  // wraps correctly within the valid bits
+        timer_results_.push_back({slot.timer_labels[i], static_cast<double>(ticks) * period_ns / 1.0e6});
+    }
+}
+
+std::vector<rhi::TimerResult> VulkanDevice::timer_results() {
+    submissions_->poll();
+    std::array<FrameSlot*, kFramesInFlight> slots{};
+    for (uint32_t i = 0; i < kFramesInFlight; ++i) slots[i] = &frames_[i];
+    std::sort(slots.begin(), slots.end(), [](const FrameSlot* a, const FrameSlot* b) { return a->serial < b->serial; });
+    for (FrameSlot* slot : slots) {
+        if (!frame_recording_ || slot != &current_frame()) collect_timers(*slot);
+    }
+    return timer_results_;
+}
+
+loom::Result<rhi::BufferBinding> VulkanDevice::allocate_transient_uniforms(std::span<const std::byte> data) {
+    if (!frame_recording_) return Error{ErrorCode::InvalidState, "transient uniforms outside a frame"};
+    FrameSlot& slot = current_frame();
+    const uint64_t alignment = std::max<uint64_t>(caps_.uniform_buffer_offset_alignment, 16);
+    const uint64_t size = std::max<uint64_t>(data.size(), 16);
+    uint64_t offset = (slot.uniform_ring_offset + alignment - 1) / alignment * alignment;
+    if (offset + size > slot.uniform_ring_size) {
+        // Grow: a bigger ring for the rest of this frame (and the next ones in this slot); the
+        // old one goes when this frame has finished with it.
+        const uint64_t new_size = std::max(slot.uniform_ring_size * 2, size * 2);
+        auto ring = create_buffer_internal({"transient uniforms", new_size, rhi::BufferUsage::Uniform}, true);
+        if (!ring.ok()) return ring.take_error();
+        auto old = buffers_.remove(slot.uniform_ring);
+        if (old.ok()) release_buffer(*old);
+        slot.uniform_ring = *ring;
+        slot.uniform_ring_size = new_size;
+        offset = 0;
+    }
+    Buffer* ring = buffers_.find(slot.uniform_ring);
+    if (!ring || !ring->memory.mapped) return Error{ErrorCode::Backend, "transient uniform ring is missing"};
+    std::memcpy(static_cast<std::byte*>(ring->memory.mapped) + offset, data.data(), data.size());
+    slot.uniform_ring_offset = offset + size;
+    return rhi::BufferBinding{slot.uniform_ring, offset, data.size()};
+}
+
+// ---- swapchain ---------------------------------------------------------------------------------
+
+loom::Status VulkanDevice::recreate_swapchain() {
+    const rhi::Extent3D size = window_->framebuffer_size();
+    if (size.width == 0 || size.height == 0) return {};  // minimised: keep the old one
+    // Resizes are rare: waiting for the GPU here (not per frame) is fine.
+    LOOM_TRY(flush_setup());
+    LOOM_TRY(submissions_->wait_all());
+    for (rhi::TextureHandle h : backbuffers_) {
+        auto t = textures_.remove(h);
+        if (t.ok()) release_texture(*t);
+    }
+    backbuffers_.clear();
+    LOOM_TRY(swapchain_->create(size.width, size.height));
+    const auto& images = swapchain_->images();
+    for (uint32_t i = 0; i < images.size(); ++i) {
+        auto handle = wrap_swapchain_image(images[i], swapchain_->format(), swapchain_->extent().width,
+                                           swapchain_->extent().height, i);
+        if (!handle.ok()) return handle.take_error();
+        backbuffers_.push_back(*handle);
+    }
+    swapchain_dirty_ = false;
+    return {};
+}
+
+loom::Status VulkanDevice::acquire_backbuffer() {
+    backbuffer_index_ = UINT32_MAX;
+    const rhi::Extent3D size = window_->framebuffer_size();
+    if (size.width == 0 || size.height == 0) return {};  // minimised: nothing to present
+    const VkExtent2D extent = swapchain_->extent();
+    if (swapchain_dirty_ || extent.width != size.width || extent.height != size.height) LOOM_TRY(recreate_swapchain());
+    FrameSlot& slot = current_frame();
+    uint32_t index = 0;
+    VkResult r = swapchain_->acquire(slot.image_available, index);
+    if (r == VK_ERROR_OUT_OF_DATE_KHR) {
+        LOOM_TRY(recreate_swapchain());
+        r = swapchain_->acquire(slot.image_available, index);
+    }
+    if (r == VK_SUBOPTIMAL_KHR) {
+        swapchain_dirty_ = true;  // usable now, recreated at the next frame
+    } else if (r != VK_SUCCESS) {
+        return vk_error(r, "vkAcquireNextImageKHR");
+    }
+    backbuffer_index_ = index;
+    pending_wait_ = slot.image_available;
+    // A freshly acquired image has no contents worth keeping.
+    Texture* back = textures_.find(backbuffers_[index]);
+    if (!back) return Error{ErrorCode::Backend, "swapchain image " + std::to_string(index) + " has no texture"};
+    back->states.assign(back->states.size(), ResourceState::Undefined);
+    back->frame_start_states = back->states;
+    return {};
+}
+
+}  // namespace loom::vulkan

@@ -1,0 +1,78 @@
+#pragma once
+// The Vulkan objects behind loom's handles.
+
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "descriptors.hpp"
+#include "loom/rhi/descriptions.hpp"
+#include "loom/rhi/shader.hpp"
+#include "loom/vulkan/memory_allocator.hpp"
+
+namespace loom::vulkan {
+
+struct Texture {
+    rhi::TextureDesc desc;
+    VkImage image = VK_NULL_HANDLE;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkImageAspectFlags aspect = 0;
+    bool depth_stencil = false;
+    uint32_t array_layers = 1;       ///< Vulkan array layers (1 for 3D textures)
+    MemoryAllocation memory;         ///< empty for placed and swapchain textures
+    uint64_t bytes = 0;              ///< counted in ResourceStats::texture_bytes
+    bool swapchain = false;          ///< wraps a swapchain image (not counted, not destroyed)
+    VkImageView sampled_view = VK_NULL_HANDLE;  ///< all mips and layers; depth aspect for depth/stencil
+    std::unordered_map<uint64_t, VkImageView> views;  ///< attachment and storage views by key
+
+    /// Tracked state of every subresource (index mip * array_layers + layer), as of the end
+    /// of everything recorded so far.
+    std::vector<rhi::ResourceState> states;
+    /// States when the frame being recorded first touched the texture: uploads and readbacks
+    /// recorded during a frame run before it, so they see (and update) these.
+    std::vector<rhi::ResourceState> frame_start_states;
+    uint64_t touched_epoch = 0;
+
+    [[nodiscard]] uint32_t subresource(uint32_t mip, uint32_t layer) const { return mip * array_layers + layer; }
+};
+
+struct Buffer {
+    rhi::BufferDesc desc;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    MemoryAllocation memory;
+    rhi::ResourceState state = rhi::ResourceState::Undefined;
+    bool internal = false;  ///< backend-owned (transient uniform rings): not in ResourceStats
+};
+
+struct Heap {
+    rhi::HeapDesc desc;
+    MemoryAllocation memory;
+    uint32_t placed_textures = 0;
+};
+
+struct Sampler {
+    std::string name;
+    VkSampler sampler = VK_NULL_HANDLE;
+};
+
+struct Shader {
+    rhi::ShaderModule module;  ///< without the GL source; reflection for layouts
+    VkShaderModule shader = VK_NULL_HANDLE;
+};
+
+struct Pipeline {
+    std::string name;
+    std::string key;  ///< the pipeline cache entry this uses
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    const PipelineLayout* layout = nullptr;
+    VkPipelineBindPoint bind_point = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    std::vector<rhi::Format> color_formats;
+    rhi::Format depth_format = rhi::Format::Undefined;
+    uint32_t samples = 1;
+    uint32_t vertex_buffer_count = 0;
+};
+
+}  // namespace loom::vulkan

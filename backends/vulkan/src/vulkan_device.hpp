@@ -1,0 +1,203 @@
+#pragma once
+// The Vulkan implementation of rhi::Device.
+
+#include <array>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "command_list.hpp"
+#include "descriptors.hpp"
+#include "loom/rhi/device.hpp"
+#include "loom/rhi/handle_pool.hpp"
+#include "loom/vulkan/context.hpp"
+#include "loom/vulkan/memory_allocator.hpp"
+#include "loom/vulkan/resource_states.hpp"
+#include "objects.hpp"
+#include "staging_ring.hpp"
+#include "submissions.hpp"
+#include "swapchain.hpp"
+
+namespace loom::vulkan {
+
+inline constexpr uint32_t kFramesInFlight = 2;
+inline constexpr uint32_t kMaxTimersPerFrame = 32;
+
+/// Everything one frame in flight owns; reused when that frame's submission has completed.
+struct FrameSlot {
+    VkCommandPool command_pool = VK_NULL_HANDLE;
+    std::vector<VkCommandBuffer> command_buffers;  ///< a frame split by a readback uses several
+    std::size_t used_command_buffers = 0;
+    uint64_t serial = 0;  ///< last submission of this frame
+    std::unique_ptr<FrameDescriptorPools> descriptors;
+    rhi::BufferHandle uniform_ring;
+    uint64_t uniform_ring_size = 0;
+    uint64_t uniform_ring_offset = 0;
+    VkQueryPool timestamps = VK_NULL_HANDLE;
+    std::vector<std::string> timer_labels;  ///< timer i uses queries 2i and 2i+1
+    bool timers_pending = false;            ///< results not read yet
+    VkSemaphore image_available = VK_NULL_HANDLE;
+};
+
+/// Which command stream a texture state change belongs to (see Texture::frame_start_states).
+enum class Stream : uint8_t { Frame, Setup };
+
+class VulkanDevice final : public rhi::Device {
+public:
+    static loom::Result<std::unique_ptr<rhi::Device>> create(const rhi::DeviceDesc& desc);
+    ~VulkanDevice() override;
+
+    [[nodiscard]] rhi::Backend backend() const override { return rhi::Backend::Vulkan; }
+    [[nodiscard]] const rhi::Capabilities& capabilities() const override { return caps_; }
+
+    loom::Result<rhi::TextureHandle> create_texture(const rhi::TextureDesc& desc) override;
+    loom::Result<rhi::BufferHandle> create_buffer(const rhi::BufferDesc& desc) override;
+    loom::Result<rhi::SamplerHandle> create_sampler(const rhi::SamplerDesc& desc) override;
+    loom::Result<rhi::ShaderHandle> create_shader(const rhi::ShaderModule& module) override;
+    loom::Result<rhi::PipelineHandle> create_graphics_pipeline(const rhi::GraphicsPipelineDesc& desc) override;
+    loom::Result<rhi::PipelineHandle> create_compute_pipeline(const rhi::ComputePipelineDesc& desc) override;
+    loom::Result<rhi::HeapHandle> create_heap(const rhi::HeapDesc& desc) override;
+    loom::Result<rhi::MemoryRequirements> texture_memory_requirements(const rhi::TextureDesc& desc) override;
+
+    loom::Status destroy(rhi::TextureHandle texture) override;
+    loom::Status destroy(rhi::BufferHandle buffer) override;
+    loom::Status destroy(rhi::SamplerHandle sampler) override;
+    loom::Status destroy(rhi::ShaderHandle shader) override;
+    loom::Status destroy(rhi::PipelineHandle pipeline) override;
+    loom::Status destroy(rhi::HeapHandle heap) override;
+
+    loom::Result<rhi::TextureDesc> texture_desc(rhi::TextureHandle texture) override;
+
+    loom::Status write_buffer(rhi::BufferHandle buffer, uint64_t offset, std::span<const std::byte> data) override;
+    loom::Status write_texture(rhi::TextureHandle texture, const rhi::TextureRegion& region,
+                               std::span<const std::byte> data) override;
+    loom::Result<rhi::Image> read_texture(rhi::TextureHandle texture, uint32_t mip, uint32_t layer) override;
+    loom::Result<std::vector<std::byte>> read_buffer(rhi::BufferHandle buffer, uint64_t offset, uint64_t size) override;
+
+    rhi::CommandList& begin_frame() override;
+    loom::Status end_frame() override;
+    loom::Status wait_idle() override;
+    std::vector<rhi::TimerResult> timer_results() override;
+
+    [[nodiscard]] rhi::ResourceStats resource_stats() const override;
+    [[nodiscard]] rhi::FrameStats last_frame_stats() const override { return last_frame_stats_; }
+
+    bool poll_window() override;
+    [[nodiscard]] rhi::Extent3D window_size() const override;
+    rhi::TextureHandle backbuffer() override;
+
+    // ---- for the command list ---------------------------------------------------------------
+    [[nodiscard]] VulkanContext& context() { return *context_; }
+    rhi::HandlePool<rhi::TextureTag, Texture>& textures() { return textures_; }
+    rhi::HandlePool<rhi::BufferTag, Buffer>& buffers() { return buffers_; }
+    rhi::HandlePool<rhi::SamplerTag, Sampler>& samplers() { return samplers_; }
+    rhi::HandlePool<rhi::PipelineTag, Pipeline>& pipelines() { return pipelines_; }
+    FrameSlot& current_frame() { return frames_[frame_index_ % kFramesInFlight]; }
+
+    /// Moves subresources [mip, mip+mips) x [layer, layer+layers) of `texture` to `to` in the
+    /// given stream, adding the barriers to `batch`. With `discard`, old contents are dropped.
+    void transition_texture(BarrierBatch& batch, Texture& texture, uint32_t mip, uint32_t mips, uint32_t layer,
+                            uint32_t layers, rhi::ResourceState to, Stream stream, bool discard = false);
+    /// The tracked state of every subresource is `state` (in the frame stream).
+    static bool texture_all_in(const Texture& texture, rhi::ResourceState state);
+    /// The tracked state of one subresource as seen by `stream`.
+    rhi::ResourceState tracked_state(const Texture& texture, uint32_t subresource, Stream stream) const;
+
+    /// Image view of one mip/layer for an attachment, or of one mip (all layers) for storage.
+    loom::Result<VkImageView> attachment_view(Texture& texture, uint32_t mip, uint32_t layer);
+    loom::Result<VkImageView> storage_view(Texture& texture, uint32_t mip);
+
+    /// Copies `data` into this frame's uniform ring (growing it if needed).
+    loom::Result<rhi::BufferBinding> allocate_transient_uniforms(std::span<const std::byte> data);
+
+    /// Submits the frame's command buffer recorded so far and starts a new one, so that a
+    /// readback in the middle of a frame sees the commands recorded before it.
+    loom::Status split_frame();
+    [[nodiscard]] uint32_t min_uniform_alignment() const { return static_cast<uint32_t>(caps_.uniform_buffer_offset_alignment); }
+    [[nodiscard]] uint32_t min_storage_alignment() const { return static_cast<uint32_t>(caps_.storage_buffer_offset_alignment); }
+    [[nodiscard]] uint64_t max_uniform_range() const { return context_->properties().limits.maxUniformBufferRange; }
+    [[nodiscard]] uint64_t frame_epoch() const { return epoch_; }
+
+private:
+    VulkanDevice() = default;
+    loom::Status init(const rhi::DeviceDesc& desc);
+    void destroy_everything();
+
+    // resources (device_resources.cpp)
+    loom::Status validate_texture_desc(const rhi::TextureDesc& desc) const;
+    VkImageCreateInfo image_create_info(const rhi::TextureDesc& desc) const;
+    loom::Result<rhi::TextureHandle> wrap_swapchain_image(VkImage image, VkFormat format, uint32_t width, uint32_t height,
+                                                          uint32_t index);
+    void release_texture(Texture& texture);
+    void release_buffer(Buffer& buffer);
+    loom::Result<rhi::BufferHandle> create_buffer_internal(const rhi::BufferDesc& desc, bool internal);
+
+    // transfers (device_transfer.cpp)
+    VkCommandBuffer setup_commands();
+    /// A staging span of `size` bytes, waiting for older submissions when the ring is full;
+    /// for requests larger than the ring, a temporary buffer destroyed after use.
+    loom::Result<StagingRing::Span> staging(VkDeviceSize size);
+    loom::Status flush_setup();
+    loom::Status submit(std::span<const VkCommandBuffer> frame_commands, bool frame_part, VkSemaphore signal);
+    void recycle_setup_buffers();
+
+    // frames (device_frames.cpp)
+    loom::Status begin_frame_commands();
+    void collect_timers(FrameSlot& slot);
+    loom::Status acquire_backbuffer();
+    loom::Status recreate_swapchain();
+
+    std::unique_ptr<Window> window_;  // destroyed after the context (the surface needs it)
+    std::unique_ptr<VulkanContext> context_;
+    std::unique_ptr<MemoryAllocator> allocator_;
+    std::unique_ptr<SubmissionTracker> submissions_;
+    std::unique_ptr<StagingRing> staging_;
+    std::unique_ptr<LayoutCache> layouts_;
+    std::unique_ptr<Swapchain> swapchain_;
+    VkPipelineCache pipeline_cache_ = VK_NULL_HANDLE;
+    rhi::Capabilities caps_;
+    bool debug_ = false;
+
+    uint16_t device_id_ = rhi::next_device_id();
+    rhi::HandlePool<rhi::TextureTag, Texture> textures_{device_id_};
+    rhi::HandlePool<rhi::BufferTag, Buffer> buffers_{device_id_};
+    rhi::HandlePool<rhi::SamplerTag, Sampler> samplers_{device_id_};
+    rhi::HandlePool<rhi::ShaderTag, Shader> shaders_{device_id_};
+    rhi::HandlePool<rhi::PipelineTag, Pipeline> pipelines_{device_id_};
+    rhi::HandlePool<rhi::HeapTag, Heap> heaps_{device_id_};
+
+    struct CachedPipeline {
+        VkPipeline pipeline = VK_NULL_HANDLE;
+        uint32_t users = 0;
+    };
+    std::map<std::string, CachedPipeline> pipeline_cache_entries_;
+
+    std::array<FrameSlot, kFramesInFlight> frames_;
+    uint64_t frame_index_ = 0;
+    bool frame_recording_ = false;
+    uint64_t epoch_ = 1;  ///< advances whenever frame commands are submitted
+    std::unique_ptr<VulkanCommandList> command_list_;
+    rhi::FrameStats last_frame_stats_;
+    std::vector<rhi::TimerResult> timer_results_;
+
+    VkCommandPool setup_pool_ = VK_NULL_HANDLE;
+    VkCommandBuffer setup_cmd_ = VK_NULL_HANDLE;
+    bool setup_has_buffer_writes_ = false;
+    struct UsedSetupBuffer {
+        VkCommandBuffer cmd;
+        uint64_t serial;
+    };
+    std::vector<UsedSetupBuffer> used_setup_buffers_;
+    std::vector<VkCommandBuffer> free_setup_buffers_;
+    uint64_t bytes_uploaded_ = 0;  ///< since the last frame began
+
+    // windowed devices
+    uint32_t backbuffer_index_ = UINT32_MAX;
+    std::vector<rhi::TextureHandle> backbuffers_;
+    VkSemaphore pending_wait_ = VK_NULL_HANDLE;  ///< acquire semaphore the next frame submission waits on
+    bool swapchain_dirty_ = false;
+};
+
+}  // namespace loom::vulkan
