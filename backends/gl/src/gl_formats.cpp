@@ -75,11 +75,13 @@ const GlFormat* gl_format(rhi::Format format) {
 void to_gl_layout(rhi::Format format, std::span<std::byte> texels) {
     switch (format) {
         case Format::Depth24:
-            // loom: depth in the low 24 bits. GL_UNSIGNED_INT: depth normalised to 32 bits;
-            // replicating the top bits into the low ones is the exact 24->32 bit rescale.
+            // loom: depth in the low 24 bits. GL_UNSIGNED_INT: depth normalised to 32 bits.
+            // The low byte is set to half a 24-bit step, so that a driver converting to 24
+            // bits by truncation and one rounding to nearest both land on d (Mesa truncates:
+            // the exact rescale (d << 8 | d >> 16) came back as d - 1 for small d).
             for (std::size_t i = 0; i + 4 <= texels.size(); i += 4) {
                 const uint32_t d = load_u32(&texels[i]) & 0xFFFFFFu;
-                store_u32(&texels[i], (d << 8) | (d >> 16));
+                store_u32(&texels[i], (d << 8) | 0x80u);
             }
             return;
         case Format::Depth24Stencil8:
