@@ -34,7 +34,10 @@ const char* type_name(GLenum type) {
     }
 }
 
-LogLevel level_of(GLenum type, GLenum severity) {
+LogLevel level_of(GLenum source, GLenum type, GLenum severity) {
+    // Compile and link failures come back from create_shader / create_*_pipeline as errors
+    // with the full info log; logging them as errors too would report them twice.
+    if (source == GL_DEBUG_SOURCE_SHADER_COMPILER) return LogLevel::Info;
     if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) return LogLevel::Error;
     switch (severity) {
         case GL_DEBUG_SEVERITY_MEDIUM: return LogLevel::Warning;
@@ -47,7 +50,7 @@ void GLAPIENTRY on_debug_message(GLenum source, GLenum type, GLuint id, GLenum s
                                  const GLchar* message, const void* /*user*/) {
     std::string text = std::string(type_name(type)) + " (" + source_name(source) + ", id " + std::to_string(id) + "): ";
     text.append(message, length >= 0 ? static_cast<std::size_t>(length) : std::char_traits<char>::length(message));
-    log(level_of(type, severity), "gl", text);
+    log(level_of(source, type, severity), "gl", text);
 }
 
 }  // namespace

@@ -5,7 +5,8 @@ namespace loom::gl {
 
 /// Turns on synchronous debug output for the current context: API errors and high-severity
 /// messages are logged at LogLevel::Error, medium at Warning, low at Info, notifications at
-/// Debug. Does nothing when the context was not created with the debug flag.
+/// Debug; shader compiler messages at Info (compile and link errors are returned as values).
+/// Does nothing when the context was not created with the debug flag.
 void install_debug_output();
 
 }  // namespace loom::gl
