@@ -51,7 +51,7 @@ std::string plan_to_dot(const Plan& plan) {
         std::string outputs;
         for (uint32_t i = 0; i < pass.ports.size(); ++i) {
             const PlanPort& port = pass.ports[i];
-            std::string field = "<" + std::to_string(i) + "> " + record_escape(port.name);
+            std::string field = "<f" + std::to_string(i) + "> " + record_escape(port.name);
             if (port.resource) field += " (t" + std::to_string(plan.resources[*port.resource].texture) + ")";
             std::string& side = port.kind == PortKind::Input ? inputs : outputs;
             if (!side.empty()) side += '|';
@@ -72,8 +72,8 @@ std::string plan_to_dot(const Plan& plan) {
     for (const PlanEdge& e : plan.edges) {
         const PlanResource& resource = plan.resources[e.resource];
         const std::string colour(kPalette[resource.texture % kPalette.size()]);
-        out += "  " + pass_node(e.from_pass) + ":" + std::to_string(e.from_port) + ":e -> " + pass_node(e.to_pass) +
-               ":" + std::to_string(e.to_port) + ":w [color=" + quoted(colour) + ", fontcolor=" + quoted(colour) +
+        out += "  " + pass_node(e.from_pass) + ":f" + std::to_string(e.from_port) + ":e -> " + pass_node(e.to_pass) +
+               ":f" + std::to_string(e.to_port) + ":w [color=" + quoted(colour) + ", fontcolor=" + quoted(colour) +
                ", label=" + quoted("t" + std::to_string(resource.texture)) + "];\n";
     }
     if (!plan.graph_outputs.empty()) {
@@ -87,7 +87,7 @@ std::string plan_to_dot(const Plan& plan) {
                 if (!marked || !pass.ports[i].resource) continue;
                 const uint32_t texture = plan.resources[*pass.ports[i].resource].texture;
                 const std::string colour(kPalette[texture % kPalette.size()]);
-                out += "  " + pass_node(at) + ":" + std::to_string(i) + ":e -> output [color=" + quoted(colour) +
+                out += "  " + pass_node(at) + ":f" + std::to_string(i) + ":e -> output [color=" + quoted(colour) +
                        ", label=" + quoted("t" + std::to_string(texture)) + "];\n";
             }
         }

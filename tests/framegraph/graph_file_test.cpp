@@ -1,0 +1,177 @@
+// JSON graph files: the format, aliases, partial constraints, parts, and errors with paths.
+#include <gtest/gtest.h>
+
+#include "loom/framegraph/framegraph.hpp"
+
+namespace loom::fg {
+namespace {
+
+using rhi::Format;
+
+constexpr std::string_view kBriefExample = R"({ "frame": {"width": 1920, "height": 1080},
+  "passes": [
+    {"name": "shadow",   "outputs": [{"name": "shadow_map", "format": "Depth32F", "size": [2048, 2048]}]},
+    {"name": "geometry", "outputs": [{"name": "position", "format": "RGBA16F"}, {"name": "normal", "format": "RGBA16F"}]},
+    {"name": "deferred", "inputs":  [{"name": "shadow_map"}, {"name": "position"}, {"name": "normal"}],
+                         "outputs": [{"name": "color", "format": "RGBA16F", "scale": 1.0}]},
+    {"name": "tint",     "inouts":  [{"name": "color"}], "side_effect": false}
+  ],
+  "connections": [["shadow.shadow_map", "deferred.shadow_map"], ["geometry.position", "deferred.position"],
+                  ["geometry.normal", "deferred.normal"], ["deferred.color", "tint.color"]],
+  "outputs": ["tint.color"] })";
+
+Error parse_error(std::string_view text) {
+    auto file = parse_graph_json(text, "g.json");
+    EXPECT_FALSE(file.ok());
+    return file.ok() ? Error{} : file.error();
+}
+
+TEST(GraphFile, TheExampleGraphParsesAndPlans) {
+    auto file = parse_graph_json(kBriefExample, "example.json");
+    ASSERT_TRUE(file.ok()) << file.error().to_string();
+    EXPECT_EQ(file->frame, (Extent2D{1920, 1080}));
+    EXPECT_EQ(file->graph.pass_count(), 4u);
+    PlanOptions options;
+    options.frame = file->frame;
+    auto plan = build_plan(file->graph, options);
+    ASSERT_TRUE(plan.ok()) << plan.error().to_string();
+    ASSERT_EQ(plan->order.size(), 4u);
+    EXPECT_EQ(plan->order[3].name, "tint");
+    EXPECT_EQ(plan->texture_of("tint", "color"), plan->texture_of("deferred", "color"));
+    EXPECT_EQ(plan->resource_of("shadow", "shadow_map")->spec.extent, (Extent2D{2048, 2048}));
+    EXPECT_EQ(plan->resource_of("shadow", "shadow_map")->spec.format, Format::Depth32F);
+    EXPECT_EQ(plan->resource_of("deferred", "color")->spec.format, Format::RGBA16Float);
+    EXPECT_EQ(plan->summary.naive_textures, 4u);
+}
+
+TEST(GraphFile, FormatNamesAndAliases) {
+    EXPECT_EQ(parse_format_alias("RGBA16Float"), Format::RGBA16Float);
+    EXPECT_EQ(parse_format_alias("RGBA16F"), Format::RGBA16Float);
+    EXPECT_EQ(parse_format_alias("RGBA32F"), Format::RGBA32Float);
+    EXPECT_EQ(parse_format_alias("R16F"), Format::R16Float);
+    EXPECT_EQ(parse_format_alias("RG32F"), Format::RG32Float);
+    EXPECT_EQ(parse_format_alias("R11G11B10F"), Format::R11G11B10Float);
+    EXPECT_EQ(parse_format_alias("RGBA8"), Format::RGBA8Unorm);
+    EXPECT_EQ(parse_format_alias("R16"), Format::R16Unorm);
+    EXPECT_EQ(parse_format_alias("rgba8unorm"), Format::RGBA8Unorm);
+    EXPECT_EQ(parse_format_alias("D32F"), Format::Depth32F);
+    EXPECT_EQ(parse_format_alias("D24S8"), Format::Depth24Stencil8);
+    EXPECT_EQ(parse_format_alias("Depth32F"), Format::Depth32F);
+    EXPECT_FALSE(parse_format_alias("RGBA17F").has_value());
+    EXPECT_FALSE(parse_format_alias("R32").has_value());  // Float or Uint? Say which.
+    EXPECT_FALSE(parse_format_alias("").has_value());
+}
+
+TEST(GraphFile, PortProperties) {
+    auto file = parse_graph_json(R"({"passes": [
+        {"name": "p", "outputs": [
+          {"name": "hdr", "channels": 3, "bits": 16, "kind": "float", "scale": [0.5, 0.25]},
+          {"name": "msaa", "format": "RGBA8", "samples": 4, "size": [64, 32]},
+          {"name": "chain", "format": "R16F", "mips": 3, "layers": 6, "usage": ["storage", "copy_dst"]},
+          {"name": "depth", "depth": 24, "stencil": 8},
+          {"name": "maybe", "optional": true, "srgb": true}]}],
+        "outputs": ["p.hdr"]})");
+    ASSERT_TRUE(file.ok()) << file.error().to_string();
+    const Pass& pass = file->graph.pass(PassId{0});
+    const TextureSpec& hdr = pass.find_port("hdr")->spec;
+    EXPECT_EQ(hdr.format, color_features(3, 16, rhi::ChannelKind::Float));
+    EXPECT_EQ(hdr.size, SizeSpec::relative(0.5f, 0.25f));
+    const TextureSpec& msaa = pass.find_port("msaa")->spec;
+    EXPECT_EQ(msaa.samples, 4u);
+    EXPECT_EQ(msaa.size, SizeSpec::absolute(64, 32));
+    const TextureSpec& chain = pass.find_port("chain")->spec;
+    EXPECT_EQ(chain.mips, 3u);
+    EXPECT_EQ(chain.layers, 6u);
+    EXPECT_EQ(chain.usage, rhi::TextureUsage::Storage | rhi::TextureUsage::CopyDst);
+    EXPECT_EQ(pass.find_port("depth")->spec.format, rhi::format_info(Format::Depth24Stencil8).features);
+    EXPECT_TRUE(pass.find_port("maybe")->optional);
+    EXPECT_EQ(pass.find_port("maybe")->spec.format, rhi::format_info(Format::RGBA8Srgb).features);
+}
+
+TEST(GraphFile, PassesComposedFromParts) {
+    auto file = parse_graph_json(R"({"passes": [
+        {"name": "deferred", "outputs": [{"name": "color", "channels": 3, "bits": 16, "kind": "float"}],
+         "parts": [{"name": "shadow-render", "inputs": [{"name": "shadow_map", "optional": true}],
+                    "outputs": [{"name": "color", "format": "RGBA16F"}]}]}],
+        "outputs": ["deferred.color"]})");
+    ASSERT_TRUE(file.ok()) << file.error().to_string();
+    const Port* color = file->graph.pass(PassId{0}).find_port("color");
+    EXPECT_EQ(color->parts, (std::vector<std::string>{"deferred", "shadow-render"}));
+    EXPECT_EQ(color->spec.format, rhi::format_info(Format::RGBA16Float).features);
+
+    const Error clash = parse_error(R"({"passes": [{"name": "d", "outputs": [{"name": "c"}],
+        "parts": [{"name": "other", "inputs": [{"name": "c"}]}]}]})");
+    EXPECT_EQ(clash.code, ErrorCode::Graph);
+    EXPECT_EQ(clash.message, "g.json: passes[0]: pass 'd': port 'c' is declared as output by part 'd' and as input "
+                             "by part 'other'");
+}
+
+TEST(GraphFile, ErrorsCarryTheJsonPath) {
+    struct Case {
+        std::string_view text;
+        std::string_view message;
+    };
+    const Case cases[] = {
+        {R"({"passes": [{"name": "a"}, {"name": "b"}, {"name": "c", "outputs": [{"name": "x", "format": "RGBA17F"}]}]})",
+         R"(g.json: passes[2].outputs[0].format: unknown format "RGBA17F")"},
+        {R"({"passes": [], "extra": 1})", "g.json: extra: unknown key (expected one of: frame, passes, connections, outputs)"},
+        {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "colour": 1}]}]})",
+         "g.json: passes[0].outputs[0].colour: unknown key (expected one of: name, format, channels, bits, kind, srgb, "
+         "depth, stencil, size, scale, samples, mips, layers, optional, usage)"},
+        {R"({"frame": {"width": 0, "height": 10}, "passes": []})",
+         "g.json: frame.width: must be a positive integer, not 0"},
+        {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "samples": 2.5}]}]})",
+         "g.json: passes[0].outputs[0].samples: must be a positive integer, not 2.5"},
+        {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "size": [10]}]}]})",
+         "g.json: passes[0].outputs[0].size: must be [width, height] in texels, not [10]"},
+        {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "kind": "half"}]}]})",
+         R"(g.json: passes[0].outputs[0].kind: must be one of unorm, snorm, float, uint, sint, not "half")"},
+        {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "format": "R8", "bits": 8}]}]})",
+         "g.json: passes[0].outputs[0]: give \"format\" or partial constraints (channels, bits, kind, srgb, depth, "
+         "stencil), not both"},
+        {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "usage": ["sampled", "texture"]}]}]})",
+         R"(g.json: passes[0].outputs[0].usage[1]: unknown usage "texture" (sampled, color_attachment, depth_stencil_attachment, storage, copy_src, copy_dst))"},
+        {R"({"passes": [{"name": "a", "side_effect": "yes"}]})",
+         R"(g.json: passes[0].side_effect: must be true or false, not "yes")"},
+        {R"({"passes": [{"outputs": []}]})", "g.json: passes[0].name: a pass needs a non-empty string name"},
+        {R"({"passes": {}})", "g.json: passes: must be an array"},
+        {R"({"connections": []})", R"(g.json: missing "passes")"},
+        {R"({"passes": [{"name": "a", "outputs": [{"name": "x"}]}], "connections": [["a.x"]]})",
+         R"(g.json: connections[0]: must be ["pass.port", "pass.port"])"},
+        {R"({"passes": [{"name": "a", "outputs": [{"name": "x"}]}], "connections": [["a.x", "bx"]]})",
+         R"(g.json: connections[0][1]: "bx" is not of the form "pass.port")"},
+    };
+    for (const Case& c : cases) {
+        const Error error = parse_error(c.text);
+        EXPECT_EQ(error.code, ErrorCode::Parse) << c.text;
+        EXPECT_EQ(error.message, c.message) << c.text;
+    }
+}
+
+TEST(GraphFile, GraphErrorsKeepTheirCodeAndGainAPath) {
+    const Error unknown = parse_error(R"({"passes": [{"name": "a", "outputs": [{"name": "x"}]}],
+                                         "connections": [["a.x", "b.y"]]})");
+    EXPECT_EQ(unknown.code, ErrorCode::Graph);
+    EXPECT_EQ(unknown.message, "g.json: connections[0]: connect a.x -> b.y: unknown pass 'b'");
+    const Error duplicate = parse_error(R"({"passes": [{"name": "a"}, {"name": "a"}]})");
+    EXPECT_EQ(duplicate.message, "g.json: passes[1]: add_pass: a pass called 'a' already exists");
+    const Error output = parse_error(R"({"passes": [{"name": "a", "inputs": [{"name": "x"}]}], "outputs": ["a.x"]})");
+    EXPECT_EQ(output.code, ErrorCode::Graph);
+    EXPECT_NE(output.message.find("g.json: outputs[0]: mark_output a.x"), std::string::npos);
+}
+
+TEST(GraphFile, SyntaxErrorsGiveLineAndColumn) {
+    const Error error = parse_error("{\n  \"passes\": [\n    {\"name\": \"a\",}\n  ]\n}\n");
+    EXPECT_EQ(error.code, ErrorCode::Parse);
+    EXPECT_EQ(error.message.rfind("g.json:3:18: invalid JSON", 0), 0u) << error.message;
+}
+
+TEST(GraphFile, MissingFileIsAnIoError) {
+    auto file = load_graph_file("/nonexistent/graph.json");
+    ASSERT_FALSE(file.ok());
+    EXPECT_EQ(file.error().code, ErrorCode::Io);
+    EXPECT_NE(file.error().message.find("/nonexistent/graph.json"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace loom::fg

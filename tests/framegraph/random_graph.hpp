@@ -1,0 +1,43 @@
+#pragma once
+// Seeded random frame graphs for property tests and benchmarks. The same seed and options give
+// the same graph on every platform (the generator uses its own SplitMix64, not <random>'s
+// distributions, whose results differ between standard libraries).
+
+#include <cstdint>
+
+#include "loom/framegraph/graph.hpp"
+
+namespace loom::fg::testing {
+
+struct RandomGraphOptions {
+    uint32_t passes = 16;
+    uint32_t max_inputs = 3;        ///< inputs per pass: 0..max (the first pass has none)
+    uint32_t max_outputs = 3;       ///< outputs per pass: 1..max
+    uint32_t window = 6;            ///< inputs read outputs of the previous `window` passes
+    uint32_t inout_percent = 15;    ///< chance that a pass also modifies a texture in place
+    uint32_t side_effect_percent = 5;
+    uint32_t graph_output_percent = 5;     ///< chance that a pass's first output is a graph output
+    uint32_t optional_output_percent = 10;
+    bool shuffle_declarations = true;      ///< declare passes in random order, not topological
+};
+
+/// A random DAG: passes named p0, p1, ... in generation (topological) order, each with inputs
+/// (i0, ...), outputs (o0, ...) and at most one inout (io); the last pass's first output is a
+/// graph output. Output specs come from a small palette of colour and depth formats at full,
+/// half and quarter size; inputs are unconstrained or repeat their source's spec.
+FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options = {});
+
+/// SplitMix64: a tiny, portable, seeded generator.
+class SplitMix64 {
+public:
+    explicit SplitMix64(uint64_t seed) : state_(seed) {}
+    uint64_t next();
+    /// Uniform-enough integer in [0, bound) for small bounds.
+    uint32_t below(uint32_t bound) { return bound == 0 ? 0 : static_cast<uint32_t>(next() % bound); }
+    bool percent(uint32_t chance) { return below(100) < chance; }
+
+private:
+    uint64_t state_;
+};
+
+}  // namespace loom::fg::testing
