@@ -277,6 +277,12 @@ void VulkanCommandList::set_pipeline(rhi::PipelineHandle handle) {
         return;
     }
     const Pipeline* p = *pipeline;
+    if (in_render_pass_ && p->bind_point == VK_PIPELINE_BIND_POINT_GRAPHICS && !matches_pass(*p)) {
+        pipeline_handle_ = {};
+        pipeline_ = nullptr;
+        fail(ErrorCode::InvalidArgument, "set_pipeline: " + pass_mismatch(*p));
+        return;
+    }
     pipeline_handle_ = handle;
     pipeline_ = p;
     VkPipeline& bound = p->bind_point == VK_PIPELINE_BIND_POINT_GRAPHICS ? bound_graphics_ : bound_compute_;
@@ -287,8 +293,29 @@ void VulkanCommandList::set_pipeline(rhi::PipelineHandle handle) {
     ++stats_.api_calls;
 }
 
+bool VulkanCommandList::matches_pass(const Pipeline& p) const {
+    return p.color_formats == pass_color_formats_ && p.depth_format == pass_depth_format_ && p.samples == pass_samples_;
+}
+
+std::string VulkanCommandList::pass_mismatch(const Pipeline& p) const {
+    auto names = [](const std::vector<rhi::Format>& formats) {
+        std::string out;
+        for (rhi::Format f : formats) out += (out.empty() ? "" : ", ") + std::string(rhi::format_name(f));
+        return out;
+    };
+    return "pipeline " + in_quotes(p.name) + " targets [" + names(p.color_formats) + "] depth " +
+           std::string(rhi::format_name(p.depth_format)) + " x" + std::to_string(p.samples) + ", render pass " +
+           in_quotes(pass_label_) + " has [" + names(pass_color_formats_) + "] depth " +
+           std::string(rhi::format_name(pass_depth_format_)) + " x" + std::to_string(pass_samples_);
+}
+
 void VulkanCommandList::set_viewport(const rhi::Viewport& v) {
-    if (!require_inside_pass("set_viewport")) return;
+    if (!(v.width > 0.0f) || !(v.height > 0.0f) || v.min_depth < 0.0f || v.max_depth > 1.0f) {
+        fail(ErrorCode::InvalidArgument, "set_viewport: size must be positive and depths within 0..1");
+        return;
+    }
+    // Outside a pass there is nothing to set: begin_render_pass resets viewport and scissor.
+    if (!in_render_pass_) return;
     // Negative height: NDC y up, row 0 at the top (DESIGN.md conventions).
     VkViewport vp{v.x, v.y + v.height, v.width, -v.height, v.min_depth, v.max_depth};
     vkCmdSetViewport(cmd_, 0, 1, &vp);
@@ -296,7 +323,7 @@ void VulkanCommandList::set_viewport(const rhi::Viewport& v) {
 }
 
 void VulkanCommandList::set_scissor(const rhi::Rect& r) {
-    if (!require_inside_pass("set_scissor")) return;
+    if (!in_render_pass_) return;
     // Vulkan forbids negative offsets; clip the rectangle to the framebuffer's quadrant.
     int64_t x = r.x, y = r.y, w = r.width, h = r.height;
     if (x < 0) { w += x; x = 0; }
@@ -387,9 +414,10 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
     const SetLayout& set_layout = *layout.sets[set];
     const std::string pipe = "pipeline " + in_quotes(pipeline_->name);
     if (!groups_[set].group) {
-        fail(ErrorCode::InvalidState, std::string(what) + ": " + pipe + " uses set " + std::to_string(set) + " ('" +
-                                          set_layout.bindings.front().name + "' at binding " +
-                                          std::to_string(set_layout.bindings.front().binding) + ") but no bind group is set for it");
+        fail(ErrorCode::InvalidState, std::string(what) + ": " + pipe + " uses set " + std::to_string(set) + " binding " +
+                                          std::to_string(set_layout.bindings.front().binding) + " ('" +
+                                          set_layout.bindings.front().name + "') but no bind group is set for set " +
+                                          std::to_string(set));
         return false;
     }
     const rhi::BindGroup& group = *groups_[set].group;
@@ -545,6 +573,9 @@ bool VulkanCommandList::flush_bindings(VkPipelineBindPoint bind_point, std::stri
     if (layout.push_constant_size > 0 && (push_dirty_ || layout_changed)) {
         vkCmdPushConstants(cmd_, layout.layout, layout.push_constant_stages, 0, layout.push_constant_size, push_data_.data());
         ++stats_.api_calls;
+        // Push constants travel in the command buffer; GL uploads them to a buffer. Both
+        // count them as uploaded bytes.
+        stats_.bytes_uploaded += layout.push_constant_size;
         push_dirty_ = false;
     }
     bound_layout_ = layout.layout;
@@ -561,11 +592,8 @@ bool VulkanCommandList::prepare_draw(std::string_view what) {
         fail(ErrorCode::InvalidState, std::string(what) + ": pipeline " + in_quotes(pipeline_->name) + " is a compute pipeline");
         return false;
     }
-    if (pipeline_->color_formats != pass_color_formats_ || pipeline_->depth_format != pass_depth_format_ ||
-        pipeline_->samples != pass_samples_) {
-        fail(ErrorCode::InvalidState, std::string(what) + ": pipeline " + in_quotes(pipeline_->name) +
-                                          " was made for other attachment formats or sample counts than render pass " +
-                                          in_quotes(pass_label_));
+    if (!matches_pass(*pipeline_)) {
+        fail(ErrorCode::InvalidArgument, std::string(what) + ": " + pass_mismatch(*pipeline_));
         return false;
     }
     for (uint32_t slot = 0; slot < pipeline_->vertex_buffer_count; ++slot) {
@@ -620,22 +648,37 @@ void VulkanCommandList::copy_buffer(rhi::BufferHandle src_handle, uint64_t src_o
     if (!dst.ok()) return fail(ErrorCode::InvalidHandle, "copy_buffer destination: " + dst.error().message);
     Buffer& s = **src;
     Buffer& d = **dst;
-    if (src_offset + size > s.desc.size || dst_offset + size > d.desc.size || size == 0) {
-        return fail(ErrorCode::InvalidArgument, "copy_buffer of " + std::to_string(size) + " bytes from " + in_quotes(s.desc.name) + "+" +
+    if (src_offset > s.desc.size || size > s.desc.size - src_offset || dst_offset > d.desc.size ||
+        size > d.desc.size - dst_offset) {
+        return fail(ErrorCode::InvalidArgument, "copy_buffer: " + std::to_string(size) + " bytes from " + in_quotes(s.desc.name) + "+" +
                                                     std::to_string(src_offset) + " to " + in_quotes(d.desc.name) + "+" +
-                                                    std::to_string(dst_offset) + " is empty or out of range");
+                                                    std::to_string(dst_offset) + " run past the end of a buffer");
     }
-    if (&s == &d) return fail(ErrorCode::InvalidArgument, "copy_buffer within buffer " + in_quotes(s.desc.name) + " is not supported");
-    const ResourceState s_state = s.state, d_state = d.state;
+    if (&s == &d && src_offset < dst_offset + size && dst_offset < src_offset + size) {
+        return fail(ErrorCode::InvalidArgument, "copy_buffer: source and destination ranges of " + in_quotes(s.desc.name) + " overlap");
+    }
+    if (size == 0) return;
     BarrierBatch batch;
-    batch.buffer(s.buffer, s_state, ResourceState::CopySrc);
-    batch.buffer(d.buffer, d_state, ResourceState::CopyDst);
+    if (&s == &d) {
+        // One buffer read and written: a global dependency covers both roles.
+        batch.memory(VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    } else {
+        batch.buffer(s.buffer, s.state, ResourceState::CopySrc);
+        batch.buffer(d.buffer, d.state, ResourceState::CopyDst);
+    }
     stats_.api_calls += batch.flush(cmd_);
     VkBufferCopy region{src_offset, dst_offset, size};
     vkCmdCopyBuffer(cmd_, s.buffer, d.buffer, 1, &region);
-    // Copies leave the buffers in the states they had.
-    batch.buffer(s.buffer, ResourceState::CopySrc, s_state);
-    batch.buffer(d.buffer, ResourceState::CopyDst, d_state);
+    // Copies leave buffers in the states they had (as on GL, where buffer states only
+    // matter around storage access).
+    if (&s == &d) {
+        batch.memory(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                     VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+    } else {
+        batch.buffer(s.buffer, ResourceState::CopySrc, s.state);
+        batch.buffer(d.buffer, ResourceState::CopyDst, d.state);
+    }
     stats_.api_calls += 1 + batch.flush(cmd_);
 }
 
@@ -668,8 +711,7 @@ void VulkanCommandList::copy_texture(const rhi::TextureCopy& copy) {
         dr.origin.x + extent.width > de.width || dr.origin.y + extent.height > de.height || dr.origin.z + extent.depth > de.depth) {
         return fail(ErrorCode::InvalidArgument, what + ": region out of range");
     }
-    const auto s_states = s.states;
-    const auto d_states = d.states;
+    // Like the GL backend, a copy leaves the source in CopySrc and the destination in CopyDst.
     BarrierBatch batch;
     device_.transition_texture(batch, s, sr.mip, 1, sr.layer, 1, ResourceState::CopySrc, Stream::Frame);
     device_.transition_texture(batch, d, dr.mip, 1, dr.layer, 1, ResourceState::CopyDst, Stream::Frame);
@@ -681,15 +723,7 @@ void VulkanCommandList::copy_texture(const rhi::TextureCopy& copy) {
     region.dstOffset = {static_cast<int32_t>(dr.origin.x), static_cast<int32_t>(dr.origin.y), static_cast<int32_t>(dr.origin.z)};
     region.extent = {extent.width, extent.height, extent.depth};
     vkCmdCopyImage(cmd_, s.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-    // Copies leave textures in the states they had; a destination that was Undefined is
-    // now defined and becomes ShaderRead (as after write_texture).
-    ResourceState s_back = s_states[s.subresource(sr.mip, sr.layer)];
-    ResourceState d_back = d_states[d.subresource(dr.mip, dr.layer)];
-    if (s_back == ResourceState::Undefined) s_back = ResourceState::CopySrc;
-    if (d_back == ResourceState::Undefined) d_back = d.sampled_view ? ResourceState::ShaderRead : ResourceState::CopyDst;
-    device_.transition_texture(batch, s, sr.mip, 1, sr.layer, 1, s_back, Stream::Frame);
-    device_.transition_texture(batch, d, dr.mip, 1, dr.layer, 1, d_back, Stream::Frame);
-    stats_.api_calls += 1 + batch.flush(cmd_);
+    ++stats_.api_calls;
 }
 
 void VulkanCommandList::transition(rhi::TextureHandle handle, ResourceState state) {

@@ -71,6 +71,9 @@ private:
     bool flush_bindings(VkPipelineBindPoint bind_point, std::string_view what);
     bool write_set(uint32_t set, VkDescriptorSet& out, std::string_view what);
     bool prepare_draw(std::string_view what);
+    /// The pipeline's attachment formats and samples are those of the open render pass.
+    bool matches_pass(const Pipeline& pipeline) const;
+    std::string pass_mismatch(const Pipeline& pipeline) const;
 
     VulkanDevice& device_;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;

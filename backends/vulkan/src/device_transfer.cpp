@@ -180,12 +180,17 @@ loom::Result<StagingRing::Span> VulkanDevice::staging(VkDeviceSize size) {
         }
         vkBindBufferMemory(device, buffer, memory->memory, memory->offset);
         MemoryAllocator* allocator = allocator_.get();
+        SubmissionTracker* submissions = submissions_.get();
         MemoryAllocation allocation = *memory;
-        submissions_->defer([device, allocator, buffer, allocation] {
-            vkDestroyBuffer(device, buffer, nullptr);
-            allocator->free(allocation);
+        // Released when the caller is done with the span, after the submissions recorded by
+        // then have completed.
+        std::shared_ptr<void> keep_alive(nullptr, [device, allocator, submissions, buffer, allocation](void*) {
+            submissions->defer([device, allocator, buffer, allocation] {
+                vkDestroyBuffer(device, buffer, nullptr);
+                allocator->free(allocation);
+            });
         });
-        return StagingRing::Span{buffer, 0, static_cast<std::byte*>(memory->mapped)};
+        return StagingRing::Span{buffer, 0, static_cast<std::byte*>(memory->mapped), std::move(keep_alive)};
     }
     for (;;) {
         if (auto span = staging_->allocate(size, kStagingAlignment, submissions_->pending_serial())) return *span;
@@ -309,8 +314,6 @@ loom::Status VulkanDevice::write_texture(rhi::TextureHandle handle, const rhi::T
     VkCommandBuffer cmd = setup_commands();
     if (!cmd) return Error{ErrorCode::Backend, name + ": cannot allocate a command buffer"};
     const uint32_t layer = is3d ? 0 : region.layer;
-    const uint32_t sub = t.subresource(region.mip, layer);
-    const ResourceState before = tracked_state(t, sub, Stream::Setup);
     const bool whole = region.origin.x == 0 && region.origin.y == 0 && region.origin.z == 0 && e.width == full.width &&
                        e.height == full.height && e.depth == full.depth;
     BarrierBatch batch;
@@ -333,9 +336,11 @@ loom::Status VulkanDevice::write_texture(rhi::TextureHandle handle, const rhi::T
     }
     vkCmdCopyBufferToImage(cmd, span->buffer, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, static_cast<uint32_t>(copies.size()),
                            copies.data());
-    // Back to the state it had; an undefined texture now has contents and becomes ShaderRead.
-    ResourceState after = before;
-    if (after == ResourceState::Undefined) after = t.sampled_view ? ResourceState::ShaderRead : ResourceState::CopyDst;
+    // Uploaded textures are ready to sample (the GL backend does the same); those without
+    // Sampled usage stay CopyDst.
+    const ResourceState after = rhi::has_all(t.desc.usage, rhi::TextureUsage::Sampled) && t.sampled_view
+                                    ? ResourceState::ShaderRead
+                                    : ResourceState::CopyDst;
     transition_texture(batch, t, region.mip, 1, layer, 1, after, Stream::Setup);
     batch.flush(cmd);
     bytes_uploaded_ += data.size();

@@ -67,7 +67,7 @@ std::optional<StagingRing::Span> StagingRing::allocate(VkDeviceSize size, VkDevi
     } else {
         regions_.push_back({serial, head_});
     }
-    return Span{buffer_, offset, static_cast<std::byte*>(memory_.mapped) + offset};
+    return Span{buffer_, offset, static_cast<std::byte*>(memory_.mapped) + offset, nullptr};
 }
 
 void StagingRing::release(uint64_t completed_serial) {

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <optional>
 
 #include <vulkan/vulkan.h>
@@ -18,6 +19,9 @@ public:
         VkBuffer buffer = VK_NULL_HANDLE;
         VkDeviceSize offset = 0;
         std::byte* data = nullptr;
+        /// For temporary buffers (requests larger than the ring): the buffer is released once
+        /// the last copy of the span is gone, so a readback can read it after waiting.
+        std::shared_ptr<void> keep_alive;
     };
 
     StagingRing(VkDevice device, MemoryAllocator& allocator, VkDeviceSize capacity);
