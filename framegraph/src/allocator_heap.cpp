@@ -22,11 +22,46 @@ struct Range {
     uint64_t end = 0;
 };
 
-// The resources placed in one heap, indexed by the positions they are alive at.
+// The lifetimes of the resources placed in one heap, to find those overlapping a lifetime in
+// time proportional to their number: a segment tree over positions answers "alive at
+// position a" (each lifetime is stored in O(log n) canonical nodes, so it is reported once),
+// and a list per position answers "starts in (a, b]".
+class LifetimeIndex {
+public:
+    explicit LifetimeIndex(uint32_t positions) : starts_(positions) {
+        while (leaves_ < positions) leaves_ *= 2;
+        nodes_.resize(2 * leaves_);
+    }
+
+    void insert(uint32_t id, const Lifetime& life) {
+        starts_[life.first].push_back(id);
+        for (uint32_t l = life.first + leaves_, r = life.last + 1 + leaves_; l < r; l /= 2, r /= 2) {
+            if (l & 1) nodes_[l++].push_back(id);
+            if (r & 1) nodes_[--r].push_back(id);
+        }
+    }
+
+    /// Calls `visit` once for every inserted lifetime that overlaps `life`.
+    template <class Visit>
+    void overlapping(const Lifetime& life, Visit&& visit) const {
+        for (uint32_t node = life.first + leaves_; node >= 1; node /= 2) {
+            for (uint32_t id : nodes_[node]) visit(id);
+        }
+        for (uint32_t at = life.first + 1; at <= life.last; ++at) {
+            for (uint32_t id : starts_[at]) visit(id);
+        }
+    }
+
+private:
+    uint32_t leaves_ = 1;
+    std::vector<std::vector<uint32_t>> nodes_;   // 1-based implicit tree; leaves at [leaves_, 2 leaves_)
+    std::vector<std::vector<uint32_t>> starts_;  // per position, lifetimes starting there
+};
+
 struct HeapState {
     uint64_t capacity = 0;  // 0: unbounded
     uint64_t size = 0;
-    std::vector<std::vector<uint32_t>> live_at;  // per position, resources placed here
+    LifetimeIndex placed;
 };
 
 enum class Fit : uint8_t { Lowest, Best };
@@ -40,7 +75,7 @@ struct Placement {
 class Placer {
 public:
     Placer(const AllocationProblem& problem, Fit fit)
-        : problem_(problem), fit_(fit), stamp_(problem.resources.size(), 0), ranges_(problem.resources.size()) {}
+        : problem_(problem), fit_(fit), ranges_(problem.resources.size()) {}
 
     Placement place(const std::vector<uint32_t>& order) {
         Placement out;
@@ -53,9 +88,7 @@ public:
                 if (!offset) continue;
                 HeapState& heap = heaps_[h];
                 ranges_[r] = {*offset, *offset + resource.bytes};
-                for (uint32_t at = resource.lifetime.first; at <= resource.lifetime.last; ++at) {
-                    heap.live_at[at].push_back(r);
-                }
+                heap.placed.insert(r, resource.lifetime);
                 heap.size = std::max(heap.size, ranges_[r].end);
                 out.where[r] = HeapRange{h, *offset};
                 break;
@@ -70,25 +103,17 @@ public:
 
 private:
     void open_heap(uint64_t first_resource_bytes) {
-        HeapState heap;
         // A resource larger than the cap gets a heap of its own size.
-        heap.capacity = problem_.max_heap_bytes == 0 ? 0 : std::max(problem_.max_heap_bytes, first_resource_bytes);
-        heap.live_at.resize(problem_.passes.size());
-        heaps_.push_back(std::move(heap));
+        const uint64_t capacity =
+            problem_.max_heap_bytes == 0 ? 0 : std::max(problem_.max_heap_bytes, first_resource_bytes);
+        heaps_.push_back(HeapState{capacity, 0, LifetimeIndex(static_cast<uint32_t>(problem_.passes.size()))});
     }
 
     std::optional<uint64_t> find_offset(const HeapState& heap, uint32_t r) {
         const AllocationResource& resource = problem_.resources[r];
         // Byte ranges of the resources in this heap whose lifetimes overlap r's.
-        ++generation_;
         busy_.clear();
-        for (uint32_t at = resource.lifetime.first; at <= resource.lifetime.last; ++at) {
-            for (uint32_t other : heap.live_at[at]) {
-                if (stamp_[other] == generation_) continue;
-                stamp_[other] = generation_;
-                busy_.push_back(ranges_[other]);
-            }
-        }
+        heap.placed.overlapping(resource.lifetime, [&](uint32_t other) { busy_.push_back(ranges_[other]); });
         std::sort(busy_.begin(), busy_.end(), [](const Range& a, const Range& b) { return a.begin < b.begin; });
 
         const uint64_t align = std::max<uint64_t>(resource.alignment, 1);
@@ -116,8 +141,6 @@ private:
     const AllocationProblem& problem_;
     Fit fit_;
     std::vector<HeapState> heaps_;
-    std::vector<uint64_t> stamp_;
-    uint64_t generation_ = 0;
     std::vector<Range> ranges_;  // per placed resource
     std::vector<Range> busy_;
 };

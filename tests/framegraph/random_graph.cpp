@@ -54,14 +54,16 @@ FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options) {
     std::vector<Connection> connections;
     std::vector<std::string> outputs;
     std::vector<Producer> producers;
+    std::vector<uint32_t> first_producer;  // per pass, the index of its first producer
     passes.reserve(options.passes);
 
     for (uint32_t i = 0; i < options.passes; ++i) {
         Pass pass("p" + std::to_string(i));
+        first_producer.push_back(static_cast<uint32_t>(producers.size()));
         const uint32_t window_start = i > options.window ? i - options.window : 0;
         std::vector<uint32_t> candidates;  // indices into producers
-        for (uint32_t p = 0; p < producers.size(); ++p) {
-            if (producers[p].pass >= window_start && !producers[p].modified_in_place) candidates.push_back(p);
+        for (uint32_t p = first_producer[window_start]; p < producers.size(); ++p) {
+            if (!producers[p].modified_in_place) candidates.push_back(p);
         }
         std::vector<uint32_t> read;  // producers this pass reads
 

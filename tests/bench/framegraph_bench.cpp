@@ -1,0 +1,187 @@
+// Frame-graph benchmarks: the cost of building and planning random graphs of 100 to 10,000
+// passes with each allocator, of re-planning an unchanged graph, and the memory each
+// allocator needs on a corpus of random graphs relative to the lower bound (peak live bytes).
+//
+//   loom_framegraph_bench [--corpus=N] [google benchmark flags]
+//
+// --corpus sets how many random graphs the *Corpus benchmarks plan (default 1000).
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "loom/framegraph/framegraph.hpp"
+#include "random_graph.hpp"
+
+namespace {
+
+using namespace loom::fg;
+
+uint32_t g_corpus = 1000;
+
+testing::RandomGraphOptions big_graph_options(uint32_t passes) {
+    testing::RandomGraphOptions options;
+    options.passes = passes;
+    options.window = 8;
+    // A real frame has a handful of graph outputs (they live to the end of the frame) and
+    // some side-effect passes (presentation, readback) that keep most passes alive.
+    options.graph_output_percent = 0;
+    options.side_effect_percent = 10;
+    // Passes declared in frame order, as renderers do; shuffled declarations make the
+    // declaration-order tie break scatter producers and readers far apart.
+    options.shuffle_declarations = false;
+    return options;
+}
+
+PlanOptions options_for(const char* allocator) {
+    PlanOptions options;
+    options.frame = {1920, 1080};
+    options.allocator = allocator;
+    return options;
+}
+
+// Building the graph (passes, connections, outputs) and planning it from scratch.
+void BM_BuildAndPlan(benchmark::State& state, const char* allocator) {
+    const auto passes = static_cast<uint32_t>(state.range(0));
+    const PlanOptions options = options_for(allocator);
+    uint64_t resources = 0;
+    for (auto _ : state) {
+        FrameGraph graph = testing::random_graph(7, big_graph_options(passes));
+        auto plan = build_plan(graph, options);
+        if (!plan) {
+            state.SkipWithError(plan.error().message.c_str());
+            return;
+        }
+        resources = plan->resources.size();
+        benchmark::DoNotOptimize(plan->summary);
+    }
+    state.counters["passes"] = passes;
+    state.counters["resources"] = static_cast<double>(resources);
+    state.SetComplexityN(passes);
+}
+
+// Planning only: the graph is built once outside the loop.
+void BM_Plan(benchmark::State& state, const char* allocator) {
+    const auto passes = static_cast<uint32_t>(state.range(0));
+    const FrameGraph graph = testing::random_graph(7, big_graph_options(passes));
+    const PlanOptions options = options_for(allocator);
+    for (auto _ : state) {
+        auto plan = build_plan(graph, options);
+        if (!plan) {
+            state.SkipWithError(plan.error().message.c_str());
+            return;
+        }
+        benchmark::DoNotOptimize(plan->summary);
+    }
+    state.SetComplexityN(passes);
+}
+
+// Building only, for reference.
+void BM_Build(benchmark::State& state) {
+    const auto passes = static_cast<uint32_t>(state.range(0));
+    for (auto _ : state) {
+        FrameGraph graph = testing::random_graph(7, big_graph_options(passes));
+        benchmark::DoNotOptimize(graph.pass_count());
+    }
+    state.SetComplexityN(passes);
+}
+
+// Re-planning an unchanged graph: FrameGraph::plan returns the cached plan.
+void BM_Replan(benchmark::State& state) {
+    const auto passes = static_cast<uint32_t>(state.range(0));
+    FrameGraph graph = testing::random_graph(7, big_graph_options(passes));
+    const PlanOptions options = options_for("interval");
+    if (!graph.plan(options)) {
+        state.SkipWithError("plan failed");
+        return;
+    }
+    for (auto _ : state) benchmark::DoNotOptimize(graph.plan(options));
+}
+
+double quantile(std::vector<double> values, double q) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    const auto index = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1) + 0.5);
+    return values[index];
+}
+
+// Bytes over the lower bound (peak live bytes) for each allocator on the same random graphs,
+// side by side; the counters are quantiles of the ratio over the corpus.
+void BM_BytesOverLowerBoundCorpus(benchmark::State& state) {
+    std::vector<FrameGraph> graphs;
+    for (uint32_t seed = 1; seed <= g_corpus; ++seed) {
+        testing::RandomGraphOptions options;
+        options.passes = 4 + seed % 60;
+        options.window = 2 + seed % 7;
+        graphs.push_back(testing::random_graph(seed, options));
+    }
+    std::vector<double> heap, interval, paper, naive;
+    uint32_t heap_optimal = 0;
+    for (auto _ : state) {
+        heap.clear();
+        interval.clear();
+        paper.clear();
+        naive.clear();
+        heap_optimal = 0;
+        for (const FrameGraph& graph : graphs) {
+            auto heap_plan = build_plan(graph, options_for("heap"));
+            auto interval_plan = build_plan(graph, options_for("interval"));
+            auto paper_plan = build_plan(graph, options_for("paper"));
+            if (!heap_plan || !interval_plan || !paper_plan) {
+                state.SkipWithError("plan failed");
+                return;
+            }
+            const auto bound = static_cast<double>(heap_plan->summary.lower_bound_bytes);
+            heap.push_back(static_cast<double>(heap_plan->summary.bytes) / bound);
+            interval.push_back(static_cast<double>(interval_plan->summary.bytes) / bound);
+            paper.push_back(static_cast<double>(paper_plan->summary.bytes) / bound);
+            naive.push_back(static_cast<double>(heap_plan->summary.naive_bytes) / bound);
+            heap_optimal += heap_plan->summary.bytes == heap_plan->summary.lower_bound_bytes ? 1 : 0;
+        }
+    }
+    state.counters["graphs"] = static_cast<double>(graphs.size());
+    state.counters["heap_at_bound_%"] = 100.0 * heap_optimal / static_cast<double>(graphs.size());
+    for (const auto& [name, values] : {std::pair{"heap", &heap}, std::pair{"interval", &interval},
+                                       std::pair{"paper", &paper}, std::pair{"naive", &naive}}) {
+        state.counters[std::string(name) + "_p50"] = quantile(*values, 0.5);
+        state.counters[std::string(name) + "_p90"] = quantile(*values, 0.9);
+        state.counters[std::string(name) + "_max"] = quantile(*values, 1.0);
+        double sum = 0.0;
+        for (double v : *values) sum += v;
+        state.counters[std::string(name) + "_mean"] = values->empty() ? 0.0 : sum / static_cast<double>(values->size());
+    }
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(BM_BuildAndPlan, paper, "paper")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_BuildAndPlan, interval, "interval")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_BuildAndPlan, heap, "heap")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_Plan, paper, "paper")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_Plan, interval, "interval")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_Plan, heap, "heap")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK(BM_Build)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK(BM_Replan)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BytesOverLowerBoundCorpus)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+int main(int argc, char** argv) {
+    // Our own flag first; Google Benchmark rejects flags it does not know.
+    std::vector<char*> rest;
+    for (int i = 0; i < argc; ++i) {
+        if (std::strncmp(argv[i], "--corpus=", 9) == 0) {
+            g_corpus = static_cast<uint32_t>(std::max(1L, std::strtol(argv[i] + 9, nullptr, 10)));
+        } else {
+            rest.push_back(argv[i]);
+        }
+    }
+    int rest_count = static_cast<int>(rest.size());
+    benchmark::Initialize(&rest_count, rest.data());
+    if (benchmark::ReportUnrecognizedArguments(rest_count, rest.data())) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}
