@@ -12,6 +12,8 @@ packages=(
   libegl-dev libgl-dev libepoxy-dev libglfw3-dev
   # Vulkan: loader, headers, validation layer
   libvulkan-dev vulkan-validationlayers
+  # a virtual X server for the windowed (swapchain) tests
+  xvfb xauth
   # Mesa software drivers: llvmpipe (GL) and lavapipe (Vulkan)
   libgl1-mesa-dri libegl-mesa0 mesa-vulkan-drivers
   # maths, scenes, images, JSON
