@@ -95,6 +95,33 @@ TEST_F(GlContextTest, GlCompileAndLinkFailuresNameTheShader) {
     EXPECT_NE(pipeline.error().message.find("mismatched stages"), std::string::npos) << pipeline.error().message;
 }
 
+TEST_F(GlContextTest, ResourceBytesFollowTheTexelFormula) {
+    // GL does not reveal allocation sizes: bytes are texels times bytes per texel, summed over
+    // mips (3D mips halve their depth too), times samples.
+    rhi::TextureDesc mipped;
+    mipped.name = "mipped";
+    mipped.width = 16;
+    mipped.height = 8;
+    mipped.mip_levels = 3;
+    LOOM_ASSIGN_OR_FAIL(auto t1, device().create_texture(mipped));
+    EXPECT_EQ(device().resource_stats().texture_bytes, (16u * 8 + 8 * 4 + 4 * 2) * 4);
+    rhi::TextureDesc volume;
+    volume.name = "volume";
+    volume.dimension = rhi::TextureDimension::Tex3D;
+    volume.format = rhi::Format::R32Float;
+    volume.width = volume.height = volume.depth_or_layers = 4;
+    volume.mip_levels = 2;
+    volume.usage = rhi::TextureUsage::Sampled;
+    LOOM_ASSIGN_OR_FAIL(auto t2, device().create_texture(volume));
+    EXPECT_EQ(device().resource_stats().texture_bytes, (16u * 8 + 8 * 4 + 4 * 2) * 4 + (64u + 8) * 4);
+    LOOM_ASSIGN_OR_FAIL(auto b, device().create_buffer(rhi::BufferDesc{"b", 100, rhi::BufferUsage::Vertex}));
+    EXPECT_EQ(device().resource_stats().buffer_bytes, 100u);
+    LOOM_ASSERT_OK(device().destroy(t1));
+    LOOM_ASSERT_OK(device().destroy(t2));
+    LOOM_ASSERT_OK(device().destroy(b));
+    EXPECT_EQ(device().resource_stats().total_bytes(), 0u);
+}
+
 TEST_F(GlContextTest, MultisampledTargetIsResolvedOnReadback) {
     rhi::TextureDesc desc;
     desc.name = "msaa";

