@@ -2,6 +2,7 @@
 #include <string_view>
 
 #include "loom/framegraph/export.hpp"
+#include "text.hpp"
 
 namespace loom::fg {
 namespace {
@@ -31,7 +32,9 @@ std::string quoted(std::string_view text) {
     return out + "\"";
 }
 
-std::string pass_node(uint32_t position) { return "p" + std::to_string(position); }
+std::string numbered(std::string_view prefix, uint64_t number) { return detail::concat(prefix, number); }
+
+std::string pass_node(uint32_t position) { return numbered("p", position); }
 
 }  // namespace
 
@@ -51,8 +54,8 @@ std::string plan_to_dot(const Plan& plan) {
         std::string outputs;
         for (uint32_t i = 0; i < pass.ports.size(); ++i) {
             const PlanPort& port = pass.ports[i];
-            std::string field = "<f" + std::to_string(i) + "> " + record_escape(port.name);
-            if (port.resource) field += " (t" + std::to_string(plan.resources[*port.resource].texture) + ")";
+            std::string field = numbered("<f", i) + "> " + record_escape(port.name);
+            if (port.resource) field += numbered(" (t", plan.resources[*port.resource].texture) + ")";
             std::string& side = port.kind == PortKind::Input ? inputs : outputs;
             if (!side.empty()) side += '|';
             side += field;
@@ -66,15 +69,15 @@ std::string plan_to_dot(const Plan& plan) {
         out += "  " + pass_node(at) + " [label=\"" + label + "\"];\n";
     }
     for (std::size_t i = 0; i < plan.culled.size(); ++i) {
-        out += "  c" + std::to_string(i) + " [label=" + quoted(plan.culled[i] + " (culled)") +
+        out += numbered("  c", i) + " [label=" + quoted(plan.culled[i] + " (culled)") +
                ", style=dashed, color=gray, fontcolor=gray];\n";
     }
     for (const PlanEdge& e : plan.edges) {
         const PlanResource& resource = plan.resources[e.resource];
         const std::string colour(kPalette[resource.texture % kPalette.size()]);
-        out += "  " + pass_node(e.from_pass) + ":f" + std::to_string(e.from_port) + ":e -> " + pass_node(e.to_pass) +
-               ":f" + std::to_string(e.to_port) + ":w [color=" + quoted(colour) + ", fontcolor=" + quoted(colour) +
-               ", label=" + quoted("t" + std::to_string(resource.texture)) + "];\n";
+        out += "  " + pass_node(e.from_pass) + numbered(":f", e.from_port) + ":e -> " + pass_node(e.to_pass) +
+               numbered(":f", e.to_port) + ":w [color=" + quoted(colour) + ", fontcolor=" + quoted(colour) +
+               ", label=" + quoted(numbered("t", resource.texture)) + "];\n";
     }
     if (!plan.graph_outputs.empty()) {
         out += "  output [shape=doublecircle, label=\"output\"];\n";
@@ -87,8 +90,8 @@ std::string plan_to_dot(const Plan& plan) {
                 if (!marked || !pass.ports[i].resource) continue;
                 const uint32_t texture = plan.resources[*pass.ports[i].resource].texture;
                 const std::string colour(kPalette[texture % kPalette.size()]);
-                out += "  " + pass_node(at) + ":f" + std::to_string(i) + ":e -> output [color=" + quoted(colour) +
-                       ", label=" + quoted("t" + std::to_string(texture)) + "];\n";
+                out += "  " + pass_node(at) + numbered(":f", i) + ":e -> output [color=" + quoted(colour) +
+                       ", label=" + quoted(numbered("t", texture)) + "];\n";
             }
         }
     }

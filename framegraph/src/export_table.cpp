@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "loom/framegraph/export.hpp"
+#include "text.hpp"
 
 namespace loom::fg {
 namespace {
@@ -35,6 +36,8 @@ private:
     std::vector<std::vector<std::string>> rows_;
 };
 
+std::string numbered(std::string_view prefix, uint64_t number) { return detail::concat(prefix, number); }
+
 std::string ratio(uint64_t value, uint64_t bound) {
     if (bound == 0) return "-";
     char buffer[32];
@@ -61,7 +64,7 @@ std::string plan_to_table(const Plan& plan) {
                       std::to_string(plan.frame.height) + ", sharing " + std::string(spec_sharing_name(plan.sharing)) +
                       "\n\n";
 
-    out += "order (" + std::to_string(plan.order.size()) + " passes";
+    out += numbered("order (", plan.order.size()) + " passes";
     if (!plan.culled.empty()) {
         out += "; culled:";
         for (const std::string& name : plan.culled) out += " " + name;
@@ -75,7 +78,7 @@ std::string plan_to_table(const Plan& plan) {
             if (!ports.empty()) ports += "  ";
             ports += std::string(port.kind == PortKind::Input ? "<" : port.kind == PortKind::Output ? ">" : "<>") +
                      port.name + "=";
-            ports += port.resource ? "t" + std::to_string(plan.resources[*port.resource].texture) : "-";
+            ports += port.resource ? numbered("t", plan.resources[*port.resource].texture) : "-";
         }
         order.add({std::to_string(at), pass.name + (pass.side_effect ? " (side effect)" : ""), ports});
     }
@@ -91,12 +94,12 @@ std::string plan_to_table(const Plan& plan) {
             format += " (default)";
         }
         std::string size = std::to_string(r.spec.extent.width) + "x" + std::to_string(r.spec.extent.height);
-        if (r.spec.samples != 1) size += " x" + std::to_string(r.spec.samples);
-        if (r.spec.mips != 1) size += " m" + std::to_string(r.spec.mips);
-        if (r.spec.layers != 1) size += " l" + std::to_string(r.spec.layers);
+        if (r.spec.samples != 1) size += numbered(" x", r.spec.samples);
+        if (r.spec.mips != 1) size += numbered(" m", r.spec.mips);
+        if (r.spec.layers != 1) size += numbered(" l", r.spec.layers);
         resources.add({r.name + (r.graph_output ? " (output)" : ""), format, size,
                        std::to_string(r.lifetime.first) + "-" + std::to_string(r.lifetime.last),
-                       "t" + std::to_string(r.texture), format_bytes(r.bytes)});
+                       numbered("t", r.texture), format_bytes(r.bytes)});
     }
     out += resources.render("  ") + "\n";
 
@@ -110,7 +113,7 @@ std::string plan_to_table(const Plan& plan) {
         }
         std::string placement = "-";
         if (t.placement) {
-            placement = "heap " + std::to_string(t.placement->heap) + " @ " + std::to_string(t.placement->offset);
+            placement = numbered("heap ", t.placement->heap) + numbered(" @ ", t.placement->offset);
         }
         textures.add({t.name, describe_resolved(t.spec), holds, format_bytes(t.bytes), placement});
     }
@@ -126,7 +129,10 @@ std::string plan_to_table(const Plan& plan) {
     out += summary.render("  ");
     if (!plan.heaps.empty()) {
         out += "  heaps:";
-        for (uint64_t size : plan.heaps) out += " " + format_bytes(size);
+        for (uint64_t size : plan.heaps) {
+            out += ' ';
+            out += format_bytes(size);
+        }
         out += "\n";
     }
     return out;

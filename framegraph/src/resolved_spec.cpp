@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <bit>
 
+#include "text.hpp"
+
 namespace loom::fg {
 namespace {
 
@@ -123,11 +125,10 @@ rhi::TextureDesc to_texture_desc(const ResolvedSpec& spec, std::string name) {
 }
 
 std::string describe_resolved(const ResolvedSpec& spec) {
-    std::string out = std::string(rhi::format_name(spec.format)) + " " + std::to_string(spec.extent.width) + "x" +
-                      std::to_string(spec.extent.height);
-    if (spec.samples != 1) out += " x" + std::to_string(spec.samples) + " samples";
-    if (spec.mips != 1) out += " " + std::to_string(spec.mips) + " mips";
-    if (spec.layers != 1) out += " " + std::to_string(spec.layers) + " layers";
+    std::string out = detail::concat(rhi::format_name(spec.format), " ", spec.extent.width, "x", spec.extent.height);
+    if (spec.samples != 1) detail::append(out, " x", spec.samples, " samples");
+    if (spec.mips != 1) detail::append(out, " ", spec.mips, " mips");
+    if (spec.layers != 1) detail::append(out, " ", spec.layers, " layers");
     return out;
 }
 

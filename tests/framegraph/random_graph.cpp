@@ -25,6 +25,13 @@ TextureSpec palette(uint32_t index) {
 }
 constexpr uint32_t kPaletteSize = 7;
 
+// prefix + number by appending (GCC 12 -O3 warns falsely about "literal" + std::to_string).
+std::string numbered(std::string_view prefix, uint32_t number) {
+    std::string out(prefix);
+    out += std::to_string(number);
+    return out;
+}
+
 // A port that produces a texture later passes may read.
 struct Producer {
     uint32_t pass = 0;
@@ -58,7 +65,7 @@ FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options) {
     passes.reserve(options.passes);
 
     for (uint32_t i = 0; i < options.passes; ++i) {
-        Pass pass("p" + std::to_string(i));
+        Pass pass(numbered("p", i));
         first_producer.push_back(static_cast<uint32_t>(producers.size()));
         const uint32_t window_start = i > options.window ? i - options.window : 0;
         std::vector<uint32_t> candidates;  // indices into producers
@@ -71,9 +78,9 @@ FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options) {
         for (uint32_t k = 0; k < input_count; ++k) {
             const uint32_t chosen = candidates[rng.below(static_cast<uint32_t>(candidates.size()))];
             const Producer& source = producers[chosen];
-            const std::string name = "i" + std::to_string(k);
+            const std::string name = numbered("i", k);
             pass.input(name, rng.percent(30) ? palette(source.spec) : TextureSpec{});
-            connections.push_back({"p" + std::to_string(source.pass) + "." + source.port, pass.name() + "." + name});
+            connections.push_back({numbered("p", source.pass) + "." + source.port, pass.name() + "." + name});
             read.push_back(chosen);
         }
 
@@ -87,14 +94,14 @@ FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options) {
                 Producer& source = producers[modifiable[rng.below(static_cast<uint32_t>(modifiable.size()))]];
                 source.modified_in_place = true;
                 pass.inout("io");
-                connections.push_back({"p" + std::to_string(source.pass) + "." + source.port, pass.name() + ".io"});
+                connections.push_back({numbered("p", source.pass) + "." + source.port, pass.name() + ".io"});
                 in_place = Producer{i, "io", source.spec, false};
             }
         }
 
         const uint32_t output_count = 1 + rng.below(options.max_outputs);
         for (uint32_t k = 0; k < output_count; ++k) {
-            const std::string name = "o" + std::to_string(k);
+            const std::string name = numbered("o", k);
             const uint32_t spec = rng.below(kPaletteSize);
             pass.declare(name, PortKind::Output, palette(spec), rng.percent(options.optional_output_percent));
             producers.push_back({i, name, spec, false});
