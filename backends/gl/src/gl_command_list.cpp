@@ -203,6 +203,10 @@ void GlCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
     }
     const GLuint fbo = device_->framebuffer_for(colors, depth, desc.depth ? std::array<uint32_t, 2>{desc.depth->mip, desc.depth->layer}
                                                                           : std::array<uint32_t, 2>{0, 0});
+    if (fbo == 0) {
+        fail(ErrorCode::Unsupported, what + "this combination of attachments is not a complete framebuffer on this device");
+        return;
+    }
     pass.framebuffer = fbo;
     // The pass moves its attachments into the attachment states itself.
     for (GlTexture* t : color_textures) t->state = ResourceState::RenderTarget;
@@ -517,7 +521,7 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
         out.push_back(r);
     }
     if (p.push_constant_size > 0) {
-        if (push_dirty_ || !push_binding_) {
+        if (push_dirty_ || !push_binding_ || push_binding_->size < p.push_constant_size) {
             // A copy of the push-constant block per change, so that every draw sees the
             // values current when it was recorded.
             const uint32_t size = std::max(p.push_constant_size, push_size_);
@@ -627,10 +631,7 @@ void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_
         for (const VertexBinding& v : vertex) cache.vertex_buffer(vao, v.slot, v.buffer, v.offset, v.stride);
         if (indexed) cache.element_buffer(vao, index_buffer);
         apply_bindings(cache, bindings);
-        if (base_instance_location >= 0) {
-            glProgramUniform1i(program, base_instance_location, static_cast<GLint>(first_instance));
-            cache.count_call();
-        }
+        if (base_instance_location >= 0) cache.base_instance(program, base_instance_location, static_cast<GLint>(first_instance));
         if (indexed) {
             glDrawElementsInstancedBaseVertexBaseInstance(topology, static_cast<GLsizei>(count), index_type,
                                                           reinterpret_cast<const void*>(index_offset),

@@ -188,7 +188,8 @@ public:
     rhi::HandlePool<rhi::BufferTag, GlBuffer>& buffers() { return buffers_; }
     rhi::HandlePool<rhi::SamplerTag, GlSampler>& samplers() { return samplers_; }
     rhi::HandlePool<rhi::PipelineTag, GlPipeline>& pipelines() { return pipelines_; }
-    /// The framebuffer object for this attachment set (created on first use).
+    /// The framebuffer object for this attachment set (created on first use); 0 when GL
+    /// reports the set incomplete.
     GLuint framebuffer_for(const std::vector<std::pair<const GlTexture*, std::array<uint32_t, 2>>>& colors,
                            const GlTexture* depth, std::array<uint32_t, 2> depth_mip_layer);
     /// Copies `data` into this frame's transient uniform memory.

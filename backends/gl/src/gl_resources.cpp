@@ -695,6 +695,10 @@ GLuint GlDevice::framebuffer_for(const std::vector<std::pair<const GlTexture*, s
         glNamedFramebufferDrawBuffers(fbo, static_cast<GLsizei>(draw_buffers.size()), draw_buffers.data());
     }
     glNamedFramebufferReadBuffer(fbo, draw_buffers.empty() ? GL_NONE : GL_COLOR_ATTACHMENT0);
+    if (glCheckNamedFramebufferStatus(fbo, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        glDeleteFramebuffers(1, &fbo);
+        return 0;
+    }
     framebuffers_[key] = fbo;
     return fbo;
 }

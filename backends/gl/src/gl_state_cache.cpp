@@ -12,6 +12,7 @@ void GlStateCache::invalidate() {
     storage_buffers_.fill(BufferRange{kUnknown, -1, -1});
     images_.fill(ImageBinding{kUnknown, -1, false, -1, 0, 0});
     vaos_.clear();
+    base_instances_.clear();
     viewport_known_ = false;
     scissor_known_ = false;
     caps_.clear();
@@ -87,6 +88,14 @@ void GlStateCache::element_buffer(GLuint vao, GLuint buffer) {
     glVertexArrayElementBuffer(vao, buffer);
     ++counters_->api_calls;
     ++counters_->buffer_binds;
+}
+
+void GlStateCache::base_instance(GLuint program, GLint location, GLint value) {
+    auto it = base_instances_.find(program);
+    if (it != base_instances_.end() && it->second == value) return;
+    base_instances_[program] = value;
+    glProgramUniform1i(program, location, value);
+    ++counters_->api_calls;
 }
 
 void GlStateCache::viewport(float x, float y, float w, float h, float min_depth, float max_depth) {

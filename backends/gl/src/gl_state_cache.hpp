@@ -73,6 +73,8 @@ public:
                     GLenum format);
     void vertex_buffer(GLuint vao, uint32_t slot, GLuint buffer, GLintptr offset, GLsizei stride);
     void element_buffer(GLuint vao, GLuint buffer);
+    /// Sets SPIRV-Cross's SPIRV_Cross_BaseInstance uniform of `program` (at `location`).
+    void base_instance(GLuint program, GLint location, GLint value);
 
     void viewport(float x, float y, float w, float h, float min_depth, float max_depth);
     void scissor(int32_t x, int32_t y, int32_t w, int32_t h);
@@ -127,6 +129,7 @@ private:
     std::array<BufferRange, kTrackedBindings> storage_buffers_{};
     std::array<ImageBinding, kTrackedBindings> images_{};
     std::unordered_map<GLuint, VaoState> vaos_;
+    std::unordered_map<GLuint, GLint> base_instances_;  ///< per program
     std::array<float, 6> viewport_{};
     bool viewport_known_ = false;
     std::array<int32_t, 4> scissor_{};
