@@ -159,6 +159,31 @@ TEST_F(GlContextTest, DestroyWhileRecordingIsDeferredUntilTheFrameRan) {
     EXPECT_EQ(rgba8_at(image, 4, 4), (std::array<int, 4>{0, 255, 0, 255}));
 }
 
+TEST_F(GlContextTest, RecordingInterleavedWithAnotherDeviceUsesTheRightContext) {
+    LOOM_ASSIGN_OR_FAIL(auto other, gl::create_gl_device(rhi::DeviceDesc{}));
+    LOOM_ASSIGN_OR_FAIL(auto mine, make_target(device(), "mine", rhi::Format::RGBA8Unorm, 4, 4));
+    LOOM_ASSIGN_OR_FAIL(auto theirs, make_target(*other, "theirs", rhi::Format::RGBA8Unorm, 4, 4));
+    rhi::CommandList& list = device().begin_frame();
+    // The other device makes its context current in the middle of this recording ...
+    LOOM_ASSERT_OK(run_frame(*other, [&](rhi::CommandList& l) {
+        l.begin_render_pass(clear_pass("theirs", theirs, {0, 0, 1, 1}));
+        l.end_render_pass();
+    }));
+    // ... and recording here goes on in this device's context (framebuffers, transient memory).
+    list.begin_render_pass(clear_pass("mine", mine, {1, 0, 0, 1}));
+    list.end_render_pass();
+    (void)list.transient_uniforms_of(std::array<float, 4>{});
+    LOOM_ASSERT_OK(device().end_frame());
+    LOOM_ASSIGN_OR_FAIL(rhi::Image a, device().read_texture(mine));
+    LOOM_ASSIGN_OR_FAIL(rhi::Image b, other->read_texture(theirs));
+    EXPECT_EQ(rgba8_at(a, 1, 1), (std::array<int, 4>{255, 0, 0, 255}));
+    EXPECT_EQ(rgba8_at(b, 1, 1), (std::array<int, 4>{0, 0, 255, 255}));
+    EXPECT_EQ(gl::gl_cache_stats(*other)->framebuffers, 1u);
+    EXPECT_EQ(caches().framebuffers, 1u);
+    LOOM_ASSERT_OK(other->destroy(theirs));
+    LOOM_ASSERT_OK(device().destroy(mine));
+}
+
 TEST(GlWindowTest, WindowedDeviceWithoutDisplayIsUnsupported) {
     const char* display = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");

@@ -100,7 +100,9 @@ Status GlDevice::end_frame() {
         busy_chunks_.push_back(std::move(chunk));
     }
     frame_chunks_.clear();
-    if (!list_->timers().empty()) pending_timers_.push_back(FrameTimers{std::move(list_->timers())});
+    // Every frame is queued, also one without timers, so that timer_results() describes the
+    // most recent finished frame rather than an older one that happened to have timers.
+    pending_timers_.push_back(FrameTimers{std::move(list_->timers())});
     glFlush();
 
     rhi::FrameStats stats;
@@ -130,6 +132,7 @@ Status GlDevice::wait_idle() {
 // ---- transient uniforms ----------------------------------------------------------------------
 
 rhi::BufferBinding GlDevice::allocate_transient(std::span<const std::byte> data) {
+    context_->make_current();  // recording may interleave with calls on another device
     const uint64_t alignment = caps_.uniform_buffer_offset_alignment;
     const uint64_t size = std::max<uint64_t>(data.size(), 1);
     TransientChunk* chunk = nullptr;
@@ -184,6 +187,7 @@ void GlDevice::recycle_transient_chunks(bool wait) {
 // ---- timers ----------------------------------------------------------------------------------
 
 GLuint GlDevice::acquire_query() {
+    context_->make_current();
     if (!free_queries_.empty()) {
         const GLuint q = free_queries_.back();
         free_queries_.pop_back();

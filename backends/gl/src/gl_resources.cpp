@@ -666,6 +666,7 @@ void GlDevice::release_vertex_array(const std::vector<uint32_t>& key) {
 
 GLuint GlDevice::framebuffer_for(const std::vector<std::pair<const GlTexture*, std::array<uint32_t, 2>>>& colors,
                                  const GlTexture* depth, std::array<uint32_t, 2> depth_mip_layer) {
+    context_->make_current();  // recording may interleave with calls on another device
     std::vector<GLuint> key;
     for (const auto& [texture, mip_layer] : colors) key.insert(key.end(), {texture->name, mip_layer[0], mip_layer[1]});
     key.push_back(0);  // separates colours from depth
