@@ -8,7 +8,9 @@
 //   graph.add_pass(Pass("composite").input("color").output("final"));
 //   graph.connect(port("geometry", "albedo"), port("composite", "color"));
 //   graph.mark_output(port("composite", "final"));
-//   auto plan = graph.plan({.frame = {1280, 720}});
+//   PlanOptions options;
+//   options.frame = {1280, 720};
+//   auto plan = graph.plan(options);
 
 #include <concepts>
 #include <cstdint>

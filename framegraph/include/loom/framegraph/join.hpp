@@ -22,7 +22,8 @@
 namespace loom::fg {
 
 /// What a join needs besides the two specs: the frame size (to compare a relative size with an
-/// absolute one) and the names of the two sides for the error message ("deferred.color").
+/// absolute one) and the names of the two sides for the error message ("deferred.color"). The
+/// names are views: the strings they show must outlive the join call.
 struct JoinContext {
     std::optional<Extent2D> frame;
     std::string_view a_name = "a";
