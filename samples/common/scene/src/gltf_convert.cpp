@@ -1,0 +1,560 @@
+#include "gltf_convert.hpp"
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <utility>
+
+#include "accessor_reader.hpp"
+#include "gltf_constants.hpp"
+#include "gltf_validate.hpp"
+#include "image_decode.hpp"
+#include "json_pointer.hpp"
+#include "loom/scene/geometry.hpp"
+
+namespace loom::scene::detail {
+namespace {
+
+// A vector element by a tinygltf index, or nullptr when the index is out of range (the
+// validator makes that impossible; this keeps the converter safe on its own).
+template <class T>
+const T* element(const std::vector<T>& items, int index) {
+    if (index < 0 || static_cast<std::size_t>(index) >= items.size()) return nullptr;
+    return &items[static_cast<std::size_t>(index)];
+}
+
+uint64_t as_index(std::size_t index) { return static_cast<uint64_t>(index); }
+
+glm::vec4 to_vec4(const std::vector<double>& values, const glm::vec4& fallback) {
+    if (values.size() != 4) return fallback;
+    return glm::vec4(static_cast<float>(values[0]), static_cast<float>(values[1]), static_cast<float>(values[2]),
+                     static_cast<float>(values[3]));
+}
+
+glm::vec3 to_vec3(const std::vector<double>& values, const glm::vec3& fallback) {
+    if (values.size() != 3) return fallback;
+    return glm::vec3(static_cast<float>(values[0]), static_cast<float>(values[1]), static_cast<float>(values[2]));
+}
+
+glm::mat4 local_matrix(const tinygltf::Node& node) {
+    if (node.matrix.size() == 16) {
+        glm::mat4 matrix(1.0f);
+        for (int column = 0; column < 4; ++column) {
+            for (int row = 0; row < 4; ++row) {
+                matrix[column][row] = static_cast<float>(node.matrix[static_cast<std::size_t>(column * 4 + row)]);
+            }
+        }
+        return matrix;
+    }
+    const glm::vec3 translation = to_vec3(node.translation, glm::vec3(0.0f));
+    const glm::vec3 scale = to_vec3(node.scale, glm::vec3(1.0f));
+    glm::quat rotation(1.0f, 0.0f, 0.0f, 0.0f);
+    if (node.rotation.size() == 4) {
+        // glTF stores (x, y, z, w); glm::quat's constructor takes (w, x, y, z).
+        rotation = glm::quat(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
+                             static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2]));
+        const float length = glm::length(rotation);
+        rotation = length > 0.0f ? rotation / length : glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+    }
+    glm::mat4 matrix = glm::mat4_cast(rotation);
+    matrix[0] *= scale.x;
+    matrix[1] *= scale.y;
+    matrix[2] *= scale.z;
+    matrix[3] = glm::vec4(translation, 1.0f);
+    return matrix;
+}
+
+// The cofactor matrix of m's upper 3x3, times the sign of its determinant: proportional (by a
+// positive factor) to the inverse transpose, and defined for singular matrices too.
+glm::mat3 normal_matrix(const glm::mat4& m, bool& flips_winding) {
+    const glm::vec3 c0(m[0]);
+    const glm::vec3 c1(m[1]);
+    const glm::vec3 c2(m[2]);
+    glm::mat3 cofactor(glm::cross(c1, c2), glm::cross(c2, c0), glm::cross(c0, c1));
+    const float determinant = glm::dot(c0, glm::cross(c1, c2));
+    flips_winding = determinant < 0.0f;
+    if (flips_winding) cofactor = -cofactor;
+    return cofactor;
+}
+
+rhi::Filter filter_of(int gltf_filter) {
+    switch (gltf_filter) {
+        case filter::kNearest:
+        case filter::kNearestMipmapNearest:
+        case filter::kNearestMipmapLinear: return rhi::Filter::Nearest;
+        default: return rhi::Filter::Linear;
+    }
+}
+
+rhi::AddressMode address_of(int gltf_wrap) {
+    switch (gltf_wrap) {
+        case wrap::kClampToEdge: return rhi::AddressMode::ClampToEdge;
+        case wrap::kMirroredRepeat: return rhi::AddressMode::MirroredRepeat;
+        default: return rhi::AddressMode::Repeat;
+    }
+}
+
+class Converter {
+public:
+    Converter(const tinygltf::Model& model, const std::string& file_label, const LoadOptions& options,
+              std::vector<std::string>& warnings)
+        : model_(model), file_label_(file_label), options_(options), warnings_(warnings),
+          reader_(model, file_label, options.max_accessor_elements) {}
+
+    Result<Scene> run() {
+        scene_.source = file_label_;
+        LOOM_TRY(convert_materials());
+        LOOM_TRY(convert_meshes());
+        LOOM_TRY(convert_nodes());
+        LOOM_TRY(flatten_scene());
+        return std::move(scene_);
+    }
+
+private:
+    Error error(const JsonPointer& where, const std::string& what) const {
+        return make_error(ErrorCode::Parse, located_message(file_label_, where.str(), what));
+    }
+    void warn(const JsonPointer& where, const std::string& what) {
+        warnings_.push_back(located_message(file_label_, where.str(), what));
+    }
+
+    // ---- materials, textures, images ------------------------------------------------------
+
+    Status convert_materials() {
+        for (std::size_t m = 0; m < model_.materials.size(); ++m) {
+            const tinygltf::Material& source = model_.materials[m];
+            const JsonPointer where = JsonPointer{} / "materials" / as_index(m);
+            const JsonPointer pbr_where = where / "pbrMetallicRoughness";
+            const auto& pbr = source.pbrMetallicRoughness;
+            Material material;
+            material.name = source.name.empty() ? "material " + std::to_string(m) : source.name;
+            material.base_color_factor = to_vec4(pbr.baseColorFactor, glm::vec4(1.0f));
+            material.metallic_factor = static_cast<float>(pbr.metallicFactor);
+            material.roughness_factor = static_cast<float>(pbr.roughnessFactor);
+            material.emissive_factor = to_vec3(source.emissiveFactor, glm::vec3(0.0f));
+            material.normal_scale = static_cast<float>(source.normalTexture.scale);
+            material.occlusion_strength = static_cast<float>(source.occlusionTexture.strength);
+            material.alpha_mode = source.alphaMode == "MASK"    ? AlphaMode::Mask
+                                  : source.alphaMode == "BLEND" ? AlphaMode::Blend
+                                                                : AlphaMode::Opaque;
+            material.alpha_cutoff = static_cast<float>(source.alphaCutoff);
+            material.double_sided = source.doubleSided;
+
+            auto base_color = texture_ref(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true,
+                                          pbr_where / "baseColorTexture");
+            if (!base_color) return base_color.take_error();
+            material.base_color_texture = *base_color;
+            auto metallic_roughness = texture_ref(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                                                  false, pbr_where / "metallicRoughnessTexture");
+            if (!metallic_roughness) return metallic_roughness.take_error();
+            material.metallic_roughness_texture = *metallic_roughness;
+            auto normal = texture_ref(source.normalTexture.index, source.normalTexture.texCoord, false, where / "normalTexture");
+            if (!normal) return normal.take_error();
+            material.normal_texture = *normal;
+            auto occlusion = texture_ref(source.occlusionTexture.index, source.occlusionTexture.texCoord, false,
+                                         where / "occlusionTexture");
+            if (!occlusion) return occlusion.take_error();
+            material.occlusion_texture = *occlusion;
+            auto emissive = texture_ref(source.emissiveTexture.index, source.emissiveTexture.texCoord, true,
+                                        where / "emissiveTexture");
+            if (!emissive) return emissive.take_error();
+            material.emissive_texture = *emissive;
+            scene_.materials.push_back(std::move(material));
+        }
+        return {};
+    }
+
+    Result<std::optional<TextureRef>> texture_ref(int texture, int tex_coord, bool srgb, const JsonPointer& where) {
+        if (texture < 0) return std::optional<TextureRef>{};
+        TextureRef ref;
+        if (tex_coord == 0 || tex_coord == 1) {
+            ref.uv_set = static_cast<uint32_t>(tex_coord);
+        } else {
+            warn(where / "texCoord", "TEXCOORD_" + std::to_string(tex_coord) + " is not imported; UV set 0 is used instead");
+        }
+        const tinygltf::Texture* source = element(model_.textures, texture);
+        if (source == nullptr) return error(where / "index", "texture " + std::to_string(texture) + " does not exist");
+        if (source->source < 0) {
+            warn(where / "index", "texture " + std::to_string(texture) + " has no image source; the material ignores it");
+            return std::optional<TextureRef>{};
+        }
+        const auto key = std::pair{texture, srgb};
+        if (const auto cached = textures_.find(key); cached != textures_.end()) {
+            ref.texture = cached->second;
+            return std::optional<TextureRef>{ref};
+        }
+        const JsonPointer texture_where = JsonPointer{} / "textures" / static_cast<uint64_t>(texture);
+        auto image = scene_image(source->source, srgb, texture_where / "source");
+        if (!image) return image.take_error();
+        Texture result;
+        result.image = *image;
+        result.sampler = sampler(source->sampler);
+        result.name = !source->name.empty() ? source->name : scene_.images[*image].name;
+        result.sampler.name = result.name;
+        ref.texture = static_cast<uint32_t>(scene_.textures.size());
+        scene_.textures.push_back(std::move(result));
+        textures_.emplace(key, ref.texture);
+        return std::optional<TextureRef>{ref};
+    }
+
+    Result<uint32_t> scene_image(int image, bool srgb, const JsonPointer& where) {
+        const auto key = std::pair{image, srgb};
+        if (const auto cached = images_.find(key); cached != images_.end()) return cached->second;
+        const tinygltf::Image* source = element(model_.images, image);
+        if (source == nullptr) return error(where, "image " + std::to_string(image) + " does not exist");
+        const JsonPointer image_where = JsonPointer{} / "images" / static_cast<uint64_t>(image);
+        auto decoded = decode_image(source->image, srgb ? rhi::Format::RGBA8Srgb : rhi::Format::RGBA8Unorm,
+                                    options_.max_image_dimension);
+        if (!decoded) return error(image_where, decoded.error().message);
+        TextureImage result;
+        result.source = static_cast<uint32_t>(image);
+        if (!source->name.empty()) {
+            result.name = source->name;
+        } else if (!source->uri.empty() && source->uri.compare(0, 5, "data:") != 0) {
+            result.name = source->uri;
+        } else {
+            result.name = "image " + std::to_string(image);
+        }
+        result.image = std::move(*decoded);
+        const auto index = static_cast<uint32_t>(scene_.images.size());
+        scene_.images.push_back(std::move(result));
+        images_.emplace(key, index);
+        return index;
+    }
+
+    // glTF sampler → rhi::SamplerDesc. Undefined filters mean "auto" in glTF; loom picks
+    // trilinear filtering. Minification filters without mipmaps sample level 0 only.
+    rhi::SamplerDesc sampler(int index) const {
+        rhi::SamplerDesc desc;
+        desc.address_u = rhi::AddressMode::Repeat;
+        desc.address_v = rhi::AddressMode::Repeat;
+        desc.address_w = rhi::AddressMode::Repeat;
+        desc.mag_filter = rhi::Filter::Linear;
+        desc.min_filter = rhi::Filter::Linear;
+        desc.mipmap_filter = rhi::Filter::Linear;
+        const tinygltf::Sampler* source = element(model_.samplers, index);
+        if (source == nullptr) return desc;
+        if (source->magFilter >= 0) desc.mag_filter = filter_of(source->magFilter);
+        if (source->minFilter >= 0) {
+            desc.min_filter = filter_of(source->minFilter);
+            switch (source->minFilter) {
+                case filter::kNearest:
+                case filter::kLinear:
+                    desc.mipmap_filter = rhi::Filter::Nearest;
+                    desc.max_lod = 0.0f;
+                    break;
+                case filter::kNearestMipmapNearest:
+                case filter::kLinearMipmapNearest: desc.mipmap_filter = rhi::Filter::Nearest; break;
+                default: desc.mipmap_filter = rhi::Filter::Linear; break;
+            }
+        }
+        desc.address_u = address_of(source->wrapS);
+        desc.address_v = address_of(source->wrapT);
+        return desc;
+    }
+
+    uint32_t default_material() {
+        if (!default_material_) {
+            Material material;
+            material.name = "default";
+            default_material_ = static_cast<uint32_t>(scene_.materials.size());
+            scene_.materials.push_back(std::move(material));
+        }
+        return *default_material_;
+    }
+
+    // ---- meshes ------------------------------------------------------------------------------
+
+    Status convert_meshes() {
+        for (std::size_t m = 0; m < model_.meshes.size(); ++m) {
+            const tinygltf::Mesh& source = model_.meshes[m];
+            Mesh mesh;
+            mesh.name = source.name.empty() ? "mesh " + std::to_string(m) : source.name;
+            for (std::size_t p = 0; p < source.primitives.size(); ++p) {
+                auto primitive = convert_primitive(source.primitives[p], JsonPointer{} / "meshes" / as_index(m) /
+                                                                             "primitives" / as_index(p));
+                if (!primitive) return primitive.take_error();
+                if (*primitive) mesh.primitives.push_back(std::move(**primitive));
+            }
+            scene_.meshes.push_back(std::move(mesh));
+        }
+        return {};
+    }
+
+    // Reads a float attribute of `components` components into the vertices with `assign`.
+    template <class Assign>
+    Status read_attribute(const tinygltf::Primitive& source, const char* semantic, uint32_t components,
+                          std::vector<Vertex>& vertices, Assign&& assign) {
+        const auto found = source.attributes.find(semantic);
+        if (found == source.attributes.end()) return {};
+        auto values = reader_.read_floats(found->second, components);
+        if (!values) return values.take_error();
+        if (values->size() != vertices.size() * components) {
+            return error(JsonPointer{} / "accessors" / static_cast<uint64_t>(std::max(found->second, 0)),
+                         std::string(semantic) + " count differs from POSITION's");
+        }
+        for (std::size_t v = 0; v < vertices.size(); ++v) assign(vertices[v], values->data() + v * components);
+        return {};
+    }
+
+    Result<std::optional<Primitive>> convert_primitive(const tinygltf::Primitive& source, const JsonPointer& where) {
+        const int mode = source.mode < 0 ? TINYGLTF_MODE_TRIANGLES : source.mode;
+        if (mode < TINYGLTF_MODE_TRIANGLES || mode > TINYGLTF_MODE_TRIANGLE_FAN) {
+            static constexpr const char* kNames[] = {"points", "lines", "line loop", "line strip"};
+            warn(where / "mode", std::string("mode ") + std::to_string(mode) + " (" +
+                                     (mode >= 0 && mode < 4 ? kNames[mode] : "unknown") +
+                                     ") is not supported; the primitive is skipped");
+            return std::optional<Primitive>{};
+        }
+        const auto position = source.attributes.find("POSITION");
+        if (position == source.attributes.end()) {
+            warn(where / "attributes", "primitive has no POSITION; it is skipped");
+            return std::optional<Primitive>{};
+        }
+        for (const auto& [semantic, accessor] : source.attributes) {
+            const bool extra_uv = semantic.rfind("TEXCOORD_", 0) == 0 && semantic != "TEXCOORD_0" && semantic != "TEXCOORD_1";
+            const bool extra_color = semantic.rfind("COLOR_", 0) == 0 && semantic != "COLOR_0";
+            const bool skinning = semantic.rfind("JOINTS_", 0) == 0 || semantic.rfind("WEIGHTS_", 0) == 0;
+            if (extra_uv || extra_color || skinning) warn(where / "attributes" / semantic, semantic + " is not imported");
+        }
+
+        Primitive primitive;
+        auto positions = reader_.read_floats(position->second, 3);
+        if (!positions) return positions.take_error();
+        const std::size_t vertex_count = positions->size() / 3;
+        primitive.vertices.resize(vertex_count);
+        for (std::size_t v = 0; v < vertex_count; ++v) {
+            const float* p = positions->data() + v * 3;
+            primitive.vertices[v].position = glm::vec3(p[0], p[1], p[2]);
+            primitive.bounds.extend(primitive.vertices[v].position);
+        }
+        const auto has = [&](const char* semantic) { return source.attributes.count(semantic) != 0; };
+        LOOM_TRY(read_attribute(source, "NORMAL", 3, primitive.vertices,
+                                [](Vertex& v, const float* x) { v.normal = glm::vec3(x[0], x[1], x[2]); }));
+        LOOM_TRY(read_attribute(source, "TANGENT", 4, primitive.vertices,
+                                [](Vertex& v, const float* x) { v.tangent = glm::vec4(x[0], x[1], x[2], x[3]); }));
+        LOOM_TRY(read_attribute(source, "TEXCOORD_0", 2, primitive.vertices,
+                                [](Vertex& v, const float* x) { v.uv0 = glm::vec2(x[0], x[1]); }));
+        LOOM_TRY(read_attribute(source, "TEXCOORD_1", 2, primitive.vertices,
+                                [](Vertex& v, const float* x) { v.uv1 = glm::vec2(x[0], x[1]); }));
+        if (has("COLOR_0")) {
+            const uint32_t components = reader_.components(source.attributes.at("COLOR_0"));
+            if (components == 3) {
+                LOOM_TRY(read_attribute(source, "COLOR_0", 3, primitive.vertices,
+                                        [](Vertex& v, const float* x) { v.color = glm::vec4(x[0], x[1], x[2], 1.0f); }));
+            } else {
+                LOOM_TRY(read_attribute(source, "COLOR_0", 4, primitive.vertices,
+                                        [](Vertex& v, const float* x) { v.color = glm::vec4(x[0], x[1], x[2], x[3]); }));
+            }
+        }
+        if (has("NORMAL")) primitive.from_file |= kAttributeNormal;
+        if (has("TANGENT")) primitive.from_file |= kAttributeTangent;
+        if (has("TEXCOORD_0")) primitive.from_file |= kAttributeUv0;
+        if (has("TEXCOORD_1")) primitive.from_file |= kAttributeUv1;
+        if (has("COLOR_0")) primitive.from_file |= kAttributeColor;
+
+        // Indices: from the file (every value checked against the vertex count) or implicit.
+        std::vector<uint32_t> sequence;
+        if (source.indices >= 0) {
+            auto indices = reader_.read_indices(source.indices);
+            if (!indices) return indices.take_error();
+            sequence = std::move(*indices);
+            for (std::size_t i = 0; i < sequence.size(); ++i) {
+                if (sequence[i] >= vertex_count) {
+                    return error(where / "indices", "index " + std::to_string(sequence[i]) + " (element " + std::to_string(i) +
+                                                        ") is past the vertex count " + std::to_string(vertex_count));
+                }
+            }
+        } else {
+            sequence.resize(vertex_count);
+            for (std::size_t i = 0; i < vertex_count; ++i) sequence[i] = static_cast<uint32_t>(i);
+        }
+        const auto topology = static_cast<Topology>(mode);
+        if (topology == Topology::Triangles && sequence.size() % 3 != 0) {
+            warn(source.indices >= 0 ? where / "indices" : where, std::to_string(sequence.size()) +
+                                                                      " vertices do not form whole triangles; the last " +
+                                                                      std::to_string(sequence.size() % 3) + " are ignored");
+        }
+        primitive.indices = triangle_list(topology, sequence);
+
+        primitive.material = source.material >= 0 ? static_cast<uint32_t>(source.material) : default_material();
+        if (primitive.material >= scene_.materials.size()) return error(where / "material", "material does not exist");
+        const Material& material = scene_.materials[primitive.material];
+        for (const auto& ref : {material.base_color_texture, material.metallic_roughness_texture, material.normal_texture,
+                                material.occlusion_texture, material.emissive_texture}) {
+            if (ref && !(primitive.from_file & (ref->uv_set == 0 ? kAttributeUv0 : kAttributeUv1))) {
+                warn(where, "material " + std::to_string(primitive.material) + " samples TEXCOORD_" +
+                                std::to_string(ref->uv_set) + ", which the primitive does not have (it reads (0, 0))");
+                break;
+            }
+        }
+
+        if (!(primitive.from_file & kAttributeNormal)) {
+            if (options_.normals == NormalGeneration::Flat) {
+                generate_flat_normals(primitive);
+            } else {
+                generate_smooth_normals(primitive);
+            }
+        }
+        const bool wants_tangents = options_.tangents == TangentGeneration::Always ||
+                                    (options_.tangents == TangentGeneration::WhenNormalMapped && material.normal_texture);
+        if (wants_tangents && !(primitive.from_file & kAttributeTangent)) {
+            generate_tangents(primitive, material.normal_texture ? material.normal_texture->uv_set : 0);
+        }
+        return std::optional<Primitive>{std::move(primitive)};
+    }
+
+    // ---- nodes and the flattened scene ---------------------------------------------------
+
+    Status convert_nodes() {
+        const std::size_t count = model_.nodes.size();
+        scene_.nodes.resize(count);
+        for (std::size_t n = 0; n < count; ++n) {
+            const tinygltf::Node& source = model_.nodes[n];
+            Node& node = scene_.nodes[n];
+            node.name = source.name.empty() ? "node " + std::to_string(n) : source.name;
+            node.local = local_matrix(source);
+            if (source.mesh >= 0) node.mesh = static_cast<uint32_t>(source.mesh);
+            if (source.camera >= 0) node.camera = static_cast<uint32_t>(source.camera);
+            for (const int child : source.children) {
+                if (child < 0 || static_cast<std::size_t>(child) >= count) {
+                    return error(JsonPointer{} / "nodes" / as_index(n) / "children", "child node does not exist");
+                }
+                node.children.push_back(static_cast<uint32_t>(child));
+            }
+        }
+        for (std::size_t n = 0; n < count; ++n) {
+            for (const uint32_t child : scene_.nodes[n].children) {
+                if (scene_.nodes[child].parent) {
+                    return error(JsonPointer{} / "nodes" / as_index(n) / "children", "node has several parents");
+                }
+                scene_.nodes[child].parent = static_cast<uint32_t>(n);
+            }
+        }
+        // World matrices top-down from the roots, without recursion (hierarchies can be deep).
+        std::vector<uint32_t> stack;
+        std::size_t visited = 0;
+        for (std::size_t n = 0; n < count; ++n) {
+            if (!scene_.nodes[n].parent) stack.push_back(static_cast<uint32_t>(n));
+        }
+        while (!stack.empty()) {
+            const uint32_t n = stack.back();
+            stack.pop_back();
+            ++visited;
+            Node& node = scene_.nodes[n];
+            node.world = node.parent ? scene_.nodes[*node.parent].world * node.local : node.local;
+            for (const uint32_t child : node.children) stack.push_back(child);
+        }
+        if (visited != count) return error(JsonPointer{} / "nodes", "the node hierarchy has a cycle");
+        return {};
+    }
+
+    Result<std::vector<uint32_t>> scene_roots() const {
+        const tinygltf::Scene* chosen = nullptr;
+        if (options_.scene) {
+            chosen = element(model_.scenes, static_cast<int>(std::min<uint32_t>(*options_.scene, INT32_MAX)));
+            if (chosen == nullptr) {
+                return make_error(ErrorCode::InvalidArgument,
+                                  file_label_ + ": LoadOptions::scene is " + std::to_string(*options_.scene) +
+                                      ", but the file has " + std::to_string(model_.scenes.size()) + " scenes");
+            }
+        } else if (model_.defaultScene >= 0) {
+            chosen = element(model_.scenes, model_.defaultScene);
+        } else if (!model_.scenes.empty()) {
+            chosen = &model_.scenes.front();
+        }
+        std::vector<uint32_t> roots;
+        if (chosen != nullptr) {
+            for (const int node : chosen->nodes) {
+                if (node < 0 || static_cast<std::size_t>(node) >= scene_.nodes.size()) {
+                    return error(JsonPointer{} / "scenes", "scene node does not exist");
+                }
+                roots.push_back(static_cast<uint32_t>(node));
+            }
+        } else {
+            for (std::size_t n = 0; n < scene_.nodes.size(); ++n) {
+                if (!scene_.nodes[n].parent) roots.push_back(static_cast<uint32_t>(n));
+            }
+        }
+        return roots;
+    }
+
+    Camera camera_instance(const Node& node) const {
+        Camera camera;
+        const tinygltf::Camera* source = element(model_.cameras, static_cast<int>(*node.camera));
+        camera.world = node.world;
+        if (source == nullptr) return camera;
+        camera.name = !source->name.empty() ? source->name : node.name;
+        if (source->type == "orthographic") {
+            OrthographicProjection ortho;
+            ortho.xmag = static_cast<float>(source->orthographic.xmag);
+            ortho.ymag = static_cast<float>(source->orthographic.ymag);
+            ortho.znear = static_cast<float>(source->orthographic.znear);
+            ortho.zfar = static_cast<float>(source->orthographic.zfar);
+            camera.projection = ortho;
+        } else {
+            PerspectiveProjection perspective;
+            perspective.yfov = static_cast<float>(source->perspective.yfov);
+            perspective.znear = static_cast<float>(source->perspective.znear);
+            // tinygltf stores an absent aspect ratio / far plane as 0.
+            if (source->perspective.aspectRatio > 0.0) perspective.aspect_ratio = static_cast<float>(source->perspective.aspectRatio);
+            if (source->perspective.zfar > 0.0) perspective.zfar = static_cast<float>(source->perspective.zfar);
+            camera.projection = perspective;
+        }
+        return camera;
+    }
+
+    Status flatten_scene() {
+        auto roots = scene_roots();
+        if (!roots) return roots.take_error();
+        // Depth-first in file order: a node, then its children in the order they are listed.
+        std::vector<uint32_t> stack(roots->rbegin(), roots->rend());
+        while (!stack.empty()) {
+            const uint32_t n = stack.back();
+            stack.pop_back();
+            const Node& node = scene_.nodes[n];
+            if (node.mesh) {
+                if (*node.mesh >= scene_.meshes.size()) return error(JsonPointer{} / "nodes" / uint64_t{n} / "mesh", "mesh does not exist");
+                const Mesh& mesh = scene_.meshes[*node.mesh];
+                for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+                    const Primitive& primitive = mesh.primitives[p];
+                    DrawItem item;
+                    item.node = n;
+                    item.mesh = *node.mesh;
+                    item.primitive = static_cast<uint32_t>(p);
+                    item.material = primitive.material;
+                    item.world = node.world;
+                    item.normal_matrix = normal_matrix(node.world, item.flips_winding);
+                    for (const Vertex& vertex : primitive.vertices) {
+                        item.world_bounds.extend(glm::vec3(node.world * glm::vec4(vertex.position, 1.0f)));
+                    }
+                    scene_.bounds.extend(item.world_bounds);
+                    scene_.draw_items.push_back(std::move(item));
+                }
+            }
+            if (node.camera) scene_.cameras.push_back(camera_instance(node));
+            for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.push_back(*child);
+        }
+        return {};
+    }
+
+    const tinygltf::Model& model_;
+    const std::string& file_label_;
+    const LoadOptions& options_;
+    std::vector<std::string>& warnings_;
+    AccessorReader reader_;
+    Scene scene_;
+    std::map<std::pair<int, bool>, uint32_t> textures_;  // (glTF texture, sRGB) → Scene::textures
+    std::map<std::pair<int, bool>, uint32_t> images_;    // (glTF image, sRGB) → Scene::images
+    std::optional<uint32_t> default_material_;
+};
+
+}  // namespace
+
+Result<Scene> convert_model(const tinygltf::Model& model, const std::string& file_label, const LoadOptions& options,
+                            std::vector<std::string>& warnings) {
+    Converter converter(model, file_label, options, warnings);
+    return converter.run();
+}
+
+}  // namespace loom::scene::detail

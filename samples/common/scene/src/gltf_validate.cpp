@@ -1,0 +1,1114 @@
+#include "gltf_validate.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <string_view>
+#include <system_error>
+
+#include "checked_math.hpp"
+#include "gltf_constants.hpp"
+#include "json_pointer.hpp"
+#include "uri.hpp"
+
+namespace loom::scene::detail {
+
+std::string located_message(const std::string& file_label, const std::string& pointer, const std::string& what) {
+    if (pointer.empty()) return file_label + ": " + what;
+    return file_label + ": " + pointer + ": " + what;
+}
+
+namespace {
+
+using json = nlohmann::json;
+
+// Largest integer JSON can carry exactly (2^53 - 1); sizes and offsets above it are rejected.
+constexpr uint64_t kMaxSafeInteger = (uint64_t{1} << 53) - 1;
+// tinygltf keeps some values (references, sparse counts and offsets, texCoord) in an int.
+constexpr uint64_t kMaxInt = static_cast<uint64_t>(std::numeric_limits<int32_t>::max());
+// Deeper JSON (only possible in extras and extensions) would overflow the stack of tinygltf's
+// recursive conversion of those values.
+constexpr std::size_t kMaxJsonDepth = 256;
+
+constexpr std::array<std::string_view, 1> kSupportedRequiredExtensions = {"KHR_mesh_quantization"};
+
+/// The top-level arrays of a glTF document that other objects refer to by index.
+enum class Collection : uint8_t {
+    Accessors, Animations, Buffers, BufferViews, Cameras, Images, Materials, Meshes, Nodes, Samplers, Scenes, Skins,
+    Textures,
+};
+constexpr std::size_t kCollectionCount = static_cast<std::size_t>(Collection::Textures) + 1;
+
+struct CollectionInfo {
+    const char* key;       // top-level property
+    const char* singular;  // for messages
+};
+
+constexpr std::array<CollectionInfo, kCollectionCount> kCollections = {{
+    {"accessors", "accessor"},
+    {"animations", "animation"},
+    {"buffers", "buffer"},
+    {"bufferViews", "buffer view"},
+    {"cameras", "camera"},
+    {"images", "image"},
+    {"materials", "material"},
+    {"meshes", "mesh"},
+    {"nodes", "node"},
+    {"samplers", "sampler"},
+    {"scenes", "scene"},
+    {"skins", "skin"},
+    {"textures", "texture"},
+}};
+
+const CollectionInfo& info(Collection collection) { return kCollections[static_cast<std::size_t>(collection)]; }
+
+// What later checks need to know about a validated buffer view / accessor.
+struct ViewInfo {
+    uint64_t buffer = 0;
+    uint64_t byte_offset = 0;
+    uint64_t byte_length = 0;
+    std::optional<uint64_t> byte_stride;
+};
+
+struct AccessorInfo {
+    ElementType type;
+    int component_type = 0;
+    bool normalized = false;
+    uint64_t count = 0;
+    std::optional<uint64_t> buffer_view;
+};
+
+std::string short_dump(const json& value) {
+    std::string text = value.dump();
+    if (text.size() > 40) text = text.substr(0, 37) + "...";
+    return text;
+}
+
+std::string format_number(double value) {
+    std::string text = json(value).dump();
+    return text;
+}
+
+// A finite number in [min, max] (bounds exclusive when asked).
+struct Range {
+    double min = -std::numeric_limits<double>::infinity();
+    double max = std::numeric_limits<double>::infinity();
+    bool min_exclusive = false;
+    bool max_exclusive = false;
+};
+
+class Validator {
+public:
+    Validator(const json& root, const ValidationInput& input, ValidationOutput& output)
+        : root_(root), input_(input), output_(output) {}
+
+    Status run() {
+        if (!root_.is_object()) return parse_error(JsonPointer{}, "the JSON root is not an object");
+        LOOM_TRY(check_depth());
+        LOOM_TRY(check_asset());
+        LOOM_TRY(check_extensions());
+        LOOM_TRY(check_collections());
+        LOOM_TRY(check_buffers());
+        LOOM_TRY(check_buffer_views());
+        LOOM_TRY(check_accessors());
+        LOOM_TRY(check_images());
+        LOOM_TRY(check_samplers());
+        LOOM_TRY(check_textures());
+        LOOM_TRY(check_materials());
+        LOOM_TRY(check_meshes());
+        LOOM_TRY(check_cameras());
+        LOOM_TRY(check_skins());
+        LOOM_TRY(check_nodes());
+        LOOM_TRY(check_scenes());
+        LOOM_TRY(check_animations());
+        return {};
+    }
+
+private:
+    // ---- messages ------------------------------------------------------------------------
+
+    Error parse_error(const JsonPointer& where, const std::string& what) const {
+        return make_error(ErrorCode::Parse, located_message(input_.file_label, where.str(), what));
+    }
+    Error io_error(const JsonPointer& where, const std::string& what) const {
+        return make_error(ErrorCode::Io, located_message(input_.file_label, where.str(), what));
+    }
+    void warn(const JsonPointer& where, const std::string& what) {
+        output_.warnings.push_back(located_message(input_.file_label, where.str(), what));
+    }
+
+    // ---- typed access to JSON properties ---------------------------------------------------
+
+    static const json* find(const json& object, std::string_view key) {
+        const auto it = object.find(key);
+        return it == object.end() ? nullptr : &*it;
+    }
+
+    Result<const json*> member(const json& object, std::string_view key, const JsonPointer& where, bool required,
+                               json::value_t kind, const char* kind_name) const {
+        const json* value = find(object, key);
+        if (value == nullptr) {
+            if (required) return parse_error(where, "required property '" + std::string(key) + "' is missing");
+            return static_cast<const json*>(nullptr);
+        }
+        if (value->type() != kind) {
+            return parse_error(where / key, std::string("must be ") + kind_name + ", got " + short_dump(*value));
+        }
+        return value;
+    }
+    Result<const json*> object_member(const json& object, std::string_view key, const JsonPointer& where, bool required) const {
+        return member(object, key, where, required, json::value_t::object, "an object");
+    }
+    Result<const json*> array_member(const json& object, std::string_view key, const JsonPointer& where, bool required) const {
+        return member(object, key, where, required, json::value_t::array, "an array");
+    }
+
+    Result<std::optional<std::string>> string_member(const json& object, std::string_view key, const JsonPointer& where,
+                                                     bool required) const {
+        auto value = member(object, key, where, required, json::value_t::string, "a string");
+        if (!value) return value.take_error();
+        if (*value == nullptr) return std::optional<std::string>{};
+        return std::optional<std::string>{(*value)->get<std::string>()};
+    }
+
+    Result<std::optional<bool>> bool_member(const json& object, std::string_view key, const JsonPointer& where) const {
+        auto value = member(object, key, where, false, json::value_t::boolean, "a boolean");
+        if (!value) return value.take_error();
+        if (*value == nullptr) return std::optional<bool>{};
+        return std::optional<bool>{(*value)->get<bool>()};
+    }
+
+    // An integer JSON value (not 3.0, not 1e300) in [min, max].
+    Result<uint64_t> integer_value(const json& value, const JsonPointer& where, uint64_t min, uint64_t max) const {
+        uint64_t result = 0;
+        if (value.is_number_unsigned()) {
+            result = value.get<uint64_t>();
+        } else if (value.is_number_integer()) {
+            const int64_t signed_value = value.get<int64_t>();
+            if (signed_value < 0) {
+                return parse_error(where, "must be at least " + std::to_string(min) + ", got " + std::to_string(signed_value));
+            }
+            result = static_cast<uint64_t>(signed_value);
+        } else {
+            return parse_error(where, "must be an integer, got " + short_dump(value));
+        }
+        if (result < min) return parse_error(where, "must be at least " + std::to_string(min) + ", got " + std::to_string(result));
+        if (result > max) {
+            return parse_error(where, "must be at most " + std::to_string(max) + ", got " + std::to_string(result));
+        }
+        return result;
+    }
+
+    Result<std::optional<uint64_t>> integer_member(const json& object, std::string_view key, const JsonPointer& where,
+                                                   bool required, uint64_t min = 0, uint64_t max = kMaxSafeInteger) const {
+        const json* value = find(object, key);
+        if (value == nullptr) {
+            if (required) return parse_error(where, "required property '" + std::string(key) + "' is missing");
+            return std::optional<uint64_t>{};
+        }
+        auto result = integer_value(*value, where / key, min, max);
+        if (!result) return result.take_error();
+        return std::optional<uint64_t>{*result};
+    }
+
+    std::size_t count(Collection collection) const { return counts_[static_cast<std::size_t>(collection)]; }
+
+    Result<uint64_t> reference_value(const json& value, const JsonPointer& where, Collection collection) const {
+        auto index = integer_value(value, where, 0, kMaxInt);
+        if (!index) return index.take_error();
+        if (*index >= count(collection)) {
+            const std::size_t available = count(collection);
+            return parse_error(where, std::string(info(collection).singular) + " " + std::to_string(*index) +
+                                          " does not exist (the file has " + std::to_string(available) + " " +
+                                          info(collection).key + ")");
+        }
+        return *index;
+    }
+
+    // An index into a top-level collection; an error names the missing object.
+    Result<std::optional<uint64_t>> reference_member(const json& object, std::string_view key, const JsonPointer& where,
+                                                     Collection collection, bool required) const {
+        const json* value = find(object, key);
+        if (value == nullptr) {
+            if (required) return parse_error(where, "required property '" + std::string(key) + "' is missing");
+            return std::optional<uint64_t>{};
+        }
+        auto index = reference_value(*value, where / key, collection);
+        if (!index) return index.take_error();
+        return std::optional<uint64_t>{*index};
+    }
+
+
+    Result<double> number_value(const json& value, const JsonPointer& where, const Range& range) const {
+        if (!value.is_number()) return parse_error(where, "must be a number, got " + short_dump(value));
+        const double number = value.get<double>();
+        if (!std::isfinite(number)) return parse_error(where, "must be a finite number");
+        const bool below = range.min_exclusive ? !(number > range.min) : !(number >= range.min);
+        const bool above = range.max_exclusive ? !(number < range.max) : !(number <= range.max);
+        if (below || above) {
+            std::string bounds;
+            if (std::isfinite(range.min)) bounds += (range.min_exclusive ? "> " : ">= ") + format_number(range.min);
+            if (std::isfinite(range.max)) {
+                if (!bounds.empty()) bounds += " and ";
+                bounds += (range.max_exclusive ? "< " : "<= ") + format_number(range.max);
+            }
+            return parse_error(where, "must be " + bounds + ", got " + format_number(number));
+        }
+        return number;
+    }
+
+    Result<std::optional<double>> number_member(const json& object, std::string_view key, const JsonPointer& where,
+                                                bool required, const Range& range = {}) const {
+        const json* value = find(object, key);
+        if (value == nullptr) {
+            if (required) return parse_error(where, "required property '" + std::string(key) + "' is missing");
+            return std::optional<double>{};
+        }
+        auto number = number_value(*value, where / key, range);
+        if (!number) return number.take_error();
+        return std::optional<double>{*number};
+    }
+
+    // An array of exactly `size` numbers in `range` (or of any size when size == 0).
+    Status number_array_member(const json& object, std::string_view key, const JsonPointer& where, std::size_t size,
+                               const Range& range = {}) const {
+        auto array = array_member(object, key, where, false);
+        if (!array) return array.take_error();
+        if (*array == nullptr) return {};
+        const json& values = **array;
+        if (size != 0 && values.size() != size) {
+            return parse_error(where / key, "must have " + std::to_string(size) + " elements, has " +
+                                                std::to_string(values.size()));
+        }
+        for (std::size_t i = 0; i < values.size(); ++i) {
+            auto number = number_value(values[i], where / key / i, range);
+            if (!number) return number.take_error();
+        }
+        return {};
+    }
+
+    // Checks that every element of root[key] is an object and calls check(element, pointer, index).
+    template <class Check>
+    Status for_each(Collection collection, Check&& check) {
+        const json* array = find(root_, info(collection).key);
+        if (array == nullptr) return {};
+        const JsonPointer base = JsonPointer{} / info(collection).key;
+        for (std::size_t i = 0; i < array->size(); ++i) LOOM_TRY(check((*array)[i], base / i, i));
+        return {};
+    }
+
+    // ---- the document ---------------------------------------------------------------------
+
+    // The nesting depth of the whole document, walked without recursion.
+    Status check_depth() const {
+        std::vector<std::pair<const json*, std::size_t>> stack{{&root_, 1}};
+        while (!stack.empty()) {
+            const auto [value, depth] = stack.back();
+            stack.pop_back();
+            if (depth > kMaxJsonDepth) {
+                return parse_error(JsonPointer{}, "JSON nesting is deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+            }
+            if (value->is_structured()) {
+                for (const json& child : *value) {
+                    if (child.is_structured()) stack.emplace_back(&child, depth + 1);
+                }
+            }
+        }
+        return {};
+    }
+
+    // "2.0" → {2, 0}; nullopt for anything that is not "<digits>.<digits>".
+    static std::optional<std::pair<uint64_t, uint64_t>> parse_version(const std::string& text) {
+        const std::size_t dot = text.find('.');
+        if (dot == std::string::npos || dot == 0 || dot + 1 == text.size() || dot > 9 || text.size() - dot - 1 > 9) {
+            return std::nullopt;
+        }
+        uint64_t major = 0;
+        uint64_t minor = 0;
+        for (std::size_t i = 0; i < text.size(); ++i) {
+            if (i == dot) continue;
+            if (text[i] < '0' || text[i] > '9') return std::nullopt;
+            uint64_t& part = i < dot ? major : minor;
+            part = part * 10 + static_cast<uint64_t>(text[i] - '0');
+        }
+        return std::pair{major, minor};
+    }
+
+    Status check_asset() {
+        const JsonPointer root;
+        auto asset = object_member(root_, "asset", root, true);
+        if (!asset) return asset.take_error();
+        const JsonPointer where = root / "asset";
+        auto version = string_member(**asset, "version", where, true);
+        if (!version) return version.take_error();
+        const auto parsed = parse_version(**version);
+        if (!parsed) {
+            return parse_error(where / "version", "'" + **version + "' is not a glTF version (expected \"2.0\")");
+        }
+        if (parsed->first != 2) {
+            return parse_error(where / "version",
+                               "glTF version " + **version + " is not supported (only glTF 2.x can be loaded)");
+        }
+        auto min_version = string_member(**asset, "minVersion", where, false);
+        if (!min_version) return min_version.take_error();
+        if (*min_version) {
+            const auto min_parsed = parse_version(**min_version);
+            if (!min_parsed) {
+                return parse_error(where / "minVersion", "'" + **min_version + "' is not a glTF version");
+            }
+            if (*min_parsed > std::pair<uint64_t, uint64_t>{2, 0}) {
+                return parse_error(where / "minVersion",
+                                   "the file requires glTF " + **min_version + ", this importer supports glTF 2.0");
+            }
+        }
+        return {};
+    }
+
+    Status check_extensions() {
+        const JsonPointer root;
+        std::set<std::string> used;
+        for (const char* key : {"extensionsUsed", "extensionsRequired"}) {
+            auto array = array_member(root_, key, root, false);
+            if (!array) return array.take_error();
+            if (*array == nullptr) continue;
+            for (std::size_t i = 0; i < (*array)->size(); ++i) {
+                const json& name = (**array)[i];
+                if (!name.is_string()) return parse_error(root / key / i, "must be a string, got " + short_dump(name));
+                used.insert(name.get<std::string>());
+                if (std::string_view(key) == "extensionsRequired") {
+                    const std::string extension = name.get<std::string>();
+                    const bool supported = std::find(kSupportedRequiredExtensions.begin(), kSupportedRequiredExtensions.end(),
+                                                     extension) != kSupportedRequiredExtensions.end();
+                    if (!supported) {
+                        return parse_error(root / key / i, "required extension '" + extension +
+                                                               "' is not supported (supported: KHR_mesh_quantization)");
+                    }
+                }
+            }
+        }
+        mesh_quantization_ = used.count("KHR_mesh_quantization") != 0;
+        return {};
+    }
+
+    // Every top-level collection that is present is an array of objects; remember the sizes
+    // so that references can be checked in any order.
+    Status check_collections() {
+        const JsonPointer root;
+        for (std::size_t c = 0; c < kCollectionCount; ++c) {
+            const Collection collection = static_cast<Collection>(c);
+            auto array = array_member(root_, info(collection).key, root, false);
+            if (!array) return array.take_error();
+            if (*array == nullptr) continue;
+            for (std::size_t i = 0; i < (*array)->size(); ++i) {
+                if (!(**array)[i].is_object()) {
+                    return parse_error(root / info(collection).key / i, "must be an object, got " + short_dump((**array)[i]));
+                }
+            }
+            counts_[c] = (*array)->size();
+        }
+        auto scene = reference_member(root_, "scene", root, Collection::Scenes, false);
+        if (!scene) return scene.take_error();
+        return {};
+    }
+
+    // ---- resources ---------------------------------------------------------------------------
+
+    // Reads the file a relative URI names; stores it for tinygltf under the name tinygltf will
+    // ask for, cut to `keep_bytes` when given. Returns the file's full size.
+    Result<uint64_t> load_file(const std::string& uri, const JsonPointer& where, std::optional<uint64_t> keep_bytes) {
+        if (uri.empty()) return parse_error(where, "URI is empty");
+        if (has_uri_scheme(uri)) {
+            return parse_error(where, "URI '" + uri + "' has a scheme; only relative file paths and data URIs are supported");
+        }
+        auto decoded = percent_decode(uri);
+        if (!decoded) return parse_error(where, "invalid URI '" + uri + "': " + decoded.error().message);
+        if (decoded->empty() || decoded->front() == '/' || decoded->find('\0') != std::string::npos) {
+            return parse_error(where, "URI '" + uri + "' is not a relative file path");
+        }
+        const std::filesystem::path path = input_.base_dir / std::filesystem::path(*decoded);
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(path, ec)) {
+            return io_error(where, "file '" + *decoded + "' not found (looked for " + path.string() + ")");
+        }
+        std::ifstream stream(path, std::ios::binary);
+        std::vector<unsigned char> bytes;
+        if (stream) {
+            stream.seekg(0, std::ios::end);
+            const std::streamoff size = stream.tellg();
+            stream.seekg(0, std::ios::beg);
+            if (size >= 0) {
+                bytes.resize(static_cast<std::size_t>(size));
+                stream.read(reinterpret_cast<char*>(bytes.data()), size);
+            }
+        }
+        if (!stream) return io_error(where, "cannot read file '" + path.string() + "'");
+        const uint64_t full_size = bytes.size();
+        if (keep_bytes && *keep_bytes < bytes.size()) bytes.resize(static_cast<std::size_t>(*keep_bytes));
+        std::string key = input_.tinygltf_base_dir;
+        if (!key.empty() && key.back() != '/') key += '/';
+        key += tinygltf_url_decode(uri);
+        output_.files.emplace(std::move(key), std::move(bytes));
+        return full_size;
+    }
+
+    // Decodes a data URI strictly and checks that tinygltf will recognise it as one.
+    Result<uint64_t> check_data_uri(const std::string& uri, const JsonPointer& where) const {
+        auto data = decode_data_uri(uri);
+        if (!data) return parse_error(where, data.error().message);
+        if (!tinygltf_decodes_media_type(data->media_type) ||
+            uri.compare(0, 5 + data->media_type.size(), "data:" + data->media_type) != 0) {
+            return parse_error(where, "data URI media type '" + data->media_type + "' is not supported (supported: " +
+                                          std::string(tinygltf_media_types()) + ")");
+        }
+        return static_cast<uint64_t>(data->data.size());
+    }
+
+    Status check_buffers() {
+        return for_each(Collection::Buffers, [&](const json& buffer, const JsonPointer& where, std::size_t index) -> Status {
+            auto byte_length = integer_member(buffer, "byteLength", where, true, 1);
+            if (!byte_length) return byte_length.take_error();
+            const uint64_t declared = **byte_length;
+            auto uri = string_member(buffer, "uri", where, false);
+            if (!uri) return uri.take_error();
+            if (!*uri) {
+                if (!input_.is_glb || index != 0) {
+                    return parse_error(where, "buffer has no uri (only the first buffer of a GLB file may use its BIN chunk)");
+                }
+                if (!input_.glb_bin_size) return parse_error(where, "buffer has no uri and the GLB file has no BIN chunk");
+                if (*input_.glb_bin_size < declared) {
+                    return parse_error(where / "byteLength", "byteLength " + std::to_string(declared) +
+                                                                 " exceeds the GLB BIN chunk's " +
+                                                                 std::to_string(*input_.glb_bin_size) + " bytes");
+                }
+            } else if (is_data_uri(**uri)) {
+                auto size = check_data_uri(**uri, where / "uri");
+                if (!size) return size.take_error();
+                if (*size != declared) {
+                    return parse_error(where / "uri", "data URI holds " + std::to_string(*size) +
+                                                          " bytes, but the buffer's byteLength is " + std::to_string(declared));
+                }
+            } else {
+                auto size = load_file(**uri, where / "uri", declared);
+                if (!size) return size.take_error();
+                if (*size < declared) {
+                    return parse_error(where / "byteLength", "byteLength " + std::to_string(declared) + " exceeds the " +
+                                                                 std::to_string(*size) + " bytes of file '" + **uri + "'");
+                }
+            }
+            buffer_lengths_.push_back(declared);
+            return {};
+        });
+    }
+
+    Status check_buffer_views() {
+        return for_each(Collection::BufferViews, [&](const json& view, const JsonPointer& where, std::size_t) -> Status {
+            ViewInfo result;
+            auto buffer = reference_member(view, "buffer", where, Collection::Buffers, true);
+            if (!buffer) return buffer.take_error();
+            result.buffer = **buffer;
+            auto offset = integer_member(view, "byteOffset", where, false);
+            if (!offset) return offset.take_error();
+            result.byte_offset = offset->value_or(0);
+            auto length = integer_member(view, "byteLength", where, true, 1);
+            if (!length) return length.take_error();
+            result.byte_length = **length;
+            auto stride = integer_member(view, "byteStride", where, false, 4, 252);
+            if (!stride) return stride.take_error();
+            if (*stride && **stride % 4 != 0) {
+                return parse_error(where / "byteStride", "must be a multiple of 4, got " + std::to_string(**stride));
+            }
+            result.byte_stride = *stride;
+            const uint64_t buffer_length = buffer_lengths_[result.buffer];
+            if (!range_fits(result.byte_offset, result.byte_length, buffer_length)) {
+                return parse_error(where, "byteOffset " + std::to_string(result.byte_offset) + " + byteLength " +
+                                              std::to_string(result.byte_length) + " exceeds the byteLength " +
+                                              std::to_string(buffer_length) + " of buffer " + std::to_string(result.buffer));
+            }
+            views_.push_back(result);
+            return {};
+        });
+    }
+
+    // A range of `size` bytes at `offset` inside buffer view `view`, for messages of the form
+    // "<what> needs bytes [a, b) but buffer view N has byteLength L".
+    Status check_in_view(uint64_t view, uint64_t offset, std::optional<uint64_t> size, const JsonPointer& where,
+                         const std::string& what) const {
+        const uint64_t length = views_[view].byte_length;
+        if (!size) return parse_error(where, what + " has a size that overflows 64 bits");
+        if (!range_fits(offset, *size, length)) {
+            const auto end = checked_add(offset, *size);
+            return parse_error(where, what + " needs bytes [" + std::to_string(offset) + ", " +
+                                          (end ? std::to_string(*end) : std::string("overflow")) +
+                                          ") of buffer view " + std::to_string(view) + ", which has byteLength " +
+                                          std::to_string(length));
+        }
+        return {};
+    }
+
+    Status check_accessors() {
+        const uint64_t max_elements = input_.options->max_accessor_elements;
+        return for_each(Collection::Accessors, [&](const json& accessor, const JsonPointer& where, std::size_t) -> Status {
+            AccessorInfo result;
+            auto component = integer_member(accessor, "componentType", where, true, 0, kMaxInt);
+            if (!component) return component.take_error();
+            result.component_type = static_cast<int>(**component);
+            if (component_size(result.component_type) == 0) {
+                return parse_error(where / "componentType", std::to_string(**component) + " is not a valid component type");
+            }
+            auto type = string_member(accessor, "type", where, true);
+            if (!type) return type.take_error();
+            result.type = element_type(**type);
+            if (result.type.components == 0) return parse_error(where / "type", "'" + **type + "' is not a valid accessor type");
+            auto normalized = bool_member(accessor, "normalized", where);
+            if (!normalized) return normalized.take_error();
+            result.normalized = normalized->value_or(false);
+            if (result.normalized && (result.component_type == component_type::kFloat ||
+                                      result.component_type == component_type::kUnsignedInt)) {
+                return parse_error(where / "normalized", "only 8- and 16-bit integer components can be normalized");
+            }
+            auto count = integer_member(accessor, "count", where, true, 1);
+            if (!count) return count.take_error();
+            result.count = **count;
+            if (result.count > max_elements) {
+                return parse_error(where / "count", "count " + std::to_string(result.count) + " exceeds the importer's limit " +
+                                                        std::to_string(max_elements) +
+                                                        " (LoadOptions::max_accessor_elements)");
+            }
+            for (const char* key : {"min", "max"}) {
+                LOOM_TRY(number_array_member(accessor, key, where, result.type.components));
+            }
+            auto offset = integer_member(accessor, "byteOffset", where, false);
+            if (!offset) return offset.take_error();
+            const uint64_t byte_offset = offset->value_or(0);
+            auto view = reference_member(accessor, "bufferView", where, Collection::BufferViews, false);
+            if (!view) return view.take_error();
+            result.buffer_view = *view;
+            const uint32_t size = component_size(result.component_type);
+            const uint32_t element = element_size(result.type, result.component_type);
+            if (*view) {
+                const ViewInfo& view_info = views_[**view];
+                if ((view_info.byte_offset + byte_offset) % size != 0) {
+                    return parse_error(where / "byteOffset", "the accessor's offset in its buffer (" +
+                                                                 std::to_string(view_info.byte_offset + byte_offset) +
+                                                                 ") is not a multiple of its component size " +
+                                                                 std::to_string(size));
+                }
+                const uint64_t stride = view_info.byte_stride.value_or(element);
+                if (stride < element) {
+                    return parse_error(where, "element size " + std::to_string(element) + " exceeds the byteStride " +
+                                                  std::to_string(stride) + " of buffer view " + std::to_string(**view));
+                }
+                LOOM_TRY(check_in_view(**view, byte_offset, strided_span(result.count, stride, element), where,
+                                       "accessor (" + std::to_string(result.count) + " elements of " +
+                                           std::to_string(element) + " bytes, stride " + std::to_string(stride) + ")"));
+            } else if (offset->has_value()) {
+                return parse_error(where / "byteOffset", "byteOffset needs a bufferView");
+            }
+            LOOM_TRY(check_sparse(accessor, where, result, element));
+            accessors_.push_back(result);
+            return {};
+        });
+    }
+
+    Status check_sparse(const json& accessor, const JsonPointer& accessor_where, const AccessorInfo& info_,
+                        uint32_t element) const {
+        auto sparse = object_member(accessor, "sparse", accessor_where, false);
+        if (!sparse) return sparse.take_error();
+        if (*sparse == nullptr) return {};
+        const JsonPointer where = accessor_where / "sparse";
+        auto count = integer_member(**sparse, "count", where, true, 1, std::min<uint64_t>(info_.count, kMaxInt));
+        if (!count) return count.take_error();
+
+        auto indices = object_member(**sparse, "indices", where, true);
+        if (!indices) return indices.take_error();
+        const JsonPointer indices_where = where / "indices";
+        auto indices_view = reference_member(**indices, "bufferView", indices_where, Collection::BufferViews, true);
+        if (!indices_view) return indices_view.take_error();
+        auto indices_offset = integer_member(**indices, "byteOffset", indices_where, false, 0, kMaxInt);
+        if (!indices_offset) return indices_offset.take_error();
+        auto index_component = integer_member(**indices, "componentType", indices_where, true, 0, kMaxInt);
+        if (!index_component) return index_component.take_error();
+        const int index_type = static_cast<int>(**index_component);
+        if (index_type != component_type::kUnsignedByte && index_type != component_type::kUnsignedShort &&
+            index_type != component_type::kUnsignedInt) {
+            return parse_error(indices_where / "componentType",
+                               std::to_string(index_type) + " is not an index component type (5121, 5123 or 5125)");
+        }
+        if (views_[**indices_view].byte_stride) {
+            return parse_error(indices_where / "bufferView", "buffer view " + std::to_string(**indices_view) +
+                                                                 " of sparse indices must not have a byteStride");
+        }
+        const uint64_t index_offset = indices_offset->value_or(0);
+        if ((views_[**indices_view].byte_offset + index_offset) % component_size(index_type) != 0) {
+            return parse_error(indices_where / "byteOffset", "sparse indices are not aligned to their component size");
+        }
+        LOOM_TRY(check_in_view(**indices_view, index_offset, checked_mul(**count, component_size(index_type)), indices_where,
+                               "sparse indices"));
+
+        auto values = object_member(**sparse, "values", where, true);
+        if (!values) return values.take_error();
+        const JsonPointer values_where = where / "values";
+        auto values_view = reference_member(**values, "bufferView", values_where, Collection::BufferViews, true);
+        if (!values_view) return values_view.take_error();
+        auto values_offset = integer_member(**values, "byteOffset", values_where, false, 0, kMaxInt);
+        if (!values_offset) return values_offset.take_error();
+        if (views_[**values_view].byte_stride) {
+            return parse_error(values_where / "bufferView", "buffer view " + std::to_string(**values_view) +
+                                                                " of sparse values must not have a byteStride");
+        }
+        const uint64_t value_offset = values_offset->value_or(0);
+        if ((views_[**values_view].byte_offset + value_offset) % component_size(info_.component_type) != 0) {
+            return parse_error(values_where / "byteOffset", "sparse values are not aligned to their component size");
+        }
+        return check_in_view(**values_view, value_offset, checked_mul(**count, element), values_where, "sparse values");
+    }
+
+    Status check_images() {
+        return for_each(Collection::Images, [&](const json& image, const JsonPointer& where, std::size_t) -> Status {
+            auto uri = string_member(image, "uri", where, false);
+            if (!uri) return uri.take_error();
+            auto view = reference_member(image, "bufferView", where, Collection::BufferViews, false);
+            if (!view) return view.take_error();
+            auto mime = string_member(image, "mimeType", where, false);
+            if (!mime) return mime.take_error();
+            if (uri->has_value() == view->has_value()) {
+                return parse_error(where, "an image needs exactly one of 'uri' and 'bufferView'");
+            }
+            if (*view) {
+                if (!*mime) return parse_error(where, "required property 'mimeType' is missing (the image uses a bufferView)");
+                if (**mime != "image/png" && **mime != "image/jpeg") {
+                    return parse_error(where / "mimeType", "'" + **mime + "' is not a glTF image type (image/png, image/jpeg)");
+                }
+                return {};
+            }
+            if (is_data_uri(**uri)) {
+                auto size = check_data_uri(**uri, where / "uri");
+                if (!size) return size.take_error();
+                return {};
+            }
+            auto size = load_file(**uri, where / "uri", std::nullopt);
+            if (!size) return size.take_error();
+            if (*size == 0) return parse_error(where / "uri", "image file '" + **uri + "' is empty");
+            return {};
+        });
+    }
+
+    Status check_samplers() {
+        return for_each(Collection::Samplers, [&](const json& sampler, const JsonPointer& where, std::size_t) -> Status {
+            struct Allowed {
+                const char* key;
+                std::vector<uint64_t> values;
+            };
+            const Allowed checks[] = {
+                {"magFilter", {filter::kNearest, filter::kLinear}},
+                {"minFilter",
+                 {filter::kNearest, filter::kLinear, filter::kNearestMipmapNearest, filter::kLinearMipmapNearest,
+                  filter::kNearestMipmapLinear, filter::kLinearMipmapLinear}},
+                {"wrapS", {wrap::kClampToEdge, wrap::kMirroredRepeat, wrap::kRepeat}},
+                {"wrapT", {wrap::kClampToEdge, wrap::kMirroredRepeat, wrap::kRepeat}},
+            };
+            for (const Allowed& check : checks) {
+                auto value = integer_member(sampler, check.key, where, false, 0, kMaxInt);
+                if (!value) return value.take_error();
+                if (*value && std::find(check.values.begin(), check.values.end(), **value) == check.values.end()) {
+                    return parse_error(where / check.key, std::to_string(**value) + " is not a valid " + check.key);
+                }
+            }
+            return {};
+        });
+    }
+
+    Status check_textures() {
+        return for_each(Collection::Textures, [&](const json& texture, const JsonPointer& where, std::size_t) -> Status {
+            auto sampler = reference_member(texture, "sampler", where, Collection::Samplers, false);
+            if (!sampler) return sampler.take_error();
+            auto source = reference_member(texture, "source", where, Collection::Images, false);
+            if (!source) return source.take_error();
+            return {};
+        });
+    }
+
+    // A textureInfo (or normal/occlusion textureInfo) object.
+    Status check_texture_info(const json& parent, const char* key, const JsonPointer& parent_where) const {
+        auto texture_info = object_member(parent, key, parent_where, false);
+        if (!texture_info) return texture_info.take_error();
+        if (*texture_info == nullptr) return {};
+        const JsonPointer where = parent_where / key;
+        auto index = reference_member(**texture_info, "index", where, Collection::Textures, true);
+        if (!index) return index.take_error();
+        auto tex_coord = integer_member(**texture_info, "texCoord", where, false, 0, kMaxInt);
+        if (!tex_coord) return tex_coord.take_error();
+        if (std::string_view(key) == "normalTexture") {
+            auto scale = number_member(**texture_info, "scale", where, false);
+            if (!scale) return scale.take_error();
+        }
+        if (std::string_view(key) == "occlusionTexture") {
+            auto strength = number_member(**texture_info, "strength", where, false, Range{0.0, 1.0});
+            if (!strength) return strength.take_error();
+        }
+        return {};
+    }
+
+    Status check_materials() {
+        return for_each(Collection::Materials, [&](const json& material, const JsonPointer& where, std::size_t) -> Status {
+            const Range unit{0.0, 1.0};
+            auto pbr = object_member(material, "pbrMetallicRoughness", where, false);
+            if (!pbr) return pbr.take_error();
+            if (*pbr) {
+                const JsonPointer pbr_where = where / "pbrMetallicRoughness";
+                LOOM_TRY(number_array_member(**pbr, "baseColorFactor", pbr_where, 4, unit));
+                auto metallic = number_member(**pbr, "metallicFactor", pbr_where, false, unit);
+                if (!metallic) return metallic.take_error();
+                auto roughness = number_member(**pbr, "roughnessFactor", pbr_where, false, unit);
+                if (!roughness) return roughness.take_error();
+                LOOM_TRY(check_texture_info(**pbr, "baseColorTexture", pbr_where));
+                LOOM_TRY(check_texture_info(**pbr, "metallicRoughnessTexture", pbr_where));
+            }
+            LOOM_TRY(check_texture_info(material, "normalTexture", where));
+            LOOM_TRY(check_texture_info(material, "occlusionTexture", where));
+            LOOM_TRY(check_texture_info(material, "emissiveTexture", where));
+            LOOM_TRY(number_array_member(material, "emissiveFactor", where, 3, unit));
+            auto alpha_mode = string_member(material, "alphaMode", where, false);
+            if (!alpha_mode) return alpha_mode.take_error();
+            if (*alpha_mode && **alpha_mode != "OPAQUE" && **alpha_mode != "MASK" && **alpha_mode != "BLEND") {
+                return parse_error(where / "alphaMode", "'" + **alpha_mode + "' is not OPAQUE, MASK or BLEND");
+            }
+            auto cutoff = number_member(material, "alphaCutoff", where, false, Range{0.0});
+            if (!cutoff) return cutoff.take_error();
+            auto double_sided = bool_member(material, "doubleSided", where);
+            if (!double_sided) return double_sided.take_error();
+            return {};
+        });
+    }
+
+    // Whether `semantic` may use this accessor format (core glTF, plus KHR_mesh_quantization
+    // when the file uses it). Unknown semantics accept anything.
+    bool attribute_format_allowed(std::string_view semantic, const AccessorInfo& accessor) const {
+        using namespace component_type;
+        const int c = accessor.component_type;
+        const bool n = accessor.normalized;
+        const uint32_t k = accessor.type.columns == 0 ? accessor.type.components : 0;
+        const bool q = mesh_quantization_;
+        const bool is_float = c == kFloat;
+        const bool unorm = (c == kUnsignedByte || c == kUnsignedShort) && n;
+        const bool snorm = (c == kByte || c == kShort) && n;
+        const bool small_int = c == kByte || c == kUnsignedByte || c == kShort || c == kUnsignedShort;
+        if (semantic == "POSITION") return k == 3 && (is_float || (q && small_int));
+        if (semantic == "NORMAL") return k == 3 && (is_float || (q && snorm));
+        if (semantic == "TANGENT") return k == 4 && (is_float || (q && snorm));
+        if (semantic.substr(0, 9) == "TEXCOORD_") return k == 2 && (is_float || unorm || (q && small_int));
+        if (semantic.substr(0, 6) == "COLOR_") return (k == 3 || k == 4) && (is_float || unorm);
+        if (semantic.substr(0, 7) == "JOINTS_") return k == 4 && (c == kUnsignedByte || c == kUnsignedShort) && !n;
+        if (semantic.substr(0, 8) == "WEIGHTS_") return k == 4 && (is_float || unorm);
+        return true;
+    }
+
+    static std::string describe(const AccessorInfo& accessor) {
+        return std::string(accessor.type.name) + " " + std::string(component_type_name(accessor.component_type)) +
+               (accessor.normalized ? " normalized" : "");
+    }
+
+    Status check_primitive(const json& primitive, const JsonPointer& where) {
+        auto attributes = object_member(primitive, "attributes", where, true);
+        if (!attributes) return attributes.take_error();
+        std::optional<std::pair<std::string, uint64_t>> first_count;
+        for (const auto& [semantic, value] : (*attributes)->items()) {
+            const JsonPointer attribute_where = where / "attributes" / semantic;
+            auto accessor = reference_value(value, attribute_where, Collection::Accessors);
+            if (!accessor) return accessor.take_error();
+            const AccessorInfo& accessor_info = accessors_[*accessor];
+            if (!attribute_format_allowed(semantic, accessor_info)) {
+                return parse_error(attribute_where, "accessor " + std::to_string(*accessor) + " is " +
+                                                        describe(accessor_info) + ", which " + semantic + " cannot use" +
+                                                        (mesh_quantization_ ? "" : " (without KHR_mesh_quantization)"));
+            }
+            if (!first_count) {
+                first_count = {semantic, accessor_info.count};
+            } else if (first_count->second != accessor_info.count) {
+                return parse_error(attribute_where, "accessor " + std::to_string(*accessor) + " has " +
+                                                        std::to_string(accessor_info.count) + " elements, but " +
+                                                        first_count->first + " has " + std::to_string(first_count->second) +
+                                                        " (all attributes of a primitive need the same count)");
+            }
+        }
+        auto indices = reference_member(primitive, "indices", where, Collection::Accessors, false);
+        if (!indices) return indices.take_error();
+        if (*indices) {
+            const AccessorInfo& accessor = accessors_[**indices];
+            const int c = accessor.component_type;
+            if (accessor.type.components != 1 || accessor.type.columns != 0 || accessor.normalized ||
+                (c != component_type::kUnsignedByte && c != component_type::kUnsignedShort &&
+                 c != component_type::kUnsignedInt)) {
+                return parse_error(where / "indices", "accessor " + std::to_string(**indices) + " is " + describe(accessor) +
+                                                          "; indices must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or "
+                                                          "UNSIGNED_INT");
+            }
+            if (accessor.buffer_view && views_[*accessor.buffer_view].byte_stride) {
+                return parse_error(where / "indices", "accessor " + std::to_string(**indices) + " uses buffer view " +
+                                                          std::to_string(*accessor.buffer_view) +
+                                                          ", which has a byteStride (indices must be tightly packed)");
+            }
+        }
+        auto material = reference_member(primitive, "material", where, Collection::Materials, false);
+        if (!material) return material.take_error();
+        auto mode = integer_member(primitive, "mode", where, false, 0, 6);
+        if (!mode) return mode.take_error();
+        auto targets = array_member(primitive, "targets", where, false);
+        if (!targets) return targets.take_error();
+        if (*targets) {
+            for (std::size_t t = 0; t < (*targets)->size(); ++t) {
+                const json& target = (**targets)[t];
+                if (!target.is_object()) return parse_error(where / "targets" / t, "must be an object");
+                for (const auto& [semantic, value] : target.items()) {
+                    auto accessor = reference_value(value, where / "targets" / t / semantic, Collection::Accessors);
+                    if (!accessor) return accessor.take_error();
+                }
+            }
+            if (!(*targets)->empty()) warn(where / "targets", "morph targets are not imported (the base shape is used)");
+        }
+        return {};
+    }
+
+    Status check_meshes() {
+        return for_each(Collection::Meshes, [&](const json& mesh, const JsonPointer& where, std::size_t) -> Status {
+            auto primitives = array_member(mesh, "primitives", where, true);
+            if (!primitives) return primitives.take_error();
+            if ((*primitives)->empty()) return parse_error(where / "primitives", "a mesh needs at least one primitive");
+            for (std::size_t p = 0; p < (*primitives)->size(); ++p) {
+                const json& primitive = (**primitives)[p];
+                if (!primitive.is_object()) return parse_error(where / "primitives" / p, "must be an object");
+                LOOM_TRY(check_primitive(primitive, where / "primitives" / p));
+            }
+            LOOM_TRY(number_array_member(mesh, "weights", where, 0));
+            return {};
+        });
+    }
+
+    Status check_cameras() {
+        return for_each(Collection::Cameras, [&](const json& camera, const JsonPointer& where, std::size_t) -> Status {
+            auto type = string_member(camera, "type", where, true);
+            if (!type) return type.take_error();
+            if (**type != "perspective" && **type != "orthographic") {
+                return parse_error(where / "type", "'" + **type + "' is not 'perspective' or 'orthographic'");
+            }
+            const std::string other = **type == "perspective" ? "orthographic" : "perspective";
+            if (find(camera, other) != nullptr) {
+                return parse_error(where / other, "a " + **type + " camera must not have '" + other + "' properties");
+            }
+            auto parameters = object_member(camera, **type, where, true);
+            if (!parameters) return parameters.take_error();
+            const JsonPointer p_where = where / **type;
+            const json& p = **parameters;
+            Range positive;
+            positive.min = 0.0;
+            positive.min_exclusive = true;
+            if (**type == "perspective") {
+                auto yfov = number_member(p, "yfov", p_where, true, positive);
+                if (!yfov) return yfov.take_error();
+                auto znear = number_member(p, "znear", p_where, true, positive);
+                if (!znear) return znear.take_error();
+                auto aspect = number_member(p, "aspectRatio", p_where, false, positive);
+                if (!aspect) return aspect.take_error();
+                Range beyond_near;
+                beyond_near.min = **znear;
+                beyond_near.min_exclusive = true;
+                auto zfar = number_member(p, "zfar", p_where, false, beyond_near);
+                if (!zfar) return zfar.take_error();
+            } else {
+                for (const char* key : {"xmag", "ymag"}) {
+                    auto mag = number_member(p, key, p_where, true);
+                    if (!mag) return mag.take_error();
+                    if (**mag == 0.0) return parse_error(p_where / key, "must not be zero");
+                }
+                auto znear = number_member(p, "znear", p_where, true, Range{0.0});
+                if (!znear) return znear.take_error();
+                Range beyond_near;
+                beyond_near.min = **znear;
+                beyond_near.min_exclusive = true;
+                auto zfar = number_member(p, "zfar", p_where, true, beyond_near);
+                if (!zfar) return zfar.take_error();
+            }
+            return {};
+        });
+    }
+
+    Status check_skins() {
+        if (Status status = for_each(Collection::Skins, [&](const json& skin, const JsonPointer& where, std::size_t) -> Status {
+            auto matrices = reference_member(skin, "inverseBindMatrices", where, Collection::Accessors, false);
+            if (!matrices) return matrices.take_error();
+            auto skeleton = reference_member(skin, "skeleton", where, Collection::Nodes, false);
+            if (!skeleton) return skeleton.take_error();
+            auto joints = array_member(skin, "joints", where, true);
+            if (!joints) return joints.take_error();
+            for (std::size_t j = 0; j < (*joints)->size(); ++j) {
+                auto joint = reference_value((**joints)[j], where / "joints" / j, Collection::Nodes);
+                if (!joint) return joint.take_error();
+            }
+            return {};
+        }); !status) {
+            return status;
+        }
+        if (count(Collection::Skins) != 0) warn(JsonPointer{} / "skins", "skins are not imported (the bind pose is used)");
+        return {};
+    }
+
+    Status check_nodes() {
+        const std::size_t node_count = count(Collection::Nodes);
+        parents_.assign(node_count, std::nullopt);
+        if (Status status = for_each(Collection::Nodes, [&](const json& node, const JsonPointer& where, std::size_t index) -> Status {
+            auto children = array_member(node, "children", where, false);
+            if (!children) return children.take_error();
+            if (*children) {
+                for (std::size_t k = 0; k < (*children)->size(); ++k) {
+                    const JsonPointer child_where = where / "children" / k;
+                    auto child = reference_value((**children)[k], child_where, Collection::Nodes);
+                    if (!child) return child.take_error();
+                    std::optional<uint64_t>& parent = parents_[*child];
+                    if (parent) {
+                        return parse_error(child_where, "node " + std::to_string(*child) + " is already a child of node " +
+                                                            std::to_string(*parent) + " (a node can have only one parent)");
+                    }
+                    parent = index;
+                }
+            }
+            for (const auto& [key, collection] : {std::pair{"mesh", Collection::Meshes}, std::pair{"camera", Collection::Cameras},
+                                                  std::pair{"skin", Collection::Skins}}) {
+                auto reference = reference_member(node, key, where, collection, false);
+                if (!reference) return reference.take_error();
+            }
+            const Range unit{-1.0, 1.0};
+            LOOM_TRY(number_array_member(node, "matrix", where, 16));
+            LOOM_TRY(number_array_member(node, "translation", where, 3));
+            LOOM_TRY(number_array_member(node, "rotation", where, 4, unit));
+            LOOM_TRY(number_array_member(node, "scale", where, 3));
+            LOOM_TRY(number_array_member(node, "weights", where, 0));
+            if (find(node, "matrix") != nullptr &&
+                (find(node, "translation") != nullptr || find(node, "rotation") != nullptr || find(node, "scale") != nullptr)) {
+                return parse_error(where / "matrix", "a node must not have both 'matrix' and translation/rotation/scale");
+            }
+            return {};
+        }); !status) {
+            return status;
+        }
+        return check_node_cycles();
+    }
+
+    // With at most one parent per node, a cycle is found by walking up the parent links: a
+    // walk that meets a node of its own path has gone round a cycle.
+    Status check_node_cycles() const {
+        const std::size_t node_count = parents_.size();
+        enum class Mark : uint8_t { Unvisited, OnPath, Done };
+        std::vector<Mark> marks(node_count, Mark::Unvisited);
+        for (std::size_t start = 0; start < node_count; ++start) {
+            std::vector<uint64_t> path;
+            std::optional<uint64_t> node = start;
+            while (node && marks[*node] != Mark::Done) {
+                if (marks[*node] == Mark::OnPath) {
+                    // The cycle is the part of the path from `node` on; print it in child
+                    // order, starting at its smallest node.
+                    std::vector<uint64_t> cycle(std::find(path.begin(), path.end(), *node), path.end());
+                    std::reverse(cycle.begin(), cycle.end());
+                    std::rotate(cycle.begin(), std::min_element(cycle.begin(), cycle.end()), cycle.end());
+                    std::string chain;
+                    for (const uint64_t n : cycle) chain += std::to_string(n) + " -> ";
+                    chain += std::to_string(cycle.front());
+                    return parse_error(JsonPointer{} / "nodes" / cycle.front(), "node " + std::to_string(cycle.front()) +
+                                                                                    " is part of a cycle of children (" +
+                                                                                    chain + ")");
+                }
+                marks[*node] = Mark::OnPath;
+                path.push_back(*node);
+                node = parents_[*node];
+            }
+            for (const uint64_t visited : path) marks[visited] = Mark::Done;
+        }
+        return {};
+    }
+
+    Status check_scenes() {
+        return for_each(Collection::Scenes, [&](const json& scene, const JsonPointer& where, std::size_t) -> Status {
+            auto nodes = array_member(scene, "nodes", where, false);
+            if (!nodes) return nodes.take_error();
+            if (*nodes == nullptr) return {};
+            std::set<uint64_t> seen;
+            for (std::size_t k = 0; k < (*nodes)->size(); ++k) {
+                const JsonPointer node_where = where / "nodes" / k;
+                auto node = reference_value((**nodes)[k], node_where, Collection::Nodes);
+                if (!node) return node.take_error();
+                if (parents_[*node]) {
+                    return parse_error(node_where, "node " + std::to_string(*node) + " is not a root node (it is a child of node " +
+                                                       std::to_string(*parents_[*node]) + ")");
+                }
+                if (!seen.insert(*node).second) {
+                    return parse_error(node_where, "node " + std::to_string(*node) + " is listed twice");
+                }
+            }
+            return {};
+        });
+    }
+
+    Status check_animations() {
+        if (Status status = for_each(Collection::Animations, [&](const json& animation, const JsonPointer& where, std::size_t) -> Status {
+            auto samplers = array_member(animation, "samplers", where, true);
+            if (!samplers) return samplers.take_error();
+            for (std::size_t s = 0; s < (*samplers)->size(); ++s) {
+                const json& sampler = (**samplers)[s];
+                const JsonPointer sampler_where = where / "samplers" / s;
+                if (!sampler.is_object()) return parse_error(sampler_where, "must be an object");
+                for (const char* key : {"input", "output"}) {
+                    auto accessor = reference_member(sampler, key, sampler_where, Collection::Accessors, true);
+                    if (!accessor) return accessor.take_error();
+                }
+            }
+            auto channels = array_member(animation, "channels", where, true);
+            if (!channels) return channels.take_error();
+            for (std::size_t c = 0; c < (*channels)->size(); ++c) {
+                const json& channel = (**channels)[c];
+                const JsonPointer channel_where = where / "channels" / c;
+                if (!channel.is_object()) return parse_error(channel_where, "must be an object");
+                auto sampler = integer_member(channel, "sampler", channel_where, true, 0, kMaxInt);
+                if (!sampler) return sampler.take_error();
+                if (**sampler >= (*samplers)->size()) {
+                    return parse_error(channel_where / "sampler", "sampler " + std::to_string(**sampler) +
+                                                                      " does not exist (the animation has " +
+                                                                      std::to_string((*samplers)->size()) + " samplers)");
+                }
+                auto target = object_member(channel, "target", channel_where, true);
+                if (!target) return target.take_error();
+                auto node = reference_member(**target, "node", channel_where / "target", Collection::Nodes, false);
+                if (!node) return node.take_error();
+            }
+            return {};
+        }); !status) {
+            return status;
+        }
+        if (count(Collection::Animations) != 0) {
+            warn(JsonPointer{} / "animations", "animations are not imported (the static pose is used)");
+        }
+        return {};
+    }
+
+    const json& root_;
+    const ValidationInput& input_;
+    ValidationOutput& output_;
+    std::array<std::size_t, kCollectionCount> counts_{};
+    bool mesh_quantization_ = false;
+    std::vector<uint64_t> buffer_lengths_;
+    std::vector<ViewInfo> views_;
+    std::vector<AccessorInfo> accessors_;
+    std::vector<std::optional<uint64_t>> parents_;
+};
+
+}  // namespace
+
+Result<ValidationOutput> validate_document(const nlohmann::json& root, const ValidationInput& input) {
+    ValidationOutput output;
+    Validator validator(root, input, output);
+    LOOM_TRY(validator.run());
+    return output;
+}
+
+}  // namespace loom::scene::detail

@@ -1,0 +1,50 @@
+#pragma once
+// The importer's own validation of a glTF document, done on the JSON before tinygltf loads it:
+// every reference, enumeration, range and size the file declares, the node hierarchy, required
+// extensions and the asset version, and every URI (data URIs decoded, files read). Problems are
+// reported with the JSON pointer of the offending value. What can only be checked on the data
+// itself (index values, sparse indices, images) is checked by the converter.
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "loom/rhi/result.hpp"
+#include "loom/scene/gltf.hpp"
+
+namespace loom::scene::detail {
+
+/// What the validator needs to know about the file besides its JSON.
+struct ValidationInput {
+    std::string file_label;                ///< names the file in messages
+    std::filesystem::path base_dir;        ///< where relative URIs are resolved
+    std::string tinygltf_base_dir;         ///< the base directory string given to tinygltf
+    bool is_glb = false;
+    std::optional<uint64_t> glb_bin_size;  ///< size of the GLB BIN chunk, if there is one
+    const LoadOptions* options = nullptr;
+};
+
+/// What validation produces besides "valid".
+struct ValidationOutput {
+    /// Contents of the files URIs name, keyed by the path tinygltf asks for (see
+    /// tinygltf_url_decode); buffers are cut to their declared byteLength.
+    std::map<std::string, std::vector<unsigned char>> files;
+    /// Non-fatal findings, already formatted "<file>: <pointer>: <what>".
+    std::vector<std::string> warnings;
+};
+
+/// Validates the parsed document. The error is ErrorCode::Io for files that cannot be read,
+/// ErrorCode::Parse otherwise, and its message is "<file>: <pointer>: <what>".
+[[nodiscard]] Result<ValidationOutput> validate_document(const nlohmann::json& root, const ValidationInput& input);
+
+/// Formats a message the importer's way: "<file>: <pointer>: <what>", or "<file>: <what>"
+/// for the document root.
+[[nodiscard]] std::string located_message(const std::string& file_label, const std::string& pointer,
+                                          const std::string& what);
+
+}  // namespace loom::scene::detail
