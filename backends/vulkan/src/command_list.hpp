@@ -35,6 +35,8 @@ public:
     [[nodiscard]] bool inside_render_pass() const { return in_render_pass_; }
     [[nodiscard]] VkCommandBuffer command_buffer() const { return cmd_; }
     [[nodiscard]] const rhi::FrameStats& stats() const { return stats_; }
+    /// Records misuse detected outside the list (e.g. by the device), returned by end_frame.
+    void record_error(ErrorCode code, std::string message) { fail(code, std::move(message)); }
     /// Counts vkCmd* calls made by the device on this frame's command buffer.
     void count_api_calls(uint64_t calls) { stats_.api_calls += calls; }
 

@@ -36,7 +36,7 @@ loom::Status VulkanDevice::begin_frame_commands() {
 
 rhi::CommandList& VulkanDevice::begin_frame() {
     if (frame_recording_) {
-        loom::log_error("vulkan", "begin_frame called while a frame is being recorded; continuing that frame");
+        command_list_->record_error(ErrorCode::InvalidState, "begin_frame: the previous frame was not ended; continuing it");
         return *command_list_;
     }
     FrameSlot& slot = current_frame();
@@ -76,7 +76,9 @@ loom::Status VulkanDevice::end_frame() {
     if (VkResult r = vkEndCommandBuffer(cmd); r != VK_SUCCESS) result = vk_error(r, "vkEndCommandBuffer");
     const VkSemaphore signal = presenting ? swapchain_->render_finished(backbuffer_index_) : VK_NULL_HANDLE;
     if (result.ok()) result = submit(std::span<const VkCommandBuffer>(&cmd, 1), true, signal);
-    slot.timers_pending = !slot.timer_labels.empty();
+    // Even a frame without timers is "the latest frame" whose (empty) results timer_results()
+    // describes once it has finished.
+    slot.timers_pending = true;
     frame_recording_ = false;
     if (presenting && result.ok()) {
         const VkResult r = swapchain_->present(context_->queue(), backbuffer_index_);
@@ -124,6 +126,10 @@ void VulkanDevice::collect_timers(FrameSlot& slot) {
     if (!slot.timers_pending || !slot.timestamps || slot.serial > submissions_->completed_serial()) return;
     slot.timers_pending = false;
     const uint32_t count = static_cast<uint32_t>(slot.timer_labels.size());
+    if (count == 0) {
+        timer_results_.clear();
+        return;
+    }
     std::vector<uint64_t> values(2 * std::size_t{count});
     const VkResult r = vkGetQueryPoolResults(context_->device(), slot.timestamps, 0, 2 * count, values.size() * sizeof(uint64_t),
                                              values.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT);
