@@ -109,6 +109,76 @@ TEST_F(VulkanHeapTest, AliasedTexturesRenderOneAfterTheOther) {
     EXPECT_EQ(device.resource_stats().heaps, 0u);
 }
 
+TEST_F(VulkanHeapTest, SamplingAnAliasWhoseBytesWereTakenOverIsInvalidState) {
+    rhi::Device& device = *device_;
+    rhi::TextureDesc probe = placed("probe", {}, 0);
+    probe.placement.reset();
+    LOOM_VK_ASSIGN(const rhi::MemoryRequirements req, device.texture_memory_requirements(probe));
+    LOOM_VK_ASSIGN(auto heap, device.create_heap({"shared", req.size}));
+    LOOM_VK_ASSIGN(auto a, device.create_texture(placed("albedo", heap, 0)));
+    LOOM_VK_ASSIGN(auto b, device.create_texture(placed("bloom", heap, 0)));
+    rhi::TextureDesc target_desc = placed("target", {}, 0);
+    target_desc.placement.reset();
+    LOOM_VK_ASSIGN(auto target, device.create_texture(target_desc));
+    LOOM_VK_ASSIGN(auto fill, make_fill_pipeline(device, rhi::Format::RGBA8Unorm));
+
+    rhi::ShaderCompiler compiler;
+    LOOM_VK_ASSIGN(auto vs_module, compiler.compile({"fs.vert", rhi::ShaderStage::Vertex, R"(#version 450
+void main() {
+    vec2 p = vec2(gl_VertexIndex == 1 ? 3.0 : -1.0, gl_VertexIndex == 2 ? 3.0 : -1.0);
+    gl_Position = vec4(p, 0.0, 1.0);
+})", {}}));
+    LOOM_VK_ASSIGN(auto fs_module, compiler.compile({"copy.frag", rhi::ShaderStage::Fragment, R"(#version 450
+layout(set = 0, binding = 0) uniform sampler2D source;
+layout(location = 0) out vec4 frag_color;
+void main() { frag_color = texelFetch(source, ivec2(gl_FragCoord.xy), 0); })", {}}));
+    LOOM_VK_ASSIGN(auto vs, device.create_shader(vs_module));
+    LOOM_VK_ASSIGN(auto fs, device.create_shader(fs_module));
+    rhi::GraphicsPipelineDesc pd;
+    pd.name = "copy";
+    pd.vertex = vs;
+    pd.fragment = fs;
+    pd.color_formats = {rhi::Format::RGBA8Unorm};
+    LOOM_VK_ASSIGN(auto copy, device.create_graphics_pipeline(pd));
+    LOOM_VK_ASSIGN(auto sampler, device.create_sampler({}));
+    auto copy_into_target = [&](rhi::CommandList& list, rhi::TextureHandle source) {
+        rhi::RenderPassDesc pass;
+        pass.label = "copy";
+        pass.colors.push_back({target});
+        list.begin_render_pass(pass);
+        list.set_pipeline(copy);
+        list.set_bind_group(0, rhi::BindGroup{}.texture(0, source, sampler));
+        list.draw(3);
+        list.end_render_pass();
+    };
+
+    // albedo is written and made readable, then bloom takes the same bytes over.
+    auto status = record_frame(device, [&](rhi::CommandList& list) {
+        clear_and_fill(list, a, fill, {1, 0, 0, 1}, {1, 0, 0, 1}, {0, 0, 64, 64});
+        list.transition(a, rhi::ResourceState::ShaderRead);
+        clear_and_fill(list, b, fill, {0, 1, 0, 1}, {0, 1, 0, 1}, {0, 0, 64, 64});
+        copy_into_target(list, a);
+    });
+    ASSERT_FALSE(status.ok());
+    EXPECT_EQ(status.error().code, ErrorCode::InvalidState);
+    EXPECT_NE(status.error().message.find("'albedo'"), std::string::npos) << status.error().message;
+    EXPECT_NE(status.error().message.find("'bloom'"), std::string::npos) << status.error().message;
+
+    // Written again, albedo owns the bytes and samples fine (from an UNDEFINED hand-over).
+    LOOM_VK_OK(record_frame(device, [&](rhi::CommandList& list) {
+        list.transition(b, rhi::ResourceState::ShaderRead);
+        clear_and_fill(list, a, fill, {0, 0, 1, 1}, {0, 0, 1, 1}, {0, 0, 64, 64});
+        list.transition(a, rhi::ResourceState::ShaderRead);
+        copy_into_target(list, a);
+    }));
+    LOOM_VK_ASSIGN(rhi::Image image, device.read_texture(target));
+    EXPECT_EQ(pixel(image, 20, 20), (std::array<int, 4>{0, 0, 255, 255}));
+
+    LOOM_VK_OK(device.destroy(a));
+    LOOM_VK_OK(device.destroy(b));
+    LOOM_VK_OK(device.destroy(heap));
+}
+
 TEST_F(VulkanHeapTest, BadPlacementsNameTextureAndHeap) {
     rhi::Device& device = *device_;
     rhi::TextureDesc probe = placed("probe", {}, 0);

@@ -512,6 +512,12 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
                 fail(ErrorCode::Unsupported, where + ": texture " + in_quotes(texture->desc.name) + " cannot be sampled");
                 return false;
             }
+            if (const Texture* owner = device_.alias_owner(*texture)) {
+                fail(ErrorCode::InvalidState, "texture " + in_quotes(texture->desc.name) + " is sampled (" + where +
+                                                  ") but shares heap memory with texture " + in_quotes(owner->desc.name) +
+                                                  ", which was used after it: its contents are gone");
+                return false;
+            }
             const VkImageLayout layout_now = depth_ok ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
                                                       : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
             w.pImageInfo = image_infos.data() + image_infos.size();

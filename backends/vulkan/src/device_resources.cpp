@@ -172,6 +172,8 @@ loom::Result<rhi::TextureHandle> VulkanDevice::create_texture(const rhi::Texture
             return vk_error(r, "vkBindImageMemory for " + tex);
         }
         ++heap->placed_textures;
+        t.heap_offset = offset;
+        t.heap_size = mr.size;
     } else {
         AllocationRequest request;
         request.requirements = mr;
@@ -216,7 +218,9 @@ loom::Result<rhi::TextureHandle> VulkanDevice::create_texture(const rhi::Texture
     }
     t.states.assign(std::size_t{desc.mip_levels} * t.array_layers, ResourceState::Undefined);
     t.frame_start_states = t.states;
-    return textures_.insert(std::move(t));
+    const rhi::TextureHandle handle = textures_.insert(std::move(t));
+    if (heap) heap->placed.push_back(handle);
+    return handle;
 }
 
 loom::Result<rhi::TextureHandle> VulkanDevice::wrap_swapchain_image(VkImage image, VkFormat format, uint32_t width,
@@ -293,8 +297,31 @@ loom::Result<VkImageView> VulkanDevice::storage_view(Texture& t, uint32_t mip) {
     return view;
 }
 
+const Texture* VulkanDevice::alias_owner(const Texture& t) {
+    if (!t.desc.placement) return nullptr;
+    Heap* heap = heaps_.find(t.desc.placement->heap);
+    if (!heap) return nullptr;
+    const Texture* owner = nullptr;
+    for (rhi::TextureHandle h : heap->placed) {
+        const Texture* other = textures_.find(h);
+        if (!other || other == &t || other->alias_stamp <= t.alias_stamp) continue;
+        const bool overlap = other->heap_offset < t.heap_offset + t.heap_size && t.heap_offset < other->heap_offset + other->heap_size;
+        if (overlap && (!owner || other->alias_stamp > owner->alias_stamp)) owner = other;
+    }
+    return owner;
+}
+
 void VulkanDevice::transition_texture(BarrierBatch& batch, Texture& t, uint32_t mip, uint32_t mips, uint32_t layer,
                                       uint32_t layers, ResourceState to, Stream stream, bool discard) {
+    if (t.desc.placement) {
+        // The aliasing hand-over: when an overlapping texture used the bytes since this one
+        // last did, whatever this one held is gone and its next barrier starts from UNDEFINED.
+        if (alias_owner(t)) {
+            std::fill(t.states.begin(), t.states.end(), ResourceState::Undefined);
+            std::fill(t.frame_start_states.begin(), t.frame_start_states.end(), ResourceState::Undefined);
+        }
+        if (Heap* heap = heaps_.find(t.desc.placement->heap)) t.alias_stamp = ++heap->stamp;
+    }
     std::vector<ResourceState>* states = &t.states;
     if (stream == Stream::Frame) {
         if (frame_recording_ && t.touched_epoch != epoch_) {
@@ -342,7 +369,10 @@ loom::Status VulkanDevice::destroy(rhi::TextureHandle handle) {
     auto removed = textures_.remove(handle);
     Texture& texture = *removed;
     if (texture.desc.placement) {
-        if (Heap* heap = heaps_.find(texture.desc.placement->heap)) --heap->placed_textures;
+        if (Heap* heap = heaps_.find(texture.desc.placement->heap)) {
+            --heap->placed_textures;
+            std::erase(heap->placed, handle);
+        }
     }
     release_texture(texture);
     return {};

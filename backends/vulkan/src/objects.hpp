@@ -36,6 +36,12 @@ struct Texture {
     std::vector<rhi::ResourceState> frame_start_states;
     uint64_t touched_epoch = 0;
 
+    // Placed textures: where they live, and when they last took their bytes over (see
+    // VulkanDevice::alias_owner).
+    uint64_t heap_offset = 0;
+    uint64_t heap_size = 0;
+    uint64_t alias_stamp = 0;
+
     [[nodiscard]] uint32_t subresource(uint32_t mip, uint32_t layer) const { return mip * array_layers + layer; }
 };
 
@@ -51,6 +57,8 @@ struct Heap {
     rhi::HeapDesc desc;
     MemoryAllocation memory;
     uint32_t placed_textures = 0;
+    std::vector<rhi::TextureHandle> placed;  ///< the textures placed in it
+    uint64_t stamp = 0;                      ///< counts hand-overs between aliases
 };
 
 struct Sampler {

@@ -102,6 +102,9 @@ public:
                             uint32_t layers, rhi::ResourceState to, Stream stream, bool discard = false);
     /// The tracked state of every subresource is `state` (in the frame stream).
     static bool texture_all_in(const Texture& texture, rhi::ResourceState state);
+    /// For a placed texture: another texture overlapping its bytes that was used after it
+    /// (so its contents are gone), or nullptr.
+    const Texture* alias_owner(const Texture& texture);
     /// The tracked state of one subresource as seen by `stream`.
     rhi::ResourceState tracked_state(const Texture& texture, uint32_t subresource, Stream stream) const;
 
