@@ -2,6 +2,7 @@
 // uploads larger than the staging ring, ring wrap-around, frames in flight with deferred
 // destruction, readback in the middle of a frame, growth of the transient uniform ring.
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -203,6 +204,37 @@ TEST_F(VulkanDeviceTest, CapabilitiesComeFromTheDevice) {
     EXPECT_FALSE(caps.format(rhi::Format::RGBA8Uint).blendable) << "integer formats never blend";
     EXPECT_FALSE(caps.format(rhi::Format::RGB9E5Float).color_attachment) << "shared-exponent formats are sample-only";
     EXPECT_GE(caps.max_color_attachments, 4u);
+}
+
+TEST(VulkanDeviceChoice, EnvironmentOverridePicksOrRejectsADevice) {
+    const char* previous = std::getenv("LOOM_VK_DEVICE");
+    const std::string saved = previous ? previous : "";
+    rhi::DeviceDesc desc;
+    desc.backend = rhi::Backend::Vulkan;
+    std::string name;
+    {
+        auto device = rhi::create_device(desc);
+        ASSERT_TRUE(device.ok()) << device.error().to_string();
+        name = (*device)->capabilities().device_name;
+    }
+    // By a substring of its name, and by index 0 (there is at least one device).
+    ::setenv("LOOM_VK_DEVICE", name.substr(0, 4).c_str(), 1);
+    auto by_name = rhi::create_device(desc);
+    ::setenv("LOOM_VK_DEVICE", "0", 1);
+    auto by_index = rhi::create_device(desc);
+    ::setenv("LOOM_VK_DEVICE", "no such gpu", 1);
+    auto missing = rhi::create_device(desc);
+    if (previous) {
+        ::setenv("LOOM_VK_DEVICE", saved.c_str(), 1);
+    } else {
+        ::unsetenv("LOOM_VK_DEVICE");
+    }
+    ASSERT_TRUE(by_name.ok()) << by_name.error().to_string();
+    EXPECT_EQ((*by_name)->capabilities().device_name, name);
+    EXPECT_TRUE(by_index.ok()) << by_index.error().to_string();
+    ASSERT_FALSE(missing.ok());
+    EXPECT_EQ(missing.error().code, ErrorCode::Unsupported);
+    EXPECT_NE(missing.error().message.find("no such gpu"), std::string::npos) << missing.error().message;
 }
 
 TEST_F(VulkanDeviceTest, WindowedDeviceWithoutDisplayFailsCleanly) {
