@@ -667,8 +667,7 @@ void VulkanCommandList::copy_buffer(rhi::BufferHandle src_handle, uint64_t src_o
     BarrierBatch batch;
     if (&s == &d) {
         // One buffer read and written: a global dependency covers both roles.
-        batch.memory(VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                     VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        batch.before_transfer();
     } else {
         batch.buffer(s.buffer, s.state, ResourceState::CopySrc);
         batch.buffer(d.buffer, d.state, ResourceState::CopyDst);
@@ -679,8 +678,7 @@ void VulkanCommandList::copy_buffer(rhi::BufferHandle src_handle, uint64_t src_o
     // Copies leave buffers in the states they had (as on GL, where buffer states only
     // matter around storage access).
     if (&s == &d) {
-        batch.memory(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                     VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+        batch.after_transfer();
     } else {
         batch.buffer(s.buffer, ResourceState::CopySrc, s.state);
         batch.buffer(d.buffer, ResourceState::CopyDst, d.state);

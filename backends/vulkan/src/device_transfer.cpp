@@ -113,8 +113,7 @@ loom::Status VulkanDevice::submit(std::span<const VkCommandBuffer> frame_command
         if (setup_has_buffer_writes_) {
             // Buffer uploads become visible to everything that follows.
             BarrierBatch batch;
-            batch.memory(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+            batch.after_transfer();
             batch.flush(setup);
         }
         if (VkResult r = vkEndCommandBuffer(setup); r != VK_SUCCESS) return vk_error(r, "vkEndCommandBuffer (uploads)");
@@ -221,8 +220,7 @@ loom::Status VulkanDevice::write_buffer(rhi::BufferHandle handle, uint64_t offse
     if (!cmd) return Error{ErrorCode::Backend, "write_buffer: cannot allocate a command buffer"};
     // Earlier reads and writes of the buffer (previous frames, earlier uploads) finish first.
     BarrierBatch batch;
-    batch.memory(VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                 VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    batch.before_transfer();
     batch.flush(cmd);
     VkBufferCopy region{span->offset, offset, data.size()};
     vkCmdCopyBuffer(cmd, span->buffer, buffer.buffer, 1, &region);
@@ -252,13 +250,11 @@ loom::Result<std::vector<std::byte>> VulkanDevice::read_buffer(rhi::BufferHandle
     VkCommandBuffer cmd = setup_commands();
     if (!cmd) return Error{ErrorCode::Backend, "read_buffer: cannot allocate a command buffer"};
     BarrierBatch batch;
-    batch.memory(VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                 VK_ACCESS_2_TRANSFER_READ_BIT);
+    batch.before_transfer();
     batch.flush(cmd);
     VkBufferCopy region{offset, span->offset, size};
     vkCmdCopyBuffer(cmd, buffer.buffer, span->buffer, 1, &region);
-    batch.memory(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                 VK_ACCESS_2_HOST_READ_BIT);
+    batch.transfer_to_host();
     batch.flush(cmd);
     LOOM_TRY(flush_setup());
     LOOM_TRY(submissions_->wait(submissions_->last_submitted_serial()));
@@ -397,8 +393,7 @@ loom::Result<rhi::Image> VulkanDevice::read_texture(rhi::TextureHandle handle, u
     }
     vkCmdCopyImageToBuffer(cmd, t.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, span->buffer, static_cast<uint32_t>(copies.size()),
                            copies.data());
-    batch.memory(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                 VK_ACCESS_2_HOST_READ_BIT);
+    batch.transfer_to_host();
     if (before != ResourceState::Undefined) transition_texture(batch, t, mip, 1, array_layer, 1, before, Stream::Setup);
     batch.flush(cmd);
     LOOM_TRY(flush_setup());

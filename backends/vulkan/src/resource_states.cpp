@@ -149,6 +149,21 @@ void BarrierBatch::memory(VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_a
     memory_.push_back(b);
 }
 
+void BarrierBatch::before_transfer() {
+    memory(VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+           VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+}
+
+void BarrierBatch::after_transfer() {
+    memory(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+           VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+}
+
+void BarrierBatch::transfer_to_host() {
+    memory(VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+           VK_ACCESS_2_HOST_READ_BIT);
+}
+
 uint32_t BarrierBatch::flush(VkCommandBuffer cmd) {
     if (empty()) return 0;
     auto info = vk_init<VkDependencyInfo>(VK_STRUCTURE_TYPE_DEPENDENCY_INFO);

@@ -56,6 +56,15 @@ public:
     void memory(VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stages,
                 VkAccessFlags2 dst_access);
 
+    // Global dependencies around copies that do not track a buffer's state (uploads through
+    // staging, readbacks, a copy within one buffer).
+    /// Everything before (reads and writes) happens before transfers that read and write.
+    void before_transfer();
+    /// Transfer writes are visible to everything after.
+    void after_transfer();
+    /// Transfer writes are visible to the host (readbacks, before the fence wait).
+    void transfer_to_host();
+
     [[nodiscard]] bool empty() const { return images_.empty() && buffers_.empty() && memory_.empty(); }
     [[nodiscard]] std::size_t size() const { return images_.size() + buffers_.size() + memory_.size(); }
     [[nodiscard]] const std::vector<VkImageMemoryBarrier2>& image_barriers() const { return images_; }
