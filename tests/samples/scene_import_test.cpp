@@ -24,7 +24,10 @@ Scene load_ok(const std::filesystem::path& path, const scene::LoadOptions& optio
     return scene ? std::move(*scene) : Scene{};
 }
 
-std::string current_test() { return ::testing::UnitTest::GetInstance()->current_test_info()->name(); }
+std::string current_test() {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    return std::string(info->test_suite_name()) + "." + info->name();
+}
 
 TEST(SceneImport, EveryIndexTypeAndNoIndicesGiveTheSameTriangles) {
     const std::filesystem::path dir = synthetic_dir(current_test());

@@ -102,10 +102,11 @@ TEST(SceneInvalidFiles, MissingAndUnreadableMainFiles) {
 class BrokenFile : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = synthetic_dir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+        const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = synthetic_dir(std::string(info->test_suite_name()) + "." + info->name());
         builder_.json()["materials"] = nlohmann::json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
         builder_.add_quad(true, 0);
-        const std::vector<unsigned char> png = tiny_png();
+        const std::vector<unsigned char> png = tiny_png(dir_);
         builder_.json()["images"] = nlohmann::json::array({{{"bufferView", builder_.add_view(png)}, {"mimeType", "image/png"}}});
         builder_.json()["samplers"] = nlohmann::json::array({nlohmann::json::object()});
         builder_.json()["textures"] = nlohmann::json::array({{{"source", 0}, {"sampler", 0}}});
@@ -115,12 +116,12 @@ protected:
         builder_.json()["scenes"][0]["nodes"].push_back(1);
     }
 
-    // A 2x2 PNG made with the project's own writer.
-    static std::vector<unsigned char> tiny_png() {
+    // A 2x2 PNG made with the project's own writer (in the test's own directory: ctest runs
+    // tests in parallel processes).
+    static std::vector<unsigned char> tiny_png(const std::filesystem::path& dir) {
         rhi::Image image(2, 2, rhi::Format::RGBA8Unorm);
         image.store(0, 0, {1.0, 0.0, 0.0, 1.0});
-        const std::filesystem::path path = output_dir() / "scene-synthetic" / "tiny.png";
-        std::filesystem::create_directories(path.parent_path());
+        const std::filesystem::path path = dir / "tiny.png";
         EXPECT_TRUE(rhi::write_png(image, path).ok());
         return read_bytes(path);
     }
@@ -131,7 +132,8 @@ protected:
     void expect_error(const std::function<void(nlohmann::json&)>& edit, const std::string& pointer, const std::string& phrase,
                       ErrorCode code = ErrorCode::Parse, const scene::LoadOptions& options = {}) {
         for (const Layout layout : {Layout::External, Layout::Embedded, Layout::Binary}) {
-            const std::filesystem::path path = builder_.write(dir_, "broken" + std::to_string(static_cast<int>(layout)), layout, edit);
+            // A fresh name per file: rewriting one file is slow where freed blocks are discarded.
+            const std::filesystem::path path = builder_.write(dir_, "broken" + std::to_string(written_++), layout, edit);
             SCOPED_TRACE(path.string());
             const Error error = expect_load_error(path, options);
             EXPECT_EQ(error.code, code) << error.to_string();
@@ -143,6 +145,7 @@ protected:
 
     std::filesystem::path dir_;
     GltfBuilder builder_;
+    int written_ = 0;
 };
 
 TEST_F(BrokenFile, TheUnbrokenFileLoads) {

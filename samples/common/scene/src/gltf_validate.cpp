@@ -245,7 +245,10 @@ private:
     Result<double> number_value(const json& value, const JsonPointer& where, const Range& range) const {
         if (!value.is_number()) return parse_error(where, "must be a number, got " + short_dump(value));
         const double number = value.get<double>();
-        if (!std::isfinite(number)) return parse_error(where, "must be a finite number");
+        // Every number the importer keeps ends up in a float.
+        if (!(std::abs(number) <= static_cast<double>(std::numeric_limits<float>::max()))) {
+            return parse_error(where, "must be a finite number within the range of a 32-bit float, got " + format_number(number));
+        }
         const bool below = range.min_exclusive ? !(number > range.min) : !(number >= range.min);
         const bool above = range.max_exclusive ? !(number < range.max) : !(number <= range.max);
         if (below || above) {
