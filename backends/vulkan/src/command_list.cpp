@@ -342,6 +342,10 @@ void VulkanCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group
     }
     for (const rhi::BindingEntry& e : group.entries) {
         const std::string where = "set_bind_group(" + std::to_string(set) + "), binding " + std::to_string(e.binding) + ": ";
+        if (e.binding >= rhi::kMaxBindingsPerGroup) {
+            return fail(ErrorCode::InvalidArgument, where + "beyond the " + std::to_string(rhi::kMaxBindingsPerGroup) +
+                                                        " bindings per set loom supports");
+        }
         if (const auto* b = std::get_if<rhi::BufferBinding>(&e.resource)) {
             if (auto r = device_.buffers().get(b->buffer); !r.ok()) return fail(ErrorCode::InvalidHandle, where + r.error().message);
         } else if (const auto* t = std::get_if<rhi::TextureBinding>(&e.resource)) {
