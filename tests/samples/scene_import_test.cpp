@@ -268,6 +268,20 @@ TEST(SceneImport, FilesWithoutScenesShowEveryRoot) {
     EXPECT_EQ(missing.error().code, ErrorCode::InvalidArgument);
 }
 
+TEST(SceneImport, UnsupportedUsedExtensionsAreIgnoredWithAWarning) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    builder.add_quad(true);
+    builder.json()["extensionsUsed"] = {"KHR_mesh_quantization", "KHR_texture_transform"};
+    ScopedLogCapture capture;
+    const Scene scene = load_ok(builder.write(dir, "extensions", Layout::External));
+    ASSERT_EQ(scene.warnings.size(), 1u);
+    EXPECT_NE(scene.warnings[0].find("/extensionsUsed/1: extension 'KHR_texture_transform' is not supported"),
+              std::string::npos)
+        << scene.warnings[0];
+    EXPECT_EQ(scene.draw_items.size(), 1u);
+}
+
 TEST(SceneImport, SamplersMapToRhiSamplerDescriptions) {
     const std::filesystem::path dir = synthetic_dir(current_test());
     struct Case {

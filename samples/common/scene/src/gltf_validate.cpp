@@ -33,7 +33,7 @@ constexpr uint64_t kMaxInt = static_cast<uint64_t>(std::numeric_limits<int32_t>:
 // recursive conversion of those values.
 constexpr std::size_t kMaxJsonDepth = 256;
 
-constexpr std::array<std::string_view, 1> kSupportedRequiredExtensions = {"KHR_mesh_quantization"};
+constexpr std::array<std::string_view, 1> kSupportedExtensions = {"KHR_mesh_quantization"};
 
 /// The top-level arrays of a glTF document that other objects refer to by index.
 enum class Collection : uint8_t {
@@ -381,14 +381,15 @@ private:
                 const json& name = (**array)[i];
                 if (!name.is_string()) return parse_error(root / key / i, "must be a string, got " + short_dump(name));
                 used.insert(name.get<std::string>());
-                if (std::string_view(key) == "extensionsRequired") {
-                    const std::string extension = name.get<std::string>();
-                    const bool supported = std::find(kSupportedRequiredExtensions.begin(), kSupportedRequiredExtensions.end(),
-                                                     extension) != kSupportedRequiredExtensions.end();
-                    if (!supported) {
-                        return parse_error(root / key / i, "required extension '" + extension +
-                                                               "' is not supported (supported: KHR_mesh_quantization)");
-                    }
+                const bool supported_extension =
+                    std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(),
+                              name.get<std::string>()) != kSupportedExtensions.end();
+                if (std::string_view(key) == "extensionsUsed" && !supported_extension) {
+                    warn(root / key / i, "extension '" + name.get<std::string>() + "' is not supported; its data is ignored");
+                }
+                if (std::string_view(key) == "extensionsRequired" && !supported_extension) {
+                    return parse_error(root / key / i, "required extension '" + name.get<std::string>() +
+                                                           "' is not supported (supported: KHR_mesh_quantization)");
                 }
             }
         }

@@ -48,10 +48,11 @@ struct LoadOptions {
     std::optional<uint32_t> scene;
     NormalGeneration normals = NormalGeneration::Flat;
     TangentGeneration tangents = TangentGeneration::WhenNormalMapped;
-    /// Largest element count accepted for one accessor (protects against files that declare
-    /// huge zero-filled or sparse accessors).
+    /// Largest element count accepted for one accessor. It protects against files that
+    /// declare huge zero-filled (sparse) accessors, which need memory but no data; raising it
+    /// far lets such a file exhaust memory (the load then fails with ErrorCode::OutOfMemory).
     uint64_t max_accessor_elements = uint64_t{1} << 24;
-    /// Largest accepted image width or height.
+    /// Largest accepted image width or height (checked before any pixel memory is allocated).
     uint32_t max_image_dimension = 16384;
 };
 
