@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "loom/scene/gltf.hpp"
+#include "loom/scene/packed_geometry.hpp"
 #include "loom_test/test_support.hpp"
 #include "scene_test_util.hpp"
 
@@ -376,6 +377,29 @@ TEST(SceneModels, CesiumMilkTruckHierarchyAndSharedImage) {
     bool warned = false;
     for (const std::string& warning : scene->warnings) warned |= warning.find("/animations") != std::string::npos;
     EXPECT_TRUE(warned);
+}
+
+TEST(SceneModels, PackedGeometryReproducesEveryDrawItem) {
+    LOOM_REQUIRE_DATA_DIR(data);
+    const Scene* scene = load_model(data, "CesiumMilkTruck");
+    ASSERT_NE(scene, nullptr);
+    const scene::PackedGeometry packed = scene::pack_geometry(*scene);
+    EXPECT_EQ(packed.vertices.size(), scene->vertex_count());
+    EXPECT_EQ(packed.indices.size(), scene->index_count());
+    // Mesh 0's three primitives, then mesh 1's one, back to back.
+    ASSERT_EQ(packed.ranges.size(), 2u);
+    EXPECT_EQ(packed.ranges[0][1], (scene::PrimitiveRange{5232, 168, 1856}));
+    EXPECT_EQ(packed.ranges[1][0], (scene::PrimitiveRange{5232 + 168 + 864, 2304, 1856 + 72 + 464}));
+    for (const scene::DrawItem& item : scene->draw_items) {
+        const scene::Primitive& primitive = scene->meshes[item.mesh].primitives[item.primitive];
+        const scene::PrimitiveRange& range = packed.range(item);
+        ASSERT_EQ(range.index_count, primitive.indices.size());
+        for (uint32_t i = 0; i < range.index_count; ++i) {
+            const uint32_t index = packed.indices[range.first_index + i];
+            ASSERT_EQ(packed.vertices[static_cast<std::size_t>(range.base_vertex) + index],
+                      primitive.vertices[primitive.indices[i]]);
+        }
+    }
 }
 
 TEST(SceneModels, AlphaBlendModeTestAlphaModesAndDoubleSided) {
