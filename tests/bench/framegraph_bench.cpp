@@ -145,6 +145,12 @@ void BM_BytesOverLowerBoundCorpus(benchmark::State& state) {
     }
     state.counters["graphs"] = static_cast<double>(graphs.size());
     state.counters["heap_at_bound_%"] = 100.0 * heap_optimal / static_cast<double>(graphs.size());
+    // Cumulative distribution of the heap ratio.
+    for (const auto& [name, limit] : {std::pair{"heap_le_1.01_%", 1.01}, std::pair{"heap_le_1.05_%", 1.05},
+                                      std::pair{"heap_le_1.10_%", 1.10}}) {
+        const auto within = std::count_if(heap.begin(), heap.end(), [&](double r) { return r <= limit; });
+        state.counters[name] = 100.0 * static_cast<double>(within) / static_cast<double>(graphs.size());
+    }
     for (const auto& [name, values] : {std::pair{"heap", &heap}, std::pair{"interval", &interval},
                                        std::pair{"paper", &paper}, std::pair{"naive", &naive}}) {
         state.counters[std::string(name) + "_p50"] = quantile(*values, 0.5);
