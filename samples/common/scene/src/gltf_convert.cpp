@@ -5,6 +5,8 @@
 #include <optional>
 #include <utility>
 
+#include <glm/gtc/quaternion.hpp>
+
 #include "accessor_reader.hpp"
 #include "gltf_constants.hpp"
 #include "gltf_validate.hpp"

@@ -13,4 +13,3 @@
 #endif
 
 #include <glm/glm.hpp>
-#include <glm/gtc/quaternion.hpp>
