@@ -26,6 +26,7 @@ struct Arguments {
     loom::fg::PlanOptions options;
     std::optional<loom::fg::Extent2D> frame;
     bool json = false;
+    bool help = false;
     std::string dot;
 };
 
@@ -58,16 +59,15 @@ std::optional<loom::fg::Extent2D> parse_frame(std::string_view text) {
 std::optional<std::string> parse_arguments(int argc, char** argv, Arguments& args) {
     for (int i = 1; i < argc; ++i) {
         const std::string_view arg = argv[i];
-        auto value = [&](std::string_view option) -> std::optional<std::string_view> {
+        auto value = [&]() -> std::optional<std::string_view> {
             if (i + 1 >= argc) return std::nullopt;
-            (void)option;
             return std::string_view(argv[++i]);
         };
         if (arg == "--json") {
             args.json = true;
         } else if (arg == "--allocator" || arg == "--sharing" || arg == "--frame" || arg == "--max-heap" ||
                    arg == "--dot") {
-            auto v = value(arg);
+            auto v = value();
             if (!v) return std::string(arg) + " needs a value";
             if (arg == "--allocator") {
                 args.options.allocator = std::string(*v);
@@ -90,7 +90,7 @@ std::optional<std::string> parse_arguments(int argc, char** argv, Arguments& arg
                 args.dot = std::string(*v);
             }
         } else if (arg == "--help" || arg == "-h") {
-            return std::string(kUsage);
+            args.help = true;
         } else if (arg.starts_with("-")) {
             return "unknown option '" + std::string(arg) + "'";
         } else if (args.graph.empty()) {
@@ -99,7 +99,7 @@ std::optional<std::string> parse_arguments(int argc, char** argv, Arguments& arg
             return "more than one graph file given ('" + args.graph + "', '" + std::string(arg) + "')";
         }
     }
-    if (args.graph.empty()) return "no graph file given; " + std::string(kUsage);
+    if (args.graph.empty() && !args.help) return "no graph file given; " + std::string(kUsage);
     return std::nullopt;
 }
 
@@ -108,6 +108,10 @@ std::optional<std::string> parse_arguments(int argc, char** argv, Arguments& arg
 int main(int argc, char** argv) {
     Arguments args;
     if (auto problem = parse_arguments(argc, argv, args)) return fail(2, *problem);
+    if (args.help) {
+        std::cout << kUsage << "\n";
+        return 0;
+    }
 
     auto file = loom::fg::load_graph_file(args.graph);
     if (!file) return fail(1, file.error().to_string());
