@@ -33,12 +33,17 @@ std::optional<Report> read_report(const std::filesystem::path& file) {
     if (!stream) return std::nullopt;
     const nlohmann::json report = nlohmann::json::parse(stream);
     Report result;
+    // A string member, or "" (written out: GCC 12 at -O3 warns about nlohmann's value()).
+    auto text = [](const nlohmann::json& object, const char* key) {
+        const auto found = object.find(key);
+        return found != object.end() && found->is_string() ? found->get<std::string>() : std::string();
+    };
     for (const nlohmann::json& message : report.at("issues").at("messages")) {
-        if (message.value("severity", 9) != 0) continue;  // errors only
-        if (message.contains("pointer") && message["pointer"].is_string() && !message["pointer"].get<std::string>().empty()) {
-            result.pointers.push_back(message["pointer"].get<std::string>());
-        }
-        if (message.value("code", std::string()) == "IO_ERROR") result.io = true;
+        const auto severity = message.find("severity");
+        if (severity == message.end() || *severity != 0) continue;  // errors only
+        const std::string pointer = text(message, "pointer");
+        if (!pointer.empty()) result.pointers.push_back(pointer);
+        if (text(message, "code") == "IO_ERROR") result.io = true;
     }
     return result;
 }
