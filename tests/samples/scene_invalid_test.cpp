@@ -2,6 +2,7 @@
 // and synthetic ones written by the tests. Each must give one clean one-line error naming the
 // file and, where the Khronos validator's report gives one, the JSON pointer — never a crash.
 #include <fstream>
+#include <iostream>
 #include <limits>
 #include <set>
 #include <string>

@@ -3,6 +3,7 @@
 // or return one clean, one-line error naming the file — under ASan/UBSan this also proves that
 // nothing reads out of bounds.
 #include <functional>
+#include <iostream>
 #include <string>
 #include <vector>
 
