@@ -46,6 +46,11 @@ std::optional<uint32_t> Pass::port_index(std::string_view name) const {
     return std::nullopt;
 }
 
+Status Pass::execute(PassContext& context) {
+    if (execute_function_) return execute_function_(context);
+    return {};
+}
+
 Status Pass::status() const {
     if (error_) return *error_;
     return {};

@@ -100,6 +100,9 @@ public:
 
     [[nodiscard]] uint32_t pass_count() const { return static_cast<uint32_t>(passes_.size()); }
     [[nodiscard]] const Pass& pass(PassId id) const { return *passes_[id.index]; }
+    /// Runs the execute step of a pass (the executor calls it; ports stay fixed, which is why
+    /// the graph hands out no mutable Pass).
+    Status execute_pass(PassId id, PassContext& context) { return passes_[id.index]->execute(context); }
     [[nodiscard]] std::optional<PassId> find_pass(std::string_view name) const;
     [[nodiscard]] const std::vector<Connection>& connections() const { return connections_; }
     [[nodiscard]] const std::vector<PortAddress>& outputs() const { return outputs_; }

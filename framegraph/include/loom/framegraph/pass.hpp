@@ -5,10 +5,12 @@
 // a pass is composed from parts the way the paper (Hafner, ELS 2019, §5, Listings 3-5) builds
 // its deferred pass from a deferred, a shadow-receiving and a high-pass part.
 //
-// Setup only: declaring and composing ports touches no GPU. The executor adds an execute step
-// to Pass later; ports are resolved to real textures then.
+// Declaring and composing ports touches no GPU. Execution is a separate step: the executor
+// (executor.hpp) calls execute() once per frame with a PassContext whose ports are resolved to
+// real textures. Derive from Pass and override execute(), or hand a callback to on_execute().
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,6 +20,8 @@
 #include "loom/rhi/result.hpp"
 
 namespace loom::fg {
+
+class PassContext;
 
 enum class PortKind : uint8_t {
     Input,   ///< reads the texture produced by the port connected to it
@@ -114,6 +118,20 @@ public:
     }
     [[nodiscard]] bool side_effect() const { return side_effect_; }
 
+    /// The work the pass records every frame (see PassContext). Runs the callback set with
+    /// on_execute(); without one it records nothing. An error returned here fails the frame and
+    /// comes back from the executor naming the pass.
+    virtual Status execute(PassContext& context);
+
+    /// Sets the callback the default execute() runs (for passes that are not subclasses).
+    using ExecuteFunction = std::function<Status(PassContext&)>;
+    Pass& on_execute(ExecuteFunction function) {
+        execute_function_ = std::move(function);
+        return *this;
+    }
+    /// True when a callback was set with on_execute().
+    [[nodiscard]] bool has_execute_function() const { return static_cast<bool>(execute_function_); }
+
     [[nodiscard]] const std::string& name() const { return name_; }
     /// Merged ports, in the order their names were first declared.
     [[nodiscard]] const std::vector<Port>& ports() const { return ports_; }
@@ -131,6 +149,7 @@ private:
     std::vector<Port> ports_;
     bool side_effect_ = false;
     std::optional<Error> error_;
+    ExecuteFunction execute_function_;
 };
 
 }  // namespace loom::fg
