@@ -72,10 +72,12 @@ public:
     Result<rhi::PipelineHandle> combine(rhi::Format format);
     /// Nearest-filtering sampler.
     Result<rhi::SamplerHandle> sampler();
+    /// A fullscreen-triangle pipeline with the given fragment shader (cached by name and formats);
+    /// with a depth format, depth test Always and writes as `depth_write` says.
+    Result<rhi::PipelineHandle> make(const std::string& name, const std::string& fragment, std::vector<rhi::Format> colors,
+                                     rhi::Format depth = rhi::Format::Undefined, bool depth_write = false);
 
 private:
-    Result<rhi::PipelineHandle> make(const std::string& name, const std::string& fragment, std::vector<rhi::Format> colors,
-                                     rhi::Format depth, bool depth_write);
     Result<rhi::ShaderHandle> vertex_shader();
 
     rhi::Device& device_;

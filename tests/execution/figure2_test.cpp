@@ -1,0 +1,217 @@
+// The paper's Figure 2 graph shape (shadow map, G-buffer, deferred with three parts, blur,
+// composite) with simple test passes, run by the executor with every allocator: the final
+// picture is exact, and the textures (and on Vulkan with `heap`, the heaps and their bytes) the
+// backend really created are the plan's.
+#include "execution_helpers.hpp"
+#include "loom_test/render_fixture.hpp"
+
+namespace loom::test {
+namespace {
+
+using rhi::Format;
+
+const fg::TextureSpec kColor = fg::TextureSpec::of(Format::RGBA16Float).with_scale(1.0f);
+const fg::TextureSpec kShadow = fg::TextureSpec::of(Format::Depth32F).with_size(64, 64);
+
+// G-buffer: three constant maps.
+const char* const kGeometryFrag = R"(#version 450
+layout(location = 0) out vec4 position;
+layout(location = 1) out vec4 normal;
+layout(location = 2) out vec4 albedo;
+void main() {
+    position = vec4(0.125, 0.0, 0.0, 0.0);
+    normal = vec4(0.0, 0.25, 0.0, 0.0);
+    albedo = vec4(0.5, 0.5, 0.5, 1.0);
+}
+)";
+
+// Deferred: color = position + normal + albedo * shadow, high_pass = albedo * (1 - shadow).
+const char* const kDeferredFrag = R"(#version 450
+layout(set = 0, binding = 0) uniform sampler2D position;
+layout(set = 0, binding = 1) uniform sampler2D normal;
+layout(set = 0, binding = 2) uniform sampler2D albedo;
+layout(set = 0, binding = 3) uniform sampler2D shadow_map;
+layout(location = 0) out vec4 color;
+layout(location = 1) out vec4 high_pass;
+void main() {
+    ivec2 at = ivec2(gl_FragCoord.xy);
+    float s = texelFetch(shadow_map, at, 0).r;
+    vec4 a = texelFetch(albedo, at, 0);
+    color = texelFetch(position, at, 0) + texelFetch(normal, at, 0) + a * s;
+    high_pass = a * (1.0 - s);
+}
+)";
+
+struct Figure2Programs {
+    rhi::PipelineHandle shadow, geometry, deferred, blur, composite;
+    rhi::SamplerHandle sampler;
+};
+
+fg::FrameGraph figure2(const Figure2Programs& p) {
+    fg::FrameGraph graph;
+    // The shadow map: depth 0.25 in columns 0..7, 0.75 beyond.
+    EXPECT_TRUE(graph.add_pass(fg::Pass("shadow").output("shadow_map", kShadow).on_execute([p](fg::PassContext& ctx) {
+        ctx.begin_depth_pass("shadow_map");
+        ctx.commands().set_pipeline(p.shadow);
+        ctx.commands().push_constants_of(FillConstants{{0.25f, 0, 0, 0}, {0.75f, 0, 0, 0}, 8.0f});
+        ctx.commands().draw(3);
+        ctx.end_render_pass();
+        return Status{};
+    })).ok());
+    EXPECT_TRUE(graph.add_pass(fg::Pass("geometry")
+                                   .output("position", kColor)
+                                   .output("normal", kColor)
+                                   .output("albedo", kColor)
+                                   .on_execute([p](fg::PassContext& ctx) {
+                                       ctx.begin_render_pass({"position", "normal", "albedo"});
+                                       ctx.commands().set_pipeline(p.geometry);
+                                       ctx.commands().draw(3);
+                                       ctx.end_render_pass();
+                                       return Status{};
+                                   }))
+                    .ok());
+    const fg::Part deferred = fg::Part("deferred").input("position", kColor).input("normal", kColor).input("albedo", kColor).output("color", kColor);
+    const fg::Part shadow_receiver = fg::Part("shadow-render").input("shadow_map", kShadow).output("color", kColor);
+    const fg::Part high_pass = fg::Part("high-pass-render").output("high_pass", kColor);
+    EXPECT_TRUE(graph.add_pass(fg::Pass("deferred").add(deferred).add(shadow_receiver).add(high_pass).on_execute([p](fg::PassContext& ctx) {
+        ctx.begin_render_pass({"color", "high_pass"});
+        ctx.commands().set_pipeline(p.deferred);
+        ctx.commands().set_bind_group(0, rhi::BindGroup{}
+                                             .texture(0, ctx.texture("position"), p.sampler)
+                                             .texture(1, ctx.texture("normal"), p.sampler)
+                                             .texture(2, ctx.texture("albedo"), p.sampler)
+                                             .texture(3, ctx.texture("shadow_map"), p.sampler));
+        ctx.commands().draw(3);
+        ctx.end_render_pass();
+        return Status{};
+    })).ok());
+    EXPECT_TRUE(graph.add_pass(filter_pass("blur", "previous_pass", "color", kColor, p.blur, p.sampler, {{0.5f, 0.5f, 0.5f, 0.5f}, {}})).ok());
+    EXPECT_TRUE(graph.add_pass(combine_pass("composite", "color", "bloom", "final", kColor, p.composite, p.sampler, {})).ok());
+    EXPECT_TRUE(graph.connect(fg::port("shadow", "shadow_map"), fg::port("deferred", "shadow_map")).ok());
+    EXPECT_TRUE(graph.connect(fg::port("geometry", "position"), fg::port("deferred", "position")).ok());
+    EXPECT_TRUE(graph.connect(fg::port("geometry", "normal"), fg::port("deferred", "normal")).ok());
+    EXPECT_TRUE(graph.connect(fg::port("geometry", "albedo"), fg::port("deferred", "albedo")).ok());
+    EXPECT_TRUE(graph.connect(fg::port("deferred", "high_pass"), fg::port("blur", "previous_pass")).ok());
+    EXPECT_TRUE(graph.connect(fg::port("deferred", "color"), fg::port("composite", "color")).ok());
+    EXPECT_TRUE(graph.connect(fg::port("blur", "color"), fg::port("composite", "bloom")).ok());
+    EXPECT_TRUE(graph.mark_output(fg::port("composite", "final")).ok());
+    return graph;
+}
+
+class Figure2Execution : public RenderTest {
+protected:
+    void SetUp() override {
+        RenderTest::SetUp();
+        programs_ = std::make_unique<TestPrograms>(device());
+        LOOM_ASSIGN_OR_FAIL(p_.shadow, programs_->depth_only(Format::Depth32F));
+        LOOM_ASSIGN_OR_FAIL(p_.geometry, programs_->make("geometry", kGeometryFrag,
+                                                         {Format::RGBA16Float, Format::RGBA16Float, Format::RGBA16Float}));
+        LOOM_ASSIGN_OR_FAIL(p_.deferred, programs_->make("deferred", kDeferredFrag, {Format::RGBA16Float, Format::RGBA16Float}));
+        LOOM_ASSIGN_OR_FAIL(p_.blur, programs_->filter(Format::RGBA16Float));
+        LOOM_ASSIGN_OR_FAIL(p_.composite, programs_->combine(Format::RGBA16Float));
+        LOOM_ASSIGN_OR_FAIL(p_.sampler, programs_->sampler());
+    }
+    void TearDown() override {
+        programs_.reset();
+        RenderTest::TearDown();
+    }
+
+    // Left columns see shadow 0.25, the right ones 0.75 (values worked out in the shader comments).
+    void expect_final_picture(rhi::TextureHandle final_texture, uint32_t width, uint32_t height, const std::string& what) {
+        LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(final_texture));
+        ASSERT_EQ(image.width, width) << what;
+        ASSERT_EQ(image.height, height) << what;
+        for (uint32_t y = 0; y < height; ++y) {
+            for (uint32_t x = 0; x < width; ++x) {
+                const std::array<double, 4> expected = x < 8 ? std::array<double, 4>{0.4375, 0.5625, 0.3125, 0.625}
+                                                             : std::array<double, 4>{0.5625, 0.6875, 0.4375, 0.875};
+                ASSERT_EQ(image.load(x, y), expected) << what << ": pixel " << x << "," << y;
+            }
+        }
+    }
+
+    std::unique_ptr<TestPrograms> programs_;
+    Figure2Programs p_{};
+};
+
+TEST_P(Figure2Execution, EveryAllocatorGivesTheSamePictureAndCreatesThePlansTextures) {
+    for (const std::string allocator : {"paper", "interval", "heap"}) {
+        SCOPED_TRACE(allocator);
+        fg::FrameGraph graph = figure2(p_);
+        const rhi::ResourceStats before = device().resource_stats();
+        {
+            fg::Executor executor(device());
+            fg::PlanOptions options;
+            options.frame = {16, 8};
+            options.allocator = allocator;
+            LOOM_ASSERT_OK(executor.run_frame(graph, options));
+            expect_final_picture(executor.texture("composite", "final"), 16, 8, allocator);
+            save_texture(device(), executor.texture("composite", "final"), "figure2_" + allocator + "_" + std::string(rhi::backend_name(backend())));
+
+            const fg::Plan& plan = *executor.plan();
+            const fg::ExecutionStats stats = executor.stats();
+            const rhi::ResourceStats after = device().resource_stats();
+            // Planned: 5 colour textures + the depth map for paper and interval (heap: its own count).
+            if (allocator != "heap") {
+                EXPECT_EQ(plan.textures.size(), 6u);
+            }
+            EXPECT_EQ(stats.plan_textures, plan.textures.size());
+            EXPECT_EQ(stats.textures, plan.textures.size()) << describe(stats);
+            EXPECT_EQ(after.textures - before.textures, plan.textures.size()) << describe(stats);
+            const bool placed = allocator == "heap" && device().capabilities().placed_resources;
+            if (placed) {
+                uint64_t heap_bytes = 0;
+                for (uint64_t h : plan.heaps) heap_bytes += h;
+                EXPECT_FALSE(plan.heaps.empty());
+                EXPECT_EQ(after.heaps - before.heaps, plan.heaps.size()) << describe(stats);
+                EXPECT_EQ(after.heap_bytes - before.heap_bytes, heap_bytes) << describe(stats);
+                EXPECT_EQ(plan.summary.bytes, heap_bytes);
+                EXPECT_EQ(stats.placed_textures, plan.textures.size());
+                // Placed textures count as textures, their bytes only in the heaps.
+                EXPECT_EQ(after.texture_bytes, before.texture_bytes) << describe(stats);
+            } else {
+                EXPECT_EQ(after.heaps, before.heaps) << describe(stats);
+                EXPECT_EQ(stats.placed_textures, 0u);
+            }
+        }
+        // The executor released everything it created.
+        const rhi::ResourceStats released = device().resource_stats();
+        EXPECT_EQ(released.textures, before.textures);
+        EXPECT_EQ(released.heaps, before.heaps);
+        EXPECT_EQ(released.heap_bytes, before.heap_bytes);
+        EXPECT_EQ(released.texture_bytes, before.texture_bytes);
+    }
+}
+
+TEST_P(Figure2Execution, UnchangedPlanCreatesNothingNew) {
+    fg::FrameGraph graph = figure2(p_);
+    fg::Executor executor(device());
+    fg::PlanOptions options;
+    options.frame = {16, 8};
+    options.allocator = device().capabilities().placed_resources ? "heap" : "interval";
+    LOOM_ASSERT_OK(executor.run_frame(graph, options));
+    const rhi::ResourceStats first = device().resource_stats();
+    const auto plan = executor.plan();
+    std::vector<rhi::TextureHandle> handles;
+    for (uint32_t t = 0; t < plan->textures.size(); ++t) handles.push_back(executor.plan_texture(t));
+    for (int frame = 0; frame < 3; ++frame) {
+        LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        expect_final_picture(executor.texture("composite", "final"), 16, 8, "frame " + std::to_string(frame + 1));
+    }
+    EXPECT_EQ(executor.plan(), plan) << "the graph planned again";
+    EXPECT_EQ(graph.plans_built(), 1u);
+    EXPECT_EQ(executor.stats().realisations, 1u);
+    EXPECT_EQ(executor.frame_index(), 4u);
+    const rhi::ResourceStats now = device().resource_stats();
+    EXPECT_EQ(now.textures, first.textures);
+    EXPECT_EQ(now.heaps, first.heaps);
+    EXPECT_EQ(now.heap_bytes, first.heap_bytes);
+    EXPECT_EQ(now.texture_bytes, first.texture_bytes);
+    for (uint32_t t = 0; t < plan->textures.size(); ++t) EXPECT_EQ(executor.plan_texture(t), handles[t]) << "t" << t;
+}
+
+}  // namespace
+
+LOOM_INSTANTIATE_RENDER_TEST(Figure2Execution);
+
+}  // namespace loom::test
