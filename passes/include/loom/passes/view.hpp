@@ -1,0 +1,63 @@
+#pragma once
+// What the standard passes need to know about the frame besides their textures: the camera,
+// the directional light, the sky, and the light's view for shadow mapping.
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+namespace loom::passes {
+
+/// An axis-aligned box in world space.
+struct Bounds {
+    glm::vec3 min{0.0f};
+    glm::vec3 max{0.0f};
+};
+
+/// A camera: world-to-view and view-to-clip matrices (clip depth 0..1, NDC y up) and its position.
+struct Camera {
+    glm::mat4 view{1.0f};
+    glm::mat4 projection{1.0f};
+    glm::vec3 position{0.0f};
+
+    [[nodiscard]] glm::mat4 view_projection() const { return projection * view; }
+};
+
+/// A light infinitely far away (the sun).
+struct DirectionalLight {
+    glm::vec3 direction{0.0f, 1.0f, 0.0f};  ///< unit vector from the scene towards the light
+    glm::vec3 color{1.0f};                  ///< linear RGB
+    float intensity = 3.0f;                 ///< radiance scale of `color`
+};
+
+/// Ambient light and the sky seen behind the scene.
+struct Environment {
+    glm::vec3 sky{0.30f, 0.42f, 0.65f};      ///< zenith; ambient light from above
+    glm::vec3 horizon{0.55f, 0.58f, 0.62f};  ///< horizon
+    glm::vec3 ground{0.12f, 0.10f, 0.08f};   ///< ambient light from below
+};
+
+/// How shadows are received (the "shadow-render" part).
+struct ShadowSettings {
+    /// World to the light's clip space, as the shadow map was drawn (fit_directional_shadow).
+    glm::mat4 light_view_projection{1.0f};
+    uint32_t map_size = 2048;   ///< texels per side of the shadow map
+    float normal_offset = 0.02f;///< world units a receiver point moves along its normal
+    float depth_bias = 0.0005f; ///< subtracted from the receiver's depth (0..1)
+    uint32_t pcf_radius = 1;    ///< (2r+1)^2 comparison taps
+};
+
+/// Everything the lit passes need per frame.
+struct SceneView {
+    Camera camera;
+    DirectionalLight light;
+    Environment environment;
+    ShadowSettings shadow;
+};
+
+/// An orthographic view-projection of the light that encloses `bounds` tightly: looking along
+/// -towards_light at the centre of the box, x and y fit to the projected corners, depth 0..1
+/// spanning the box (nearest corner at 0). `towards_light` need not be unit length.
+glm::mat4 fit_directional_shadow(const glm::vec3& towards_light, const Bounds& bounds);
+
+}  // namespace loom::passes

@@ -1,0 +1,164 @@
+#include "loom/passes/mesh_object.hpp"
+
+#include <cstddef>
+#include <limits>
+
+#include "loom/passes/program.hpp"
+#include "loom/passes/shader_pass.hpp"
+
+namespace loom::passes {
+namespace {
+
+/// Mirrors ObjectUniforms in shaders/include/loom/passes/mesh_object.glsl (std140).
+struct ObjectUniforms {
+    glm::mat4 model;
+    glm::mat4 normal_matrix;
+    glm::vec4 base_color;
+    glm::vec4 secondary_color;
+    glm::vec4 emissive;
+    glm::vec4 material;
+};
+static_assert(sizeof(ObjectUniforms) == 192);
+
+ShaderPart mesh_geometry_part() {
+    return ShaderPart("mesh-geometry", 1)
+        .stage_file(rhi::ShaderStage::Vertex, "loom/parts/mesh_geometry.vert.glsl")
+        .stage_file(rhi::ShaderStage::Fragment, "loom/parts/mesh_geometry.frag.glsl");
+}
+
+}  // namespace
+
+rhi::VertexBufferLayout mesh_vertex_layout() {
+    rhi::VertexBufferLayout layout;
+    layout.stride = sizeof(MeshVertex);
+    layout.attributes = {
+        {0, rhi::VertexFormat::Float3, static_cast<uint32_t>(offsetof(MeshVertex, position))},
+        {1, rhi::VertexFormat::Float3, static_cast<uint32_t>(offsetof(MeshVertex, normal))},
+        {2, rhi::VertexFormat::Float4, static_cast<uint32_t>(offsetof(MeshVertex, tangent))},
+        {3, rhi::VertexFormat::Float2, static_cast<uint32_t>(offsetof(MeshVertex, uv0))},
+        {4, rhi::VertexFormat::Float2, static_cast<uint32_t>(offsetof(MeshVertex, uv1))},
+        {5, rhi::VertexFormat::Float4, static_cast<uint32_t>(offsetof(MeshVertex, color))},
+    };
+    return layout;
+}
+
+Result<std::shared_ptr<GpuMesh>> GpuMesh::create(rhi::Device& device, std::span<const MeshVertex> vertices,
+                                                 std::span<const uint32_t> indices, std::string name) {
+    if (vertices.empty() || indices.empty() || indices.size() % 3 != 0) {
+        return make_error(ErrorCode::InvalidArgument, "mesh '" + name + "': needs vertices and a triangle list (" +
+                                                          std::to_string(vertices.size()) + " vertices, " +
+                                                          std::to_string(indices.size()) + " indices)");
+    }
+    if (vertices.size() > std::numeric_limits<uint32_t>::max()) {
+        return make_error(ErrorCode::InvalidArgument, "mesh '" + name + "': too many vertices");
+    }
+    for (std::size_t i = 0; i < indices.size(); ++i) {
+        if (indices[i] >= vertices.size()) {
+            return make_error(ErrorCode::InvalidArgument, "mesh '" + name + "': index " + std::to_string(i) + " is " +
+                                                              std::to_string(indices[i]) + ", but there are only " +
+                                                              std::to_string(vertices.size()) + " vertices");
+        }
+    }
+    std::shared_ptr<GpuMesh> mesh(new GpuMesh(device, std::move(name)));
+    rhi::BufferDesc vb;
+    vb.name = mesh->name_ + " vertices";
+    vb.size = vertices.size_bytes();
+    vb.usage = rhi::BufferUsage::Vertex;
+    auto vertex_buffer = device.create_buffer(vb);
+    if (!vertex_buffer) return vertex_buffer.take_error();
+    mesh->vertices_ = *vertex_buffer;
+    LOOM_TRY(device.write_buffer(mesh->vertices_, 0, std::as_bytes(vertices)));
+    rhi::BufferDesc ib;
+    ib.name = mesh->name_ + " indices";
+    ib.size = indices.size_bytes();
+    ib.usage = rhi::BufferUsage::Index;
+    auto index_buffer = device.create_buffer(ib);
+    if (!index_buffer) return index_buffer.take_error();
+    mesh->indices_ = *index_buffer;
+    LOOM_TRY(device.write_buffer(mesh->indices_, 0, std::as_bytes(indices)));
+    mesh->vertex_count_ = static_cast<uint32_t>(vertices.size());
+    mesh->index_count_ = static_cast<uint32_t>(indices.size());
+    mesh->bounds_ = Bounds{vertices[0].position, vertices[0].position};
+    for (const MeshVertex& v : vertices) {
+        mesh->bounds_.min = glm::min(mesh->bounds_.min, v.position);
+        mesh->bounds_.max = glm::max(mesh->bounds_.max, v.position);
+    }
+    return mesh;
+}
+
+GpuMesh::~GpuMesh() {
+    if (vertices_) (void)device_->destroy(vertices_);
+    if (indices_) (void)device_->destroy(indices_);
+}
+
+std::shared_ptr<const ObjectKind> pbr_mesh_kind() {
+    return std::make_shared<const ObjectKind>(
+        "pbr-mesh",
+        std::vector<ShaderPart>{mesh_geometry_part(), ShaderPart("pbr-material").stage_file(
+                                                          rhi::ShaderStage::Fragment, "loom/parts/pbr_material.frag.glsl")},
+        std::vector<rhi::VertexBufferLayout>{mesh_vertex_layout()});
+}
+
+std::shared_ptr<const ObjectKind> checker_mesh_kind() {
+    return std::make_shared<const ObjectKind>(
+        "checker-mesh",
+        std::vector<ShaderPart>{mesh_geometry_part(),
+                                ShaderPart("checker-material")
+                                    .stage_file(rhi::ShaderStage::Fragment, "loom/parts/checker_material.frag.glsl")},
+        std::vector<rhi::VertexBufferLayout>{mesh_vertex_layout()});
+}
+
+MeshObject::MeshObject(std::string name, std::shared_ptr<const ObjectKind> kind, std::shared_ptr<const GpuMesh> mesh,
+                       const glm::mat4& model, const MeshMaterial& material, MeshRange range)
+    : name_(std::move(name)), kind_(std::move(kind)), mesh_(std::move(mesh)), model_(model), material_(material),
+      range_(range) {}
+
+rhi::RasterState MeshObject::raster() const {
+    rhi::RasterState state;
+    state.cull = material_.double_sided ? rhi::CullMode::None : rhi::CullMode::Back;
+    state.front_face =
+        glm::determinant(glm::mat3(model_)) < 0.0f ? rhi::FrontFace::Clockwise : rhi::FrontFace::CounterClockwise;
+    return state;
+}
+
+Status MeshObject::render(DrawContext& context) const {
+    if (!mesh_) return make_error(ErrorCode::InvalidState, "mesh object '" + name_ + "' has no mesh");
+    ObjectUniforms uniforms;
+    uniforms.model = model_;
+    uniforms.normal_matrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(model_))));
+    uniforms.base_color = material_.base_color;
+    uniforms.secondary_color = material_.secondary_color;
+    uniforms.emissive = glm::vec4(material_.emissive, 0.0f);
+    uniforms.material = glm::vec4(material_.metallic, material_.roughness, material_.pattern_scale, 0.0f);
+    Bindings object_set(context.program, context.commands, kObjectSet);
+    LOOM_TRY(object_set.uniforms("ObjectUniforms", uniforms).bind());
+
+    const uint32_t first = range_.first_index;
+    const uint32_t count = range_.index_count != 0 ? range_.index_count
+                                                   : (first < mesh_->index_count() ? mesh_->index_count() - first : 0);
+    if (first + count > mesh_->index_count()) {
+        return make_error(ErrorCode::InvalidArgument, "mesh object '" + name_ + "': indices " + std::to_string(first) +
+                                                          ".." + std::to_string(first + count) + " exceed mesh '" +
+                                                          mesh_->name() + "' (" +
+                                                          std::to_string(mesh_->index_count()) + " indices)");
+    }
+    context.commands.set_vertex_buffer(0, mesh_->vertex_buffer());
+    context.commands.set_index_buffer(mesh_->index_buffer(), rhi::IndexType::Uint32);
+    context.commands.draw_indexed(count, 1, first, range_.base_vertex);
+    return {};
+}
+
+Bounds MeshObject::world_bounds() const {
+    const Bounds& local = mesh_->bounds();
+    Bounds out{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner((i & 1) ? local.max.x : local.min.x, (i & 2) ? local.max.y : local.min.y,
+                               (i & 4) ? local.max.z : local.min.z);
+        const glm::vec3 world = glm::vec3(model_ * glm::vec4(corner, 1.0f));
+        out.min = glm::min(out.min, world);
+        out.max = glm::max(out.max, world);
+    }
+    return out;
+}
+
+}  // namespace loom::passes

@@ -1,0 +1,41 @@
+#include "uniforms.hpp"
+
+namespace loom::passes::detail {
+
+CameraUniforms camera_uniforms(const Camera& camera) {
+    return CameraUniforms{camera.view_projection(), glm::vec4(camera.position, 1.0f)};
+}
+
+LightingUniforms lighting_uniforms(const SceneView& view) {
+    LightingUniforms u;
+    u.inverse_view_projection = glm::inverse(view.camera.view_projection());
+    u.camera_position = glm::vec4(view.camera.position, 1.0f);
+    u.light_direction = glm::vec4(glm::normalize(view.light.direction), 0.0f);
+    u.light_radiance = glm::vec4(view.light.color * view.light.intensity, 0.0f);
+    u.sky_radiance = glm::vec4(view.environment.sky, 0.0f);
+    u.horizon_radiance = glm::vec4(view.environment.horizon, 0.0f);
+    u.ground_radiance = glm::vec4(view.environment.ground, 0.0f);
+    return u;
+}
+
+Status bind_shadow_receiver(Bindings& set, const ShadowSettings& settings, rhi::TextureHandle shadow_map,
+                            uint32_t map_size, rhi::SamplerHandle comparison_sampler) {
+    ShadowUniforms u;
+    u.light_view_projection = settings.light_view_projection;
+    u.params = glm::vec4(1.0f / static_cast<float>(map_size == 0 ? 1 : map_size), settings.normal_offset,
+                         settings.depth_bias, static_cast<float>(settings.pcf_radius));
+    set.uniforms("ShadowUniforms", u).texture("shadow_map", shadow_map, comparison_sampler);
+    return set.status();
+}
+
+rhi::SamplerDesc shadow_comparison_sampler_desc() {
+    rhi::SamplerDesc desc;
+    desc.name = "shadow comparison";
+    desc.min_filter = rhi::Filter::Linear;
+    desc.mag_filter = rhi::Filter::Linear;
+    desc.max_lod = 0.0f;
+    desc.compare = rhi::CompareOp::LessEqual;
+    return desc;
+}
+
+}  // namespace loom::passes::detail
