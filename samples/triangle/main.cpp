@@ -21,7 +21,7 @@ int fail(const std::string& message) {
 
 int fail(const loom::Error& error) { return fail(error.to_string()); }
 
-int run(const loom::samples::CommonOptions& options) {
+int run(const loom::samples::CommonOptions& options, uint64_t max_frames) {
     using namespace loom;
     auto device = rhi::create_device(samples::device_desc(options, "loom triangle"));
     if (!device.ok()) return fail(device.error());
@@ -33,7 +33,7 @@ int run(const loom::samples::CommonOptions& options) {
     if (options.window) {
         auto status = samples::run_window_loop(dev, [&](rhi::CommandList& list, rhi::TextureHandle backbuffer, rhi::Extent3D) {
             renderer->record(list, backbuffer);
-        });
+        }, max_frames);
         return status.ok() ? EXIT_SUCCESS : fail(status.error());
     }
 
@@ -62,10 +62,22 @@ int main(int argc, char** argv) {
     auto options = loom::samples::parse_common_options(argc, argv, defaults);
     if (!options.ok()) return fail(options.error().message + " (see --help)");
     if (options->help) {
-        std::printf("usage: %s [options]\nDraws a coloured triangle on a dark background.\n\n%s", kName,
-                    loom::samples::common_options_help(defaults).c_str());
+        std::printf("usage: %s [options]\nDraws a coloured triangle on a dark background.\n\n%s"
+                    "  --frames N           with --window: stop after N frames (default 0: until closed)\n",
+                    kName, loom::samples::common_options_help(defaults).c_str());
         return EXIT_SUCCESS;
     }
-    if (!options->rest.empty()) return fail("unknown argument '" + options->rest.front() + "' (see --help)");
-    return run(*options);
+    uint64_t max_frames = 0;
+    for (std::size_t i = 0; i < options->rest.size(); ++i) {
+        const std::string& arg = options->rest[i];
+        if (arg == "--frames" && i + 1 < options->rest.size()) {
+            const std::string& value = options->rest[++i];
+            char* end = nullptr;
+            max_frames = std::strtoull(value.c_str(), &end, 10);
+            if (value.empty() || *end != '\0') return fail("--frames expects a number of frames, got '" + value + "'");
+        } else {
+            return fail("unknown argument '" + arg + "' (see --help)");
+        }
+    }
+    return run(*options, max_frames);
 }

@@ -1,5 +1,7 @@
 // The GL backend's caches: framebuffer objects by attachment set, vertex arrays by vertex
 // layout, and the state cache that keeps redundant binds from reaching GL.
+#include <cstdio>
+
 #include "gl_test_util.hpp"
 #include "render_helpers.hpp"
 
@@ -120,6 +122,8 @@ void main() { frag_color = texture(tex, vec2(0.5)) * tint.tint; }
     EXPECT_EQ(alternating.texture_binds, 10u) << "every change of texture is a real bind";
     EXPECT_EQ(alternating.buffer_binds, 2u);
     EXPECT_GT(alternating.api_calls, same.api_calls);
+    std::printf("10 draws, same state: %llu GL calls; alternating textures: %llu GL calls\n",
+                static_cast<unsigned long long>(same.api_calls), static_cast<unsigned long long>(alternating.api_calls));
 }
 
 }  // namespace
