@@ -140,3 +140,99 @@ void main() { frag_color = vec4(texture(shadow_map, vec3(gl_FragCoord.x / 4.0, 0
 LOOM_INSTANTIATE_RENDER_TEST(ShadowSamplingTest);
 
 }  // namespace loom::test
+
+namespace loom::test {
+namespace {
+
+class LayeredSamplingTest : public RenderTest {
+protected:
+    /// Renders a 6x1 RGBA32Float image whose pixel i is `fragment_body` evaluated with
+    /// `int i = int(gl_FragCoord.x)` and the texture bound at set 0, binding 0.
+    Result<rhi::Image> render_six(rhi::TextureHandle texture, const std::string& declaration, const std::string& body) {
+        auto vs = make_shader(device(), rhi::ShaderStage::Vertex, "fullscreen.vert", kFullscreenVert);
+        if (!vs.ok()) return vs.take_error();
+        auto fs = make_shader(device(), rhi::ShaderStage::Fragment, "layered.frag",
+                              "#version 450\n" + declaration +
+                                  "\nlayout(location = 0) out vec4 frag_color;\n"
+                                  "void main() {\n    int i = int(gl_FragCoord.x);\n" +
+                                  body + "\n}\n");
+        if (!fs.ok()) return fs.take_error();
+        rhi::GraphicsPipelineDesc pd;
+        pd.name = "layered";
+        pd.vertex = *vs;
+        pd.fragment = *fs;
+        pd.color_formats = {rhi::Format::RGBA32Float};
+        auto pipeline = device().create_graphics_pipeline(pd);
+        if (!pipeline.ok()) return pipeline.take_error();
+        rhi::SamplerDesc sd;
+        sd.min_filter = sd.mag_filter = rhi::Filter::Nearest;
+        auto sampler = device().create_sampler(sd);
+        if (!sampler.ok()) return sampler.take_error();
+        auto target = make_target(device(), "six", rhi::Format::RGBA32Float, 6, 1);
+        if (!target.ok()) return target.take_error();
+        LOOM_TRY(run_frame(device(), [&](rhi::CommandList& list) {
+            list.begin_render_pass(clear_pass("layered", *target, {-1, -1, -1, -1}));
+            list.set_pipeline(*pipeline);
+            list.set_bind_group(0, rhi::BindGroup{}.texture(0, texture, *sampler));
+            list.draw(3);
+            list.end_render_pass();
+        }));
+        return device().read_texture(*target);
+    }
+
+    /// A texture of 2x2 texels per layer/face/slice, every texel of layer k = (k, 10 + k, 0, 1).
+    Result<rhi::TextureHandle> make_layered(rhi::TextureDimension dimension, uint32_t layers) {
+        rhi::TextureDesc desc;
+        desc.name = "layered";
+        desc.dimension = dimension;
+        desc.format = rhi::Format::RGBA16Float;
+        desc.width = desc.height = 2;
+        desc.depth_or_layers = layers;
+        desc.usage = rhi::TextureUsage::Sampled | rhi::TextureUsage::CopyDst;
+        auto texture = device().create_texture(desc);
+        if (!texture.ok()) return texture;
+        for (uint32_t k = 0; k < layers; ++k) {
+            rhi::Image image(2, 2, rhi::Format::RGBA16Float);
+            for (uint32_t i = 0; i < 4; ++i) image.store(i % 2, i / 2, {double(k), 10.0 + k, 0, 1});
+            rhi::TextureRegion region;
+            if (dimension == rhi::TextureDimension::Tex3D) {
+                region.origin.z = k;
+                region.extent = {2, 2, 1};
+            } else {
+                region.layer = k;
+            }
+            LOOM_TRY(device().write_texture(*texture, region, image.pixels));
+        }
+        return texture;
+    }
+};
+
+TEST_P(LayeredSamplingTest, CubeFacesFollowDirection) {
+    // Faces in the order +X, -X, +Y, -Y, +Z, -Z: the direction along an axis samples its face.
+    LOOM_ASSIGN_OR_FAIL(auto cube, make_layered(rhi::TextureDimension::Cube, 6));
+    LOOM_ASSIGN_OR_FAIL(rhi::Image image, render_six(cube, "layout(set = 0, binding = 0) uniform samplerCube tex;", R"(
+    vec3 dirs[6] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));
+    frag_color = texture(tex, dirs[i]);)"));
+    for (uint32_t face = 0; face < 6; ++face) {
+        EXPECT_EQ(image.load(face, 0)[0], double(face)) << "direction " << face;
+        EXPECT_EQ(image.load(face, 0)[1], 10.0 + face) << "direction " << face;
+    }
+}
+
+TEST_P(LayeredSamplingTest, ArrayLayersAndVolumeSlices) {
+    LOOM_ASSIGN_OR_FAIL(auto array, make_layered(rhi::TextureDimension::Tex2DArray, 6));
+    LOOM_ASSIGN_OR_FAIL(rhi::Image layers, render_six(array, "layout(set = 0, binding = 0) uniform sampler2DArray tex;",
+                                                      "    frag_color = texture(tex, vec3(0.5, 0.5, float(5 - i)));"));
+    for (uint32_t i = 0; i < 6; ++i) EXPECT_EQ(layers.load(i, 0)[0], double(5 - i)) << "layer " << 5 - i;
+    // A 3D texture of 6 slices: slice k is sampled at w = (k + 0.5) / 6.
+    LOOM_ASSIGN_OR_FAIL(auto volume, make_layered(rhi::TextureDimension::Tex3D, 6));
+    LOOM_ASSIGN_OR_FAIL(rhi::Image slices, render_six(volume, "layout(set = 0, binding = 0) uniform sampler3D tex;",
+                                                      "    frag_color = texture(tex, vec3(0.5, 0.5, (float(i) + 0.5) / 6.0));"));
+    for (uint32_t i = 0; i < 6; ++i) EXPECT_EQ(slices.load(i, 0)[0], double(i)) << "slice " << i;
+}
+
+}  // namespace
+
+LOOM_INSTANTIATE_RENDER_TEST(LayeredSamplingTest);
+
+}  // namespace loom::test
