@@ -210,6 +210,96 @@ TEST_P(Figure2Execution, UnchangedPlanCreatesNothingNew) {
     for (uint32_t t = 0; t < plan->textures.size(); ++t) EXPECT_EQ(executor.plan_texture(t), handles[t]) << "t" << t;
 }
 
+
+TEST_P(Figure2Execution, ResizeRebuildsTexturesWithoutLeaks) {
+    fg::FrameGraph graph = figure2(p_);
+    const rhi::ResourceStats before = device().resource_stats();
+    fg::Executor executor(device());
+    fg::PlanOptions options;
+    options.allocator = device().capabilities().placed_resources ? "heap" : "interval";
+    for (const fg::Extent2D frame : {fg::Extent2D{16, 8}, fg::Extent2D{40, 24}, fg::Extent2D{12, 30}, fg::Extent2D{16, 8}}) {
+        const std::string what = std::to_string(frame.width) + "x" + std::to_string(frame.height);
+        SCOPED_TRACE(what);
+        options.frame = frame;
+        LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        expect_final_picture(executor.texture("composite", "final"), frame.width, frame.height, what);
+
+        // Relative sizes follow the frame; the shadow map keeps its absolute size.
+        LOOM_ASSIGN_OR_FAIL(rhi::TextureDesc final_desc, device().texture_desc(executor.texture("composite", "final")));
+        EXPECT_EQ(final_desc.width, frame.width);
+        EXPECT_EQ(final_desc.height, frame.height);
+        LOOM_ASSIGN_OR_FAIL(rhi::TextureDesc shadow_desc, device().texture_desc(executor.texture("shadow", "shadow_map")));
+        EXPECT_EQ(shadow_desc.width, 64u);
+        EXPECT_EQ(shadow_desc.height, 64u);
+
+        // The old resources are gone: what is alive is exactly the new plan's.
+        const fg::Plan& plan = *executor.plan();
+        const rhi::ResourceStats now = device().resource_stats();
+        EXPECT_EQ(plan.frame, frame);
+        EXPECT_EQ(now.textures - before.textures, plan.textures.size()) << describe(executor.stats());
+        EXPECT_EQ(now.heaps - before.heaps, executor.stats().heaps) << describe(executor.stats());
+        uint64_t heap_bytes = 0;
+        if (device().capabilities().placed_resources) {
+            for (uint64_t h : plan.heaps) heap_bytes += h;
+            EXPECT_EQ(now.heaps - before.heaps, plan.heaps.size());
+        }
+        EXPECT_EQ(now.heap_bytes - before.heap_bytes, heap_bytes);
+    }
+    // Each size was realised once (two frames each); going back to 16x8 realises again.
+    EXPECT_EQ(executor.stats().realisations, 4u);
+    LOOM_ASSERT_OK(executor.release());
+    const rhi::ResourceStats released = device().resource_stats();
+    EXPECT_EQ(released.textures, before.textures);
+    EXPECT_EQ(released.heaps, before.heaps);
+    EXPECT_EQ(released.texture_bytes, before.texture_bytes);
+    EXPECT_EQ(released.heap_bytes, before.heap_bytes);
+}
+
+// The heap plan gives textures whose lifetimes do not overlap the same bytes. Both tenants'
+// results must be right every frame (the hand-over runs again at the start of each frame).
+TEST_P(Figure2Execution, HeapAliasingKeepsBothTenantsResults) {
+    fg::FrameGraph graph = figure2(p_);
+    fg::Executor executor(device());
+    fg::PlanOptions options;
+    options.frame = {16, 8};
+    options.allocator = "heap";
+    LOOM_ASSERT_OK(executor.run_frame(graph, options));
+    const fg::Plan& plan = *executor.plan();
+
+    // Pairs of textures sharing heap bytes, with the resources they hold.
+    std::vector<std::pair<uint32_t, uint32_t>> shared;
+    for (uint32_t a = 0; a < plan.textures.size(); ++a) {
+        for (uint32_t b = a + 1; b < plan.textures.size(); ++b) {
+            const auto& pa = plan.textures[a].placement;
+            const auto& pb = plan.textures[b].placement;
+            if (!pa || !pb || pa->heap != pb->heap) continue;
+            if (pa->offset < pb->offset + plan.textures[b].bytes && pb->offset < pa->offset + plan.textures[a].bytes) {
+                shared.emplace_back(a, b);
+            }
+        }
+    }
+    ASSERT_FALSE(shared.empty()) << "the heap plan shares no bytes";
+    const bool placed = device().capabilities().placed_resources;
+    EXPECT_EQ(executor.stats().placed_textures, placed ? plan.textures.size() : 0u);
+
+    // blur.color takes bytes an earlier tenant (one of shadow map, G-buffer maps, high-pass) held.
+    const uint32_t bloom_texture = *plan.texture_of("blur", "color");
+    bool bloom_shares = false;
+    for (auto [a, b] : shared) bloom_shares = bloom_shares || a == bloom_texture || b == bloom_texture;
+    EXPECT_TRUE(bloom_shares) << "blur.color shares no bytes";
+
+    for (int frame = 0; frame < 3; ++frame) {
+        if (frame > 0) LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        // The final picture needs the earlier tenants (shadow map, G-buffer) intact when read;
+        // the bloom, written into shared bytes, must be intact when composite reads it.
+        expect_final_picture(executor.texture("composite", "final"), 16, 8, "frame " + std::to_string(frame));
+        LOOM_ASSIGN_OR_FAIL(rhi::Image bloom, device().read_texture(executor.texture("blur", "color")));
+        EXPECT_EQ(bloom.load(3, 3), (std::array<double, 4>{0.1875, 0.1875, 0.1875, 0.375}));
+        EXPECT_EQ(bloom.load(12, 5), (std::array<double, 4>{0.0625, 0.0625, 0.0625, 0.125}));
+    }
+}
+
 }  // namespace
 
 LOOM_INSTANTIATE_RENDER_TEST(Figure2Execution);
