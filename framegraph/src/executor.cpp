@@ -461,10 +461,9 @@ rhi::TextureHandle Executor::texture(std::string_view pass, std::string_view por
                 case TextureSlot::Kind::Plan: return plan_texture(ps.texture.index);
                 case TextureSlot::Kind::Import: return s.imports[ps.texture.index].texture;
                 case TextureSlot::Kind::History: {
-                    // What the port read in the latest frame.
+                    // What the port will read in the next frame.
                     const Impl::History& h = s.histories[ps.texture.index];
-                    const uint64_t latest = s.frame_index == 0 ? 0 : s.frame_index - 1;
-                    return h.textures[h.layout.textures == 1 ? 0 : (latest + 1) % 2];
+                    return h.textures[h.layout.textures == 1 ? 0 : (s.frame_index + 1) % 2];
                 }
             }
         }

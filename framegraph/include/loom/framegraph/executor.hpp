@@ -137,8 +137,8 @@ public:
     [[nodiscard]] std::shared_ptr<const Plan> plan() const;
     /// The schedule of the latest execute(); null before the first.
     [[nodiscard]] const ExecutionSchedule* schedule() const;
-    /// The texture behind `pass`.`port` in the latest plan (a plan texture, an import or the
-    /// history read through it); null when it has none.
+    /// The texture behind `pass`.`port` in the latest plan (a plan texture, an import, or for a
+    /// history port the history texture the next frame will read); null when it has none.
     [[nodiscard]] rhi::TextureHandle texture(std::string_view pass, std::string_view port) const;
     /// The texture created for Plan::textures[index]; null when not created.
     [[nodiscard]] rhi::TextureHandle plan_texture(uint32_t index) const;
