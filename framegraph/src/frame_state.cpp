@@ -1,5 +1,7 @@
 #include "frame_state.hpp"
 
+#include <variant>
+
 namespace loom::fg {
 
 // ---- PassCommandList ---------------------------------------------------------------------------
@@ -27,8 +29,7 @@ std::optional<std::string> PassCommandList::end_pass() {
 
 void PassCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
     if (in_render_pass_) {
-        // Let the backend report it (with both labels); keep our count in step.
-        inner_->begin_render_pass(desc);
+        frame_.fail(make_error(ErrorCode::InvalidState, "begin_render_pass '" + desc.label + "' while a render pass is open"));
         return;
     }
     inner_->begin_render_pass(desc);
@@ -36,8 +37,60 @@ void PassCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
 }
 
 void PassCommandList::end_render_pass() {
+    if (!in_render_pass_) {
+        frame_.fail(make_error(ErrorCode::InvalidState, "end_render_pass without an open render pass"));
+        return;
+    }
     inner_->end_render_pass();
     in_render_pass_ = false;
+}
+
+bool PassCommandList::require_render_pass(std::string_view command, bool inside) {
+    if (in_render_pass_ == inside) return true;
+    frame_.fail(make_error(ErrorCode::InvalidState, std::string(command) + (inside ? " outside a render pass" : " inside a render pass")));
+    return false;
+}
+
+void PassCommandList::set_pipeline(rhi::PipelineHandle pipeline) {
+    if (pipeline.is_null()) {
+        frame_.fail(make_error(ErrorCode::InvalidHandle, "set_pipeline: null pipeline handle"));
+        return;
+    }
+    inner_->set_pipeline(pipeline);
+}
+
+void PassCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
+    // A null handle here is usually an unconnected optional port (PassContext::texture is null).
+    for (const rhi::BindingEntry& entry : group.entries) {
+        const std::string where = "set_bind_group: set " + std::to_string(set) + " binding " + std::to_string(entry.binding);
+        if (const auto* t = std::get_if<rhi::TextureBinding>(&entry.resource)) {
+            if (t->texture.is_null() || t->sampler.is_null()) {
+                frame_.fail(make_error(ErrorCode::InvalidHandle, where + ": null " + (t->texture.is_null() ? "texture" : "sampler") +
+                                                                     " (an unconnected optional port has no texture)"));
+                return;
+            }
+        } else if (const auto* st = std::get_if<rhi::StorageTextureBinding>(&entry.resource)) {
+            if (st->texture.is_null()) {
+                frame_.fail(make_error(ErrorCode::InvalidHandle, where + ": null storage texture"));
+                return;
+            }
+        } else if (const auto* b = std::get_if<rhi::BufferBinding>(&entry.resource)) {
+            if (b->buffer.is_null()) {
+                frame_.fail(make_error(ErrorCode::InvalidHandle, where + ": null buffer"));
+                return;
+            }
+        }
+    }
+    inner_->set_bind_group(set, group);
+}
+
+void PassCommandList::transition(rhi::TextureHandle texture, rhi::ResourceState state) {
+    if (!require_render_pass("transition", false)) return;
+    if (texture.is_null()) {
+        frame_.fail(make_error(ErrorCode::InvalidHandle, "transition: null texture"));
+        return;
+    }
+    inner_->transition(texture, state);
 }
 
 void PassCommandList::begin_timer(std::string_view label) {

@@ -14,9 +14,11 @@ namespace loom::fg {
 
 class FrameState;
 
-/// Forwards to the frame's command list and keeps what a pass must leave balanced: an open
-/// render pass and debug groups are closed (and reported) when the pass returns; timers belong
-/// to the executor, so a pass's begin_timer/end_timer is reported and skipped.
+/// Forwards to the frame's command list and catches the mistakes a pass can make that the
+/// executor can name with the pass: what it leaves open (a render pass, debug groups: closed and
+/// reported when the pass returns), null handles, draws outside and copies, dispatches and
+/// transitions inside a render pass, and timers (they belong to the executor). Such a command
+/// is reported and skipped. Everything else is checked by the backend (end_frame's error).
 class PassCommandList final : public rhi::CommandList {
 public:
     explicit PassCommandList(FrameState& frame) : frame_(frame) {}
@@ -29,10 +31,10 @@ public:
 
     void begin_render_pass(const rhi::RenderPassDesc& desc) override;
     void end_render_pass() override;
-    void set_pipeline(rhi::PipelineHandle pipeline) override { inner_->set_pipeline(pipeline); }
+    void set_pipeline(rhi::PipelineHandle pipeline) override;
     void set_viewport(const rhi::Viewport& viewport) override { inner_->set_viewport(viewport); }
     void set_scissor(const rhi::Rect& rect) override { inner_->set_scissor(rect); }
-    void set_bind_group(uint32_t set, const rhi::BindGroup& group) override { inner_->set_bind_group(set, group); }
+    void set_bind_group(uint32_t set, const rhi::BindGroup& group) override;
     void push_constants(std::span<const std::byte> data, uint32_t offset) override { inner_->push_constants(data, offset); }
     void set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, uint64_t offset) override {
         inner_->set_vertex_buffer(slot, buffer, offset);
@@ -42,26 +44,37 @@ public:
     }
     rhi::BufferBinding transient_uniforms(std::span<const std::byte> data) override { return inner_->transient_uniforms(data); }
     void draw(uint32_t vertex_count, uint32_t instance_count, uint32_t first_vertex, uint32_t first_instance) override {
-        inner_->draw(vertex_count, instance_count, first_vertex, first_instance);
+        if (require_render_pass("draw", true)) inner_->draw(vertex_count, instance_count, first_vertex, first_instance);
     }
     void draw_indexed(uint32_t index_count, uint32_t instance_count, uint32_t first_index, int32_t base_vertex,
                       uint32_t first_instance) override {
-        inner_->draw_indexed(index_count, instance_count, first_index, base_vertex, first_instance);
+        if (require_render_pass("draw_indexed", true)) {
+            inner_->draw_indexed(index_count, instance_count, first_index, base_vertex, first_instance);
+        }
     }
-    void dispatch(uint32_t x, uint32_t y, uint32_t z) override { inner_->dispatch(x, y, z); }
+    void dispatch(uint32_t x, uint32_t y, uint32_t z) override {
+        if (require_render_pass("dispatch", false)) inner_->dispatch(x, y, z);
+    }
     void copy_buffer(rhi::BufferHandle src, uint64_t src_offset, rhi::BufferHandle dst, uint64_t dst_offset,
                      uint64_t size) override {
-        inner_->copy_buffer(src, src_offset, dst, dst_offset, size);
+        if (require_render_pass("copy_buffer", false)) inner_->copy_buffer(src, src_offset, dst, dst_offset, size);
     }
-    void copy_texture(const rhi::TextureCopy& copy) override { inner_->copy_texture(copy); }
-    void transition(rhi::TextureHandle texture, rhi::ResourceState state) override { inner_->transition(texture, state); }
-    void transition(rhi::BufferHandle buffer, rhi::ResourceState state) override { inner_->transition(buffer, state); }
+    void copy_texture(const rhi::TextureCopy& copy) override {
+        if (require_render_pass("copy_texture", false)) inner_->copy_texture(copy);
+    }
+    void transition(rhi::TextureHandle texture, rhi::ResourceState state) override;
+    void transition(rhi::BufferHandle buffer, rhi::ResourceState state) override {
+        if (require_render_pass("transition", false)) inner_->transition(buffer, state);
+    }
     void begin_timer(std::string_view label) override;
     void end_timer() override;
     void push_debug_group(std::string_view label) override;
     void pop_debug_group() override;
 
 private:
+    /// True when the command may run: inside a render pass when `inside`, else outside one.
+    bool require_render_pass(std::string_view command, bool inside);
+
     FrameState& frame_;
     rhi::CommandList* inner_ = nullptr;
     bool in_render_pass_ = false;
