@@ -1,7 +1,5 @@
 #include "execution_helpers.hpp"
 
-#include <sstream>
-
 #include "loom/rhi/image.hpp"
 #include "loom/rhi/shader_compiler.hpp"
 #include "loom_test/test_support.hpp"
@@ -199,16 +197,6 @@ void save_texture(rhi::Device& device, rhi::TextureHandle texture, const std::st
     ASSERT_TRUE(image.ok()) << image.error().to_string();
     auto status = rhi::write_png(*image, output_dir() / "execution" / (name + ".png"));
     EXPECT_TRUE(status.ok()) << status.error().to_string();
-}
-
-std::string describe(const fg::ExecutionStats& stats) {
-    std::ostringstream out;
-    out << "plan: " << stats.plan_textures << " textures, " << stats.plan_heaps << " heaps (" << stats.plan_heap_bytes
-        << " bytes); created: " << stats.textures << " textures (" << stats.placed_textures << " placed), "
-        << stats.history_textures << " history, " << stats.heaps << " heaps (" << stats.heap_bytes
-        << " bytes); device: " << stats.device.textures << " textures, " << stats.device.heaps << " heaps ("
-        << stats.device.heap_bytes << " bytes), texture bytes " << stats.device.texture_bytes;
-    return out.str();
 }
 
 }  // namespace loom::test

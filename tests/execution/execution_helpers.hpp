@@ -104,7 +104,7 @@ std::array<double, 4> texel(rhi::Device& device, rhi::TextureHandle texture, uin
 /// Writes `texture` under output_dir()/execution/<name>.png for inspection.
 void save_texture(rhi::Device& device, rhi::TextureHandle texture, const std::string& name);
 
-/// Executor stats and device stats as one line, for failure messages.
-std::string describe(const fg::ExecutionStats& stats);
+/// Executor and device stats for failure messages.
+inline std::string describe(const fg::ExecutionStats& stats) { return fg::describe_stats(stats); }
 
 }  // namespace loom::test

@@ -1,5 +1,7 @@
 // Every pass is timed every frame: CPU recording time always, GPU time where the device has
 // timestamps. (Presence only: no assertion on how long anything takes.)
+#include <algorithm>
+
 #include "execution_helpers.hpp"
 #include "loom_test/render_fixture.hpp"
 
@@ -46,6 +48,12 @@ TEST_P(TimingsTest, EveryPassHasTimings) {
             EXPECT_FALSE(timings[i].gpu_ms.has_value());
         }
     }
+    // The printable table names every pass and ends with the total.
+    const std::string table = fg::describe_timings(timings);
+    for (const std::string& name : names) EXPECT_NE(table.find("\n" + name + " "), std::string::npos) << table;
+    EXPECT_EQ(table.rfind("pass", 0), 0u) << table;
+    EXPECT_NE(table.find("\ntotal "), std::string::npos) << table;
+    EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 5) << table;
     // The device's own timer list has one entry per pass, labelled with the pass name.
     const std::vector<rhi::TimerResult> raw = device().timer_results();
     if (device().capabilities().timestamps) {

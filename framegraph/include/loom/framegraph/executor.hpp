@@ -92,6 +92,13 @@ struct ExecutionStats {
     rhi::ResourceStats device{};
 };
 
+/// Two lines: the plan's figures and what was created, e.g.
+/// "plan: 6 textures, 1 heap (393216 bytes), 393216 bytes\ncreated: 6 textures (6 placed), ...".
+std::string describe_stats(const ExecutionStats& stats);
+
+/// A table of per-pass timings ("pass  cpu ms  gpu ms"), with a total line.
+std::string describe_timings(const std::vector<PassTiming>& timings);
+
 class Executor {
 public:
     explicit Executor(rhi::Device& device);
