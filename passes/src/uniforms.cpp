@@ -15,6 +15,7 @@ LightingUniforms lighting_uniforms(const SceneView& view) {
     u.sky_radiance = glm::vec4(view.environment.sky, 0.0f);
     u.horizon_radiance = glm::vec4(view.environment.horizon, 0.0f);
     u.ground_radiance = glm::vec4(view.environment.ground, 0.0f);
+    u.fog = glm::vec4(view.environment.fog_density, view.environment.fog_start, 0.0f, 0.0f);
     return u;
 }
 

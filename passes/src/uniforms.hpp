@@ -29,6 +29,7 @@ struct LightingUniforms {
     glm::vec4 sky_radiance;
     glm::vec4 horizon_radiance;
     glm::vec4 ground_radiance;
+    glm::vec4 fog;  // density, start distance
 };
 
 struct ShadowUniforms {
@@ -51,7 +52,7 @@ struct CompositeUniforms {
     glm::vec4 params;  // exposure, bloom strength, encode sRGB
 };
 
-static_assert(sizeof(CameraUniforms) == 80 && sizeof(ShadowCasterUniforms) == 64 && sizeof(LightingUniforms) == 160 &&
+static_assert(sizeof(CameraUniforms) == 80 && sizeof(ShadowCasterUniforms) == 64 && sizeof(LightingUniforms) == 176 &&
               sizeof(ShadowUniforms) == 80 && sizeof(HighPassUniforms) == 16 && sizeof(BlurUniforms) == 272 &&
               sizeof(CompositeUniforms) == 16);
 

@@ -227,7 +227,7 @@ TEST(Composition, DeferredPassHasTheUnionOfItsPartsPortsAndResources) {
     ASSERT_TRUE(program.ok()) << program.error().to_string();
     // Resources numbered part after part: deferred-render 0..3, shadow-render 4..5, high-pass 6.
     auto slot = [&](const char* name) { return (*program)->find(name); };
-    EXPECT_EQ(slot("LightingUniforms"), (ResourceSlot{0, 0, 160}));
+    EXPECT_EQ(slot("LightingUniforms"), (ResourceSlot{0, 0, 176}));
     EXPECT_EQ(slot("gbuffer_position"), (ResourceSlot{0, 1, 0}));
     EXPECT_EQ(slot("gbuffer_normal"), (ResourceSlot{0, 2, 0}));
     EXPECT_EQ(slot("gbuffer_albedo"), (ResourceSlot{0, 3, 0}));

@@ -30,11 +30,15 @@ struct DirectionalLight {
     float intensity = 3.0f;                 ///< radiance scale of `color`
 };
 
-/// Ambient light and the sky seen behind the scene.
+/// Ambient light, the sky seen behind the scene, and fog.
 struct Environment {
-    glm::vec3 sky{0.30f, 0.42f, 0.65f};      ///< zenith; ambient light from above
-    glm::vec3 horizon{0.55f, 0.58f, 0.62f};  ///< horizon
-    glm::vec3 ground{0.12f, 0.10f, 0.08f};   ///< ambient light from below
+    glm::vec3 sky{0.22f, 0.34f, 0.60f};      ///< zenith; ambient light from above
+    glm::vec3 horizon{0.66f, 0.64f, 0.60f};  ///< horizon, and the colour of fog
+    glm::vec3 ground{0.30f, 0.28f, 0.25f};   ///< light bounced up from the ground
+    /// Fog: a surface d world units from the eye fades to the horizon by
+    /// 1 - exp(-((d - fog_start) * fog_density)^2) (nothing nearer than fog_start).
+    float fog_density = 0.0f;
+    float fog_start = 0.0f;
 };
 
 /// How shadows are received (the "shadow-render" part).

@@ -16,5 +16,5 @@ void main() {
     v_world_normal = v.world_normal;
     v_uv = v.uv;
     v_color = v.color;
-    gl_Position = camera.view_projection * vec4(v.world_position, 1.0);
+    gl_Position = transform_point(camera.view_projection, v.world_position);
 }

@@ -8,7 +8,6 @@ layout(set = LOOM_SET, binding = LOOM_BINDING(1)) uniform sampler2D gbuffer_posi
 layout(set = LOOM_SET, binding = LOOM_BINDING(2)) uniform sampler2D gbuffer_normal;
 layout(set = LOOM_SET, binding = LOOM_BINDING(3)) uniform sampler2D gbuffer_albedo;
 
-layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 out_color;
 
 void main() {
@@ -18,6 +17,7 @@ void main() {
     vec4 albedo = texelFetch(gbuffer_albedo, texel, 0);
     vec3 color;
     if (dot(normal.xyz, normal.xyz) < 0.25) {
+        vec2 uv = gl_FragCoord.xy / vec2(textureSize(gbuffer_position, 0));  // (0,0) top-left
         color = sky_radiance(view_ray(uv));
     } else {
         float visibility = 1.0;

@@ -1,9 +1,7 @@
 // Pass part "fullscreen" (vertex stage): a triangle covering the viewport from gl_VertexIndex
-// alone (draw 3 vertices, no vertex buffer); uv is (0,0) at the top-left of the framebuffer.
-layout(location = 0) out vec2 uv;
-
+// alone (draw 3 vertices, no vertex buffer). It hands nothing to the fragment stage: the
+// post-process parts address their inputs by gl_FragCoord (texelFetch), which reads the same
+// texel on every backend.
 void main() {
-    vec2 ndc = fullscreen_triangle_position(gl_VertexIndex);
-    uv = ndc_to_uv(ndc);
-    gl_Position = vec4(ndc, 0.0, 1.0);
+    gl_Position = vec4(fullscreen_triangle_position(gl_VertexIndex), 0.0, 1.0);
 }

@@ -9,8 +9,8 @@ layout(location = 5) in vec4 in_color;
 
 ObjectVertex object_vertex() {
     ObjectVertex v;
-    v.world_position = (object.model * vec4(in_position, 1.0)).xyz;
-    v.world_normal = mat3(object.normal_matrix) * in_normal;
+    v.world_position = transform_point(object.model, in_position).xyz;
+    v.world_normal = transform_vector(mat3(object.normal_matrix), in_normal);
     v.uv = in_uv;
     v.color = in_color;
     return v;

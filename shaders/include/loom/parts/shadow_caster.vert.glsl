@@ -5,5 +5,5 @@ layout(set = LOOM_SET, binding = LOOM_BINDING(0)) uniform ShadowCasterUniforms {
 
 void main() {
     ObjectVertex v = object_vertex();
-    gl_Position = caster.light_view_projection * vec4(v.world_position, 1.0);
+    gl_Position = transform_point(caster.light_view_projection, v.world_position);
 }

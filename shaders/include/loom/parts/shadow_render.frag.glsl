@@ -10,7 +10,7 @@ layout(set = LOOM_SET, binding = LOOM_BINDING(1)) uniform sampler2DShadow shadow
 
 float shadow_visibility(vec3 world_position, vec3 world_normal) {
     vec3 p = world_position + world_normal * shadow.params.y;
-    vec4 clip = shadow.light_view_projection * vec4(p, 1.0);
+    vec4 clip = transform_point(shadow.light_view_projection, p);
     vec3 ndc = clip.xyz / clip.w;
     vec2 uv = ndc_to_uv(ndc.xy);
     float depth = ndc.z - shadow.params.z;

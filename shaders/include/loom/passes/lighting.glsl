@@ -14,6 +14,7 @@ layout(set = LOOM_SET, binding = LOOM_BINDING(0)) uniform LightingUniforms {
     vec4 sky_radiance;             // rgb: sky at the zenith (and ambient light from above)
     vec4 horizon_radiance;         // rgb: sky at the horizon
     vec4 ground_radiance;          // rgb: ambient light from below
+    vec4 fog;                      // x: density per world unit (0: none), y: distance where it starts
 } lighting;
 
 const float kPi = 3.14159265358979;
@@ -57,8 +58,8 @@ vec3 sky_radiance(vec3 direction) {
 // The world-space direction of the view ray through a point of the screen (uv (0,0) top-left).
 vec3 view_ray(vec2 uv) {
     vec2 ndc = vec2(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);
-    vec4 far_point = lighting.inverse_view_projection * vec4(ndc, 1.0, 1.0);
-    vec4 near_point = lighting.inverse_view_projection * vec4(ndc, 0.0, 1.0);
+    vec4 far_point = transform_point(lighting.inverse_view_projection, vec3(ndc, 1.0));
+    vec4 near_point = transform_point(lighting.inverse_view_projection, vec3(ndc, 0.0));
     return normalize(far_point.xyz / far_point.w - near_point.xyz / near_point.w);
 }
 
@@ -88,7 +89,12 @@ vec3 shade(vec3 position, vec3 normal, MaterialSample m, float visibility) {
     // Reflections of the sky are dimmed where the sun is blocked: a cheap stand-in for occlusion.
     float occlusion = 0.6 + 0.4 * visibility;
     vec3 ambient = (1.0 - fa) * (1.0 - m.metallic) * m.albedo * irradiance + fa * reflected * occlusion;
-    return direct + ambient + m.emissive;
+    vec3 color = direct + ambient + m.emissive;
+
+    // Aerial perspective: far surfaces fade into the horizon, so the ground has no visible edge.
+    float haze = max(length(lighting.camera_position.xyz - position) - lighting.fog.y, 0.0) * lighting.fog.x;
+    float fog = 1.0 - exp(-haze * haze);
+    return mix(color, lighting.horizon_radiance.rgb, fog);
 }
 
 #endif

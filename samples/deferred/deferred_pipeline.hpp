@@ -1,0 +1,110 @@
+#pragma once
+// The paper's Figure 2 pipeline on a loom frame graph (Listing 6, connection for connection):
+//
+//   shadow ──shadow_map──────────────┐
+//   geometry ──position/normal/albedo─┴─► deferred ──color──────────────► composite ──final──► present ──target
+//                                          └─high_pass─► blur-h ─► blur-v ──bloom──┘
+//
+// The deferred pass is composed from the "deferred-render", "shadow-render" and
+// "high-pass-render" parts; the blur is separable (two passes). Every colour port shares one spec
+// (RGBA16Float at the frame size), so the plan shares their textures; the present pass converts
+// to the target format (RGBA8Unorm offscreen, the back buffer's format in a window).
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "loom/framegraph/executor.hpp"
+#include "loom/framegraph/graph.hpp"
+#include "loom/passes/blit_pass.hpp"
+#include "loom/passes/blur_pass.hpp"
+#include "loom/passes/composite_pass.hpp"
+#include "loom/passes/deferred_pass.hpp"
+#include "loom/passes/geometry_pass.hpp"
+#include "loom/passes/mesh_object.hpp"
+#include "loom/passes/shadow_map_pass.hpp"
+#include "loom/rhi/device.hpp"
+#include "procedural_scene.hpp"
+
+namespace loom::deferred {
+
+struct PipelineSettings {
+    std::string allocator = "interval";
+    /// Ports ask for CopySrc and every pass copies its outputs for read-back (intermediates()).
+    bool capture = true;
+    uint32_t shadow_map_size = 2048;
+    /// Blur taps on each side; empty: frame height / 24, between 1 and passes::kMaxBlurRadius.
+    std::optional<uint32_t> blur_radius;
+    float exposure = 1.0f;
+    float bloom_strength = 0.8f;
+    float threshold = 1.0f;
+    /// Format of present.target (RGBA8Unorm offscreen; the back buffer's in a window).
+    rhi::Format target_format = rhi::Format::RGBA8Unorm;
+};
+
+/// A texture of the latest captured frame, by "pass.port".
+struct Intermediate {
+    std::string name;
+    rhi::TextureHandle texture;
+};
+
+class DeferredPipeline {
+public:
+    /// Uploads the scene's meshes, builds the graph and registers every object with the shadow
+    /// and geometry passes (composing one program per pass and object kind).
+    static Result<std::unique_ptr<DeferredPipeline>> create(rhi::Device& device, const SceneContent& scene,
+                                                            const PipelineSettings& settings = {});
+    ~DeferredPipeline();
+    DeferredPipeline(const DeferredPipeline&) = delete;
+    DeferredPipeline& operator=(const DeferredPipeline&) = delete;
+
+    /// Renders one frame of `frame` size offscreen (begin_frame .. end_frame).
+    Status render(fg::Extent2D frame);
+    /// Records one frame into a frame the caller began, presenting into `target` (imported as
+    /// present.target and left in `final_state`).
+    Status record(rhi::CommandList& commands, rhi::TextureHandle target, fg::Extent2D frame,
+                  rhi::ResourceState final_state = rhi::ResourceState::Present);
+
+    [[nodiscard]] fg::FrameGraph& graph() { return graph_; }
+    [[nodiscard]] fg::Executor& executor() { return *executor_; }
+    /// The options of the latest frame (frame size, allocator).
+    [[nodiscard]] const fg::PlanOptions& options() const { return options_; }
+    /// The final picture of the latest offscreen frame (present.target).
+    [[nodiscard]] rhi::TextureHandle final_texture() const;
+    /// Every output of every pass in the latest frame, copied at the end of its pass (needs
+    /// PipelineSettings::capture), in plan order.
+    [[nodiscard]] std::vector<Intermediate> intermediates() const;
+    /// The passes, in the order they are declared.
+    [[nodiscard]] const std::vector<passes::ShaderPass*>& passes() const { return passes_; }
+    [[nodiscard]] const passes::ShaderLibrary& library() const { return *library_; }
+    [[nodiscard]] uint32_t blur_radius() const { return blur_h_->radius(); }
+    [[nodiscard]] const SceneContent& scene() const { return scene_; }
+
+private:
+    DeferredPipeline(rhi::Device& device, SceneContent scene, PipelineSettings settings);
+    Status build();
+    Status prepare(fg::Extent2D frame);
+
+    rhi::Device& device_;
+    SceneContent scene_;
+    PipelineSettings settings_;
+    std::shared_ptr<passes::ShaderLibrary> library_;
+    std::vector<std::shared_ptr<passes::GpuMesh>> meshes_;
+    std::vector<std::shared_ptr<passes::MeshObject>> objects_;
+    fg::FrameGraph graph_;
+    std::unique_ptr<fg::Executor> executor_;
+    fg::PlanOptions options_;
+
+    std::vector<passes::ShaderPass*> passes_;
+    passes::ShadowMapPass* shadow_ = nullptr;
+    passes::GeometryPass* geometry_ = nullptr;
+    passes::DeferredPass* deferred_ = nullptr;
+    passes::BlurPass* blur_h_ = nullptr;
+    passes::BlurPass* blur_v_ = nullptr;
+    passes::CompositePass* composite_ = nullptr;
+    passes::BlitPass* present_ = nullptr;
+};
+
+}  // namespace loom::deferred

@@ -1,0 +1,66 @@
+#pragma once
+// The built-in scene of loom-deferred: a checkered ground, a pillar, a cube, a gold and a blue
+// sphere, a copper torus, and two glowing objects bright enough to bloom, under one sun that
+// casts long shadows across the ground.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "loom/passes/mesh_object.hpp"
+#include "loom/passes/view.hpp"
+
+namespace loom::deferred {
+
+/// Geometry on the CPU: MeshVertex (the layout of loom::scene::Vertex) and a u32 triangle list
+/// whose triangles are counter-clockwise seen from the side their normals point to.
+struct MeshData {
+    std::vector<passes::MeshVertex> vertices;
+    std::vector<uint32_t> indices;
+};
+
+/// One object of the scene.
+struct SceneItem {
+    std::string name;
+    MeshData mesh;
+    passes::MeshMaterial material;
+    glm::mat4 model{1.0f};
+    bool checker = false;  ///< the "checker-mesh" kind instead of "pbr-mesh"
+    bool casts_shadow = true;  ///< drawn into the shadow map
+};
+
+/// A scene: objects, light, sky and how to look at it.
+struct SceneContent {
+    std::vector<SceneItem> items;
+    passes::DirectionalLight light;
+    passes::Environment environment;
+    glm::vec3 eye{0.0f};
+    glm::vec3 target{0.0f};
+    float yfov = 0.7853982f;
+    /// World bounds of every item.
+    passes::Bounds bounds;
+    /// What the shadow map covers: the shadow casters and where their shadows fall on the
+    /// ground (the ground reaches far beyond; outside this box it is lit).
+    passes::Bounds shadow_bounds;
+};
+
+// Mesh generators (unit-sized, centred on the origin; normals point outwards).
+/// A plane facing +y, cells x cells quads (small triangles are clipped less against the view).
+MeshData make_plane(float size_x, float size_z, uint32_t cells = 1);
+MeshData make_box(const glm::vec3& size);
+MeshData make_sphere(float radius, uint32_t segments, uint32_t rings);
+MeshData make_torus(float major_radius, float minor_radius, uint32_t segments, uint32_t sides);
+
+/// World bounds of the items' transformed vertices (of those with `casts_shadow` set, when
+/// `only_casters`).
+passes::Bounds scene_bounds(const std::vector<SceneItem>& items, bool only_casters = false);
+
+/// `casters` and their shadows on the plane y = 0 under a light from `towards_light`.
+passes::Bounds shadow_region(const passes::Bounds& casters, const glm::vec3& towards_light);
+
+/// The default scene.
+SceneContent procedural_scene();
+
+}  // namespace loom::deferred
