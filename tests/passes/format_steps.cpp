@@ -19,10 +19,12 @@ double format_step(rhi::Format format, double magnitude) {
 }
 
 std::string StepComparison::summary() const {
-    char text[200];
-    std::snprintf(text, sizeof(text), "%llu of %llu pixels differ (%.3f%%), by at most %g (one step at the peak %g: %g)",
+    char text[240];
+    std::snprintf(text, sizeof(text),
+                  "%llu of %llu pixels differ (%.3f%%), by at most %g (one step at the peak %g: %g; at most %g "
+                  "step(s) locally)",
                   static_cast<unsigned long long>(pixels_differing), static_cast<unsigned long long>(pixel_count),
-                  100.0 * fraction_differing(), max_abs, peak, step_at_peak);
+                  100.0 * fraction_differing(), max_abs, peak, step_at_peak, max_local_steps);
     return text;
 }
 
@@ -43,6 +45,8 @@ StepComparison compare_steps(const rhi::Image& a, const rhi::Image& b) {
                 if (diff == 0.0) continue;
                 differs = true;
                 out.max_abs = std::max(out.max_abs, diff);
+                const double local = format_step(a.format, std::max(std::abs(la[c]), std::abs(lb[c])));
+                out.max_local_steps = std::max(out.max_local_steps, diff / local);
             }
             if (differs) ++out.pixels_differing;
         }

@@ -25,9 +25,14 @@ struct StepComparison {
     [[nodiscard]] double fraction_differing() const {
         return pixel_count == 0 ? 0.0 : static_cast<double>(pixels_differing) / static_cast<double>(pixel_count);
     }
+    /// Largest difference of a channel in steps at that channel's own magnitude:
+    /// |a - b| / format_step(format, max(|a|, |b|)). 1 means "neighbouring values".
+    double max_local_steps = 0.0;
+
     /// True when no channel differs by more than one step at the peak.
     [[nodiscard]] bool within_one_step() const { return max_abs <= step_at_peak; }
-    /// "12 of 57600 pixels differ (0.021%), by at most 0.000488 (one step at the peak 3.9: 0.00195)"
+    /// "12 of 57600 pixels differ (0.021%), by at most 0.000488 (one step at the peak 3.9: 0.00195;
+    /// at most 1 step locally)"
     [[nodiscard]] std::string summary() const;
 };
 
