@@ -215,7 +215,8 @@ Status Executor::Impl::prepare(const std::shared_ptr<const Plan>& next) {
     if (next == plan && realised_bindings_revision == bindings_revision && schedule) return {};
     auto built = build_execution_schedule(*next, import_bindings(), history_bindings);
     if (!built) return built.take_error();
-    const bool plan_changed = next != plan;
+    // A plan equal to the realised one (e.g. from a graph rebuilt every frame) reuses its resources.
+    const bool plan_changed = next != plan && !(plan && *next == *plan);
     const bool needed_changed = built->texture_needed != created_for;
     schedule = std::move(*built);
     if (plan_changed || needed_changed) {

@@ -2,6 +2,8 @@
 // composite) with simple test passes, run by the executor with every allocator: the final
 // picture is exact, and the textures (and on Vulkan with `heap`, the heaps and their bytes) the
 // backend really created are the plan's.
+#include <iostream>
+
 #include "execution_helpers.hpp"
 #include "loom_test/render_fixture.hpp"
 
@@ -35,7 +37,7 @@ layout(location = 0) out vec4 color;
 layout(location = 1) out vec4 high_pass;
 void main() {
     ivec2 at = ivec2(gl_FragCoord.xy);
-    float s = texelFetch(shadow_map, at, 0).r;
+    float s = texelFetch(shadow_map, min(at, textureSize(shadow_map, 0) - 1), 0).r;  // clamp: the map is 64x64
     vec4 a = texelFetch(albedo, at, 0);
     color = texelFetch(position, at, 0) + texelFetch(normal, at, 0) + a * s;
     high_pass = a * (1.0 - s);
@@ -210,6 +212,57 @@ TEST_P(Figure2Execution, UnchangedPlanCreatesNothingNew) {
     for (uint32_t t = 0; t < plan->textures.size(); ++t) EXPECT_EQ(executor.plan_texture(t), handles[t]) << "t" << t;
 }
 
+
+TEST_P(Figure2Execution, At720pWithFiguresAndTimings) {
+    // A realistic frame size: the same exact picture, the plan's figures next to the device's,
+    // and per-pass timings (printed for the record; not asserted).
+    for (const std::string allocator : {"interval", "heap"}) {
+        SCOPED_TRACE(allocator);
+        fg::FrameGraph graph = figure2(p_);
+        const rhi::ResourceStats before = device().resource_stats();
+        fg::Executor executor(device());
+        fg::PlanOptions options;
+        options.frame = {1280, 720};
+        options.allocator = allocator;
+        for (int frame = 0; frame < 3; ++frame) LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        LOOM_ASSERT_OK(device().wait_idle());
+        expect_final_picture(executor.texture("composite", "final"), 1280, 720, allocator);
+        const fg::Plan& plan = *executor.plan();
+        const rhi::ResourceStats after = device().resource_stats();
+        EXPECT_EQ(after.textures - before.textures, plan.textures.size());
+        if (allocator == "heap" && device().capabilities().placed_resources) {
+            EXPECT_EQ(after.heap_bytes - before.heap_bytes, plan.summary.bytes);
+            EXPECT_GE(plan.summary.bytes, plan.summary.lower_bound_bytes);
+        }
+        const auto timings = executor.timings();
+        EXPECT_EQ(timings.size(), plan.order.size());
+        std::cout << "[figure2 " << rhi::backend_name(backend()) << " " << allocator << " 1280x720] textures "
+                  << plan.summary.textures << " (naive " << plan.summary.naive_textures << ", lower bound "
+                  << plan.summary.lower_bound_textures << "), bytes " << plan.summary.bytes << " (naive "
+                  << plan.summary.naive_bytes << ", lower bound " << plan.summary.lower_bound_bytes << ")\n"
+                  << fg::describe_stats(executor.stats()) << "\n"
+                  << fg::describe_timings(timings);
+    }
+}
+
+TEST_P(Figure2Execution, GraphRebuiltEveryFrameReusesTheResources) {
+    // Some applications declare their graph anew every frame: an equal plan keeps the textures.
+    fg::Executor executor(device());
+    fg::PlanOptions options;
+    options.frame = {16, 8};
+    options.allocator = "heap";
+    std::vector<rhi::TextureHandle> first;
+    for (int frame = 0; frame < 3; ++frame) {
+        fg::FrameGraph graph = figure2(p_);
+        LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        expect_final_picture(executor.texture("composite", "final"), 16, 8, "frame " + std::to_string(frame));
+        std::vector<rhi::TextureHandle> handles;
+        for (uint32_t t = 0; t < executor.plan()->textures.size(); ++t) handles.push_back(executor.plan_texture(t));
+        if (frame == 0) first = handles;
+        EXPECT_EQ(handles, first) << "frame " << frame;
+    }
+    EXPECT_EQ(executor.stats().realisations, 1u);
+}
 
 TEST_P(Figure2Execution, ResizeRebuildsTexturesWithoutLeaks) {
     fg::FrameGraph graph = figure2(p_);
