@@ -99,6 +99,8 @@ std::string describe_stats(const ExecutionStats& stats);
 /// A table of per-pass timings ("pass  cpu ms  gpu ms"), with a total line.
 std::string describe_timings(const std::vector<PassTiming>& timings);
 
+/// Realises plans on one device and records their passes (see the top of this file). Destroy
+/// it before the device: it destroys what it created.
 class Executor {
 public:
     explicit Executor(rhi::Device& device);
@@ -127,7 +129,9 @@ public:
 
     /// Lets `reader` (an input port left unconnected; declare it optional) read the contents
     /// `source` had at the end of the previous frame. The executor keeps a history texture
-    /// alive across frames and copies `source` into it once `source` is final in the frame.
+    /// alive across frames and copies `source` into it once `source` is final in the frame (the
+    /// source's texture gets CopySrc usage; an imported source must have it). Errors (checked
+    /// at execute(), naming the port): see build_execution_schedule.
     void bind_history(const PortRef& reader, const PortRef& source);
     /// Removes the history binding of `reader`; false when it had none.
     bool remove_history(const PortRef& reader);
