@@ -43,12 +43,18 @@ Status DeferredPipeline::build() {
     auto shadow = add_pass(graph_, std::make_unique<passes::ShadowMapPass>(config, settings_.shadow_map_size), passes_);
     if (!shadow) return shadow.take_error();
     shadow_ = *shadow;
-    auto geometry = add_pass(graph_, std::make_unique<passes::GeometryPass>(config), passes_);
-    if (!geometry) return geometry.take_error();
-    geometry_ = *geometry;
-    auto deferred = add_pass(graph_, std::make_unique<passes::DeferredPass>(config), passes_);
-    if (!deferred) return deferred.take_error();
-    deferred_ = *deferred;
+    if (settings_.forward) {
+        auto forward = add_pass(graph_, std::make_unique<passes::ForwardPass>(config), passes_);
+        if (!forward) return forward.take_error();
+        forward_ = *forward;
+    } else {
+        auto geometry = add_pass(graph_, std::make_unique<passes::GeometryPass>(config), passes_);
+        if (!geometry) return geometry.take_error();
+        geometry_ = *geometry;
+        auto deferred = add_pass(graph_, std::make_unique<passes::DeferredPass>(config), passes_);
+        if (!deferred) return deferred.take_error();
+        deferred_ = *deferred;
+    }
     auto blur_h = add_pass(graph_, std::make_unique<passes::BlurPass>(config, passes::BlurAxis::Horizontal, 1, "blur-h"),
                            passes_);
     if (!blur_h) return blur_h.take_error();
@@ -68,12 +74,15 @@ Status DeferredPipeline::build() {
 
     // Listing 6, connection for connection, then the blur's second half and the present pass.
     using fg::port;
-    LOOM_TRY(graph_.connect(port("shadow", "shadow_map"), port("deferred", "shadow_map")));
-    LOOM_TRY(graph_.connect(port("geometry", "position"), port("deferred", "position")));
-    LOOM_TRY(graph_.connect(port("geometry", "normal"), port("deferred", "normal")));
-    LOOM_TRY(graph_.connect(port("geometry", "albedo"), port("deferred", "albedo")));
-    LOOM_TRY(graph_.connect(port("deferred", "high_pass"), port("blur-h", "previous_pass")));
-    LOOM_TRY(graph_.connect(port("deferred", "color"), port("composite", "color")));
+    const std::string lit = settings_.forward ? "forward" : "deferred";
+    LOOM_TRY(graph_.connect(port("shadow", "shadow_map"), port(lit, "shadow_map")));
+    if (!settings_.forward) {
+        LOOM_TRY(graph_.connect(port("geometry", "position"), port("deferred", "position")));
+        LOOM_TRY(graph_.connect(port("geometry", "normal"), port("deferred", "normal")));
+        LOOM_TRY(graph_.connect(port("geometry", "albedo"), port("deferred", "albedo")));
+    }
+    LOOM_TRY(graph_.connect(port(lit, "high_pass"), port("blur-h", "previous_pass")));
+    LOOM_TRY(graph_.connect(port(lit, "color"), port("composite", "color")));
     LOOM_TRY(graph_.connect(port("blur-h", "color"), port("blur-v", "previous_pass")));
     LOOM_TRY(graph_.connect(port("blur-v", "color"), port("composite", "bloom")));
     LOOM_TRY(graph_.connect(port("composite", "final"), port("present", "source")));
@@ -83,7 +92,8 @@ Status DeferredPipeline::build() {
     composite_->set_encode_srgb(!rhi::format_info(settings_.target_format).features.srgb);
     composite_->set_exposure(settings_.exposure);
     composite_->set_bloom_strength(settings_.bloom_strength);
-    deferred_->set_threshold(settings_.threshold);
+    if (deferred_) deferred_->set_threshold(settings_.threshold);
+    if (forward_) forward_->set_threshold(settings_.threshold);
     for (passes::ShaderPass* pass : passes_) pass->set_capture(settings_.capture);
 
     // Objects: upload each mesh once, register every object with each pass that draws objects.
@@ -98,18 +108,12 @@ Status DeferredPipeline::build() {
         objects_.push_back(object);
         // Only casters go into the shadow map (the ground has nothing below it to shadow).
         if (item.casts_shadow) LOOM_TRY(passes::register_object(*shadow_, object));
-        LOOM_TRY(passes::register_object(*geometry_, object));
+        LOOM_TRY(passes::register_object(geometry_ ? static_cast<passes::ShaderPass&>(*geometry_) : *forward_, object));
     }
     return {};
 }
 
-Status DeferredPipeline::prepare(fg::Extent2D frame) {
-    if (frame.width == 0 || frame.height == 0) {
-        return make_error(ErrorCode::InvalidArgument, "deferred pipeline: empty frame size");
-    }
-    options_.frame = frame;
-    options_.allocator = settings_.allocator;
-
+passes::SceneView DeferredPipeline::view(fg::Extent2D frame) const {
     const float aspect = static_cast<float>(frame.width) / static_cast<float>(frame.height);
     passes::SceneView view;
     view.camera.view = glm::lookAtRH(scene_.eye, scene_.target, glm::vec3(0.0f, 1.0f, 0.0f));
@@ -125,9 +129,21 @@ Status DeferredPipeline::prepare(fg::Extent2D frame) {
     view.shadow.depth_bias = 0.0005f;
     view.shadow.pcf_radius = 1;
 
+    return view;
+}
+
+Status DeferredPipeline::prepare(fg::Extent2D frame) {
+    if (frame.width == 0 || frame.height == 0) {
+        return make_error(ErrorCode::InvalidArgument, "deferred pipeline: empty frame size");
+    }
+    options_.frame = frame;
+    options_.allocator = settings_.allocator;
+
+    const passes::SceneView view = this->view(frame);
     shadow_->set_light_view_projection(view.shadow.light_view_projection);
-    geometry_->set_camera(view.camera);
-    deferred_->set_view(view);
+    if (geometry_) geometry_->set_camera(view.camera);
+    if (deferred_) deferred_->set_view(view);
+    if (forward_) forward_->set_view(view);
     const uint32_t radius = settings_.blur_radius.value_or(
         std::clamp<uint32_t>(static_cast<uint32_t>(std::lround(frame.height / 24.0)), 1u, passes::kMaxBlurRadius));
     LOOM_TRY(blur_h_->set_radius(radius));

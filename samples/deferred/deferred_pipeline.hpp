@@ -6,7 +6,8 @@
 //                                          └─high_pass─► blur-h ─► blur-v ──bloom──┘
 //
 // The deferred pass is composed from the "deferred-render", "shadow-render" and
-// "high-pass-render" parts; the blur is separable (two passes). Every colour port shares one spec
+// "high-pass-render" parts; the blur is separable (two passes). With PipelineSettings::forward,
+// one forward pass ("forward-render" + the same two parts) replaces geometry and deferred. Every colour port shares one spec
 // (RGBA16Float at the frame size), so the plan shares their textures; the present pass converts
 // to the target format (RGBA8Unorm offscreen, the back buffer's format in a window).
 
@@ -22,6 +23,7 @@
 #include "loom/passes/blur_pass.hpp"
 #include "loom/passes/composite_pass.hpp"
 #include "loom/passes/deferred_pass.hpp"
+#include "loom/passes/forward_pass.hpp"
 #include "loom/passes/geometry_pass.hpp"
 #include "loom/passes/mesh_object.hpp"
 #include "loom/passes/shadow_map_pass.hpp"
@@ -32,6 +34,9 @@ namespace loom::deferred {
 
 struct PipelineSettings {
     std::string allocator = "interval";
+    /// Light the objects as they are drawn (the forward pass, composed of the same
+    /// "shadow-render" and "high-pass-render" parts) instead of the G-buffer and deferred passes.
+    bool forward = false;
     /// Ports ask for CopySrc and every pass copies its outputs for read-back (intermediates()).
     bool capture = true;
     uint32_t shadow_map_size = 2048;
@@ -80,6 +85,11 @@ public:
     [[nodiscard]] const std::vector<passes::ShaderPass*>& passes() const { return passes_; }
     [[nodiscard]] const passes::ShaderLibrary& library() const { return *library_; }
     [[nodiscard]] uint32_t blur_radius() const { return blur_h_->radius(); }
+    /// The camera, light and shadow settings of a frame of size `frame`.
+    [[nodiscard]] passes::SceneView view(fg::Extent2D frame) const;
+    [[nodiscard]] const PipelineSettings& settings() const { return settings_; }
+    /// Sets the composite's bloom strength (for comparisons with and without bloom).
+    void set_bloom_strength(float strength) { composite_->set_bloom_strength(strength); }
     [[nodiscard]] const SceneContent& scene() const { return scene_; }
 
 private:
@@ -101,6 +111,7 @@ private:
     passes::ShadowMapPass* shadow_ = nullptr;
     passes::GeometryPass* geometry_ = nullptr;
     passes::DeferredPass* deferred_ = nullptr;
+    passes::ForwardPass* forward_ = nullptr;
     passes::BlurPass* blur_h_ = nullptr;
     passes::BlurPass* blur_v_ = nullptr;
     passes::CompositePass* composite_ = nullptr;

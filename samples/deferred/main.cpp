@@ -33,6 +33,7 @@ struct Options {
     loom::samples::CommonOptions common;
     uint64_t frames = 1;
     std::string allocator = "interval";
+    bool forward = false;
 };
 
 const char* kUsage =
@@ -45,7 +46,9 @@ const char* kUsage =
 std::string extra_help() {
     return "  --frames N            frames to render (default 1; with --window 0 runs until closed)\n"
            "  --allocator NAME      paper, interval or heap (default interval, the same on every backend)\n"
-           "  --scene builtin       the built-in procedural scene (the default; glTF files come later)\n";
+           "  --scene builtin       the built-in procedural scene (the default; glTF files come later)\n"
+           "  --pipeline NAME       deferred (Figure 2, the default) or forward (one forward pass with the\n"
+           "                        same shadow-render and high-pass-render parts)\n";
 }
 
 loom::Result<Options> parse(int argc, char** argv) {
@@ -83,6 +86,14 @@ loom::Result<Options> parse(int argc, char** argv) {
             auto v = take();
             if (!v) return v.take_error();
             options.allocator = *v;
+        } else if (name == "--pipeline") {
+            auto v = take();
+            if (!v) return v.take_error();
+            if (*v != "deferred" && *v != "forward") {
+                return loom::make_error(loom::ErrorCode::InvalidArgument,
+                                        "--pipeline expects deferred or forward, got '" + *v + "'");
+            }
+            options.forward = *v == "forward";
         } else if (name == "--scene") {
             auto v = take();
             if (!v) return v.take_error();
@@ -214,6 +225,7 @@ int run_window(const Options& options) {
     if (!desc) return fail(desc.error());
     deferred::PipelineSettings settings;
     settings.allocator = options.allocator;
+    settings.forward = options.forward;
     settings.capture = false;
     settings.target_format = desc->format;
     auto pipeline = deferred::DeferredPipeline::create(dev, deferred::procedural_scene(), settings);
@@ -240,6 +252,7 @@ int run_headless(const Options& options) {
     rhi::Device& dev = **device;
     deferred::PipelineSettings settings;
     settings.allocator = options.allocator;
+    settings.forward = options.forward;
     auto pipeline = deferred::DeferredPipeline::create(dev, deferred::procedural_scene(), settings);
     if (!pipeline) return fail(pipeline.error());
     for (uint64_t i = 0; i < options.frames; ++i) {
