@@ -133,6 +133,26 @@ TEST_P(StatsTest, TimersReturnLabelledNonNegativeResults) {
     EXPECT_EQ(status.error().code, ErrorCode::InvalidState);
 }
 
+// The first timer of a fresh device measures its own range: Mesa 22.3's llvmpipe reports the
+// time since boot for a context's first GL_TIME_ELAPSED query unless the backend discards one.
+// A 64x64 clear takes far less than a minute; the broken value was over an hour.
+TEST_P(StatsTest, FirstTimerOfAFreshDeviceMeasuresItsOwnRange) {
+    if (!device().capabilities().timestamps) GTEST_SKIP() << "no GPU timers on this device";
+    LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "timed target", rhi::Format::RGBA8Unorm, 64, 64));
+    LOOM_ASSERT_OK(run_frame(device(), [&](rhi::CommandList& list) {
+        list.begin_timer("first");
+        list.begin_render_pass(clear_pass("timed", target, {0, 0, 0, 1}));
+        list.end_render_pass();
+        list.end_timer();
+    }));
+    LOOM_ASSERT_OK(device().wait_idle());
+    const auto results = device().timer_results();
+    ASSERT_EQ(results.size(), 1u);
+    EXPECT_EQ(results[0].label, "first");
+    EXPECT_GE(results[0].gpu_ms, 0.0);
+    EXPECT_LT(results[0].gpu_ms, 60'000.0);
+}
+
 }  // namespace
 
 LOOM_INSTANTIATE_RENDER_TEST(StatsTest);

@@ -66,6 +66,7 @@ void GlDevice::init_capabilities() {
     GLint timer_bits = 0;
     glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &timer_bits);
     caps_.timestamps = timer_bits > 0;
+    if (caps_.timestamps) discard_first_timer_query();
     caps_.max_texture_size = integer(GL_MAX_TEXTURE_SIZE);
     caps_.max_color_attachments = std::min({integer(GL_MAX_COLOR_ATTACHMENTS), integer(GL_MAX_DRAW_BUFFERS),
                                             kMaxColorAttachments});
@@ -77,6 +78,30 @@ void GlDevice::init_capabilities() {
     limits_.max_3d_texture_size = integer(GL_MAX_3D_TEXTURE_SIZE);
     limits_.max_array_layers = integer(GL_MAX_ARRAY_TEXTURE_LAYERS);
     limits_.max_cube_size = integer(GL_MAX_CUBE_MAP_TEXTURE_SIZE);
+}
+
+// Mesa 22.3's llvmpipe answers the first GL_TIME_ELAPSED query of a context that contains
+// rendering work with the time since boot (the start timestamp is never written); an empty
+// query does not count. One discarded query around a clear of a 1x1 target, before the state
+// cache exists, keeps that value out of the user's timings. Later queries are right.
+void GlDevice::discard_first_timer_query() {
+    GLuint texture = 0, framebuffer = 0, query = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+    glTextureStorage2D(texture, 1, GL_RGBA8, 1, 1);
+    glCreateFramebuffers(1, &framebuffer);
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glCreateQueries(GL_TIME_ELAPSED, 1, &query);
+    glBeginQuery(GL_TIME_ELAPSED, query);
+    const GLfloat black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, black);
+    glEndQuery(GL_TIME_ELAPSED);
+    GLuint64 discarded = 0;
+    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &discarded);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &framebuffer);
+    glDeleteTextures(1, &texture);
+    free_queries_.push_back(query);
 }
 
 GlDevice::~GlDevice() {

@@ -195,6 +195,7 @@ public:
     /// Copies `data` into this frame's transient uniform memory.
     rhi::BufferBinding allocate_transient(std::span<const std::byte> data);
     GLuint acquire_query();
+    void discard_first_timer_query();
     /// Counts upload bytes into the frame being prepared.
     void count_upload(uint64_t bytes) { pending_uploads_ += bytes; }
     void count_render_pass() { ++render_passes_in_frame_; }
