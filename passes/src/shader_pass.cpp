@@ -109,7 +109,8 @@ Status Bindings::status() const {
 
 Status Bindings::bind() {
     if (error_) return *error_;
-    commands_.set_bind_group(set_, group_);
+    // A set the program declares nothing in is left alone.
+    if (!group_.entries.empty()) commands_.set_bind_group(set_, group_);
     return {};
 }
 
@@ -407,6 +408,11 @@ Status ShaderPass::record_capture(fg::PassContext& context) {
         copy.src = context.texture(port.name);
         copy.dst = entry->texture;
         context.commands().copy_texture(copy);
+        // The copy moved the output into CopySrc; hand it back to the executor in the state the
+        // pass left it in (an attachment's), so that capturing changes nothing it planned.
+        context.commands().transition(copy.src, rhi::format_info(spec->format).is_depth_stencil()
+                                                    ? rhi::ResourceState::DepthWrite
+                                                    : rhi::ResourceState::RenderTarget);
     }
     return {};
 }

@@ -73,7 +73,8 @@ public:
 
     [[nodiscard]] const rhi::BindGroup& group() const { return group_; }
     [[nodiscard]] Status status() const;
-    /// commands.set_bind_group(set, group()) unless an error was recorded; returns status().
+    /// commands.set_bind_group(set, group()) unless an error was recorded or nothing was added;
+    /// returns status().
     Status bind();
 
 private:
@@ -160,7 +161,8 @@ public:
 
     /// When on, execute() ends by copying every output port's texture into a texture the pass
     /// owns (created at the port's format and size), readable after the frame with captured().
-    /// The ports need CopySrc usage (PassConfig::capturable).
+    /// The outputs are then moved back into their attachment state, as the pass left them. The
+    /// ports need CopySrc usage (PassConfig::capturable).
     void set_capture(bool capture) { capture_ = capture; }
     [[nodiscard]] bool capture() const { return capture_; }
     /// The copies of the latest captured frame, in port order.

@@ -1,0 +1,95 @@
+// loom-deferred run as a user runs it, on both backends at a small size: it succeeds without a
+// validation or debug message, writes every picture, and GL and Vulkan write the same plan and
+// the same pictures (within one 8-bit level in at most 1% of the pixels: the tolerance of
+// cross_backend_test.cpp, which explains it).
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "format_steps.hpp"
+#include "loom/rhi/image.hpp"
+#include "loom_test/render_fixture.hpp"
+#include "loom_test/test_support.hpp"
+
+namespace loom::test {
+namespace {
+
+std::string read_file(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+/// Runs loom-deferred with `arguments`; returns its exit status and what it printed.
+int run_sample(const std::string& arguments, std::string& output) {
+    const std::filesystem::path log = output_dir() / "passes" / "sample_run.log";
+    std::filesystem::create_directories(log.parent_path());
+    const std::string command = std::string("\"") + LOOM_DEFERRED_EXE + "\" " + arguments + " > \"" + log.string() + "\" 2>&1";
+    const int status = std::system(command.c_str());
+    output = read_file(log);
+    return status;
+}
+
+const char* const kPictures[] = {
+    "final",         "shadow.shadow_map", "geometry.position",  "geometry.normal", "geometry.albedo",
+    "geometry.depth", "geometry.material", "figure3-gbuffer",   "deferred.color",  "deferred.high_pass",
+    "blur-h.color",  "blur-v.color",      "composite.final",    "present.target",
+};
+
+TEST(DeferredSample, GlAndVulkanWriteTheSamePlanAndPictures) {
+    const auto backends = backends_under_test();
+    if (backends.size() < 2) GTEST_SKIP() << "needs both the GL and the Vulkan backend";
+    const std::filesystem::path root = output_dir() / "passes" / "sample";
+    std::string plans[2];
+    for (int i = 0; i < 2; ++i) {
+        const std::string backend = i == 0 ? "gl" : "vulkan";
+        const std::filesystem::path dir = root / backend;
+        std::filesystem::remove_all(dir);
+        std::string output;
+        ASSERT_EQ(run_sample("--backend " + backend + " --size 256x144 --out \"" + dir.string() + "\"", output), 0)
+            << output;
+        EXPECT_EQ(output.find("[error]"), std::string::npos) << output;
+        EXPECT_EQ(output.find("[warning]"), std::string::npos) << output;
+        EXPECT_NE(output.find("RGBA16Float 256x144: 5 texture(s) for 8 output(s)"), std::string::npos) << output;
+        for (const char* picture : kPictures) {
+            EXPECT_TRUE(std::filesystem::exists(dir / (std::string(picture) + ".png"))) << backend << ": " << picture;
+        }
+        EXPECT_TRUE(std::filesystem::exists(dir / "plan.dot"));
+        EXPECT_TRUE(std::filesystem::exists(dir / "summary.txt"));
+        plans[i] = read_file(dir / "plan.json");
+        EXPECT_FALSE(plans[i].empty());
+    }
+    EXPECT_EQ(plans[0], plans[1]) << "the plans differ";
+
+    for (const char* picture : kPictures) {
+        const std::string file = std::string(picture) + ".png";
+        auto gl = rhi::read_png(root / "gl" / file);
+        auto vulkan = rhi::read_png(root / "vulkan" / file);
+        ASSERT_TRUE(gl.ok() && vulkan.ok()) << file;
+        ASSERT_EQ(gl->width, vulkan->width) << file;
+        const StepComparison comparison = compare_steps(*gl, *vulkan);
+        EXPECT_LE(comparison.max_abs, 1.0 / 255.0 + 1e-9) << file << ": " << comparison.summary();
+        EXPECT_LE(comparison.fraction_differing(), 0.01) << file << ": " << comparison.summary();
+        if (comparison.pixels_differing != 0) {
+            (void)rhi::compare_and_report(*gl, *vulkan, root, std::string(picture) + ".gl-vs-vulkan");
+        }
+    }
+}
+
+TEST(DeferredSample, RejectsGltfScenesForNowAndExplainsWhy) {
+    std::string output;
+    EXPECT_NE(run_sample("--scene model.gltf", output), 0);
+    EXPECT_NE(output.find("glTF scenes are not supported yet"), std::string::npos) << output;
+    EXPECT_NE(run_sample("--pipeline sideways", output), 0);
+    EXPECT_NE(output.find("--pipeline expects deferred or forward"), std::string::npos) << output;
+    EXPECT_EQ(run_sample("--help", output), 0);
+    EXPECT_NE(output.find("--allocator"), std::string::npos) << output;
+}
+
+}  // namespace
+}  // namespace loom::test
