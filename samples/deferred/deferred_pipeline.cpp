@@ -117,7 +117,7 @@ passes::SceneView DeferredPipeline::view(fg::Extent2D frame) const {
     const float aspect = static_cast<float>(frame.width) / static_cast<float>(frame.height);
     passes::SceneView view;
     view.camera.view = glm::lookAtRH(scene_.eye, scene_.target, glm::vec3(0.0f, 1.0f, 0.0f));
-    view.camera.projection = glm::perspectiveRH_ZO(scene_.yfov, aspect, 0.1f, 60.0f);
+    view.camera.projection = glm::perspectiveRH_ZO(scene_.yfov, aspect, 0.1f, 150.0f);
     view.camera.position = scene_.eye;
     view.light = scene_.light;
     view.environment = scene_.environment;

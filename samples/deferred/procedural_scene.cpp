@@ -157,32 +157,32 @@ SceneContent procedural_scene() {
     passes::MeshMaterial ground = material({0.72f, 0.70f, 0.66f}, 0.0f, 0.8f);
     ground.secondary_color = glm::vec4(0.20f, 0.22f, 0.26f, 1.0f);
     ground.pattern_scale = 1.0f;
-    add("ground", make_plane(80.0f, 80.0f, 80), ground, glm::mat4(1.0f), true);
+    add("ground", make_plane(200.0f, 200.0f, 100), ground, glm::mat4(1.0f), true);
     scene.items.back().casts_shadow = false;  // nothing lies below it
 
-    add("pillar", make_box({0.6f, 2.6f, 0.6f}), material({0.85f, 0.85f, 0.82f}, 0.0f, 0.6f),
-        place({-2.7f, 1.3f, -1.6f}, 20.0f));
+    add("pillar", make_box({0.6f, 2.6f, 0.6f}), material({0.88f, 0.82f, 0.72f}, 0.0f, 0.55f),
+        place({-2.7f, 1.3f, -1.6f}, -30.0f));
     add("red cube", make_box({1.2f, 1.2f, 1.2f}), material({0.75f, 0.08f, 0.06f}, 0.0f, 0.45f),
-        place({-1.7f, 0.6f, 1.0f}, 28.0f));
+        place({-1.7f, 0.6f, 1.0f}, -25.0f));
     add("green cube", make_box({0.55f, 0.55f, 0.55f}), material({0.12f, 0.55f, 0.18f}, 0.0f, 0.35f),
-        place({-1.6f, 1.475f, 0.95f}, -12.0f));
-    add("gold sphere", make_sphere(0.85f, 64, 32), material({1.0f, 0.77f, 0.33f}, 1.0f, 0.28f),
+        place({-1.6f, 1.475f, 0.95f}, 10.0f));
+    add("chrome sphere", make_sphere(0.85f, 64, 32), material({0.95f, 0.93f, 0.88f}, 1.0f, 0.12f),
         place({0.35f, 0.85f, -0.5f}));
     add("blue sphere", make_sphere(0.55f, 48, 24), material({0.08f, 0.22f, 0.85f}, 0.0f, 0.12f),
         place({2.1f, 0.55f, 1.3f}));
-    add("copper torus", make_torus(0.7f, 0.24f, 64, 24), material({0.95f, 0.56f, 0.42f}, 1.0f, 0.32f),
+    add("gold torus", make_torus(0.7f, 0.24f, 64, 24), material({1.0f, 0.74f, 0.30f}, 1.0f, 0.28f),
         place({2.1f, 0.94f, -1.9f}, -35.0f, {1, 0, 0}, 90.0f));
     add("lamp", make_sphere(0.3f, 32, 16), material({1.0f, 0.42f, 0.1f}, 0.0f, 0.5f, 14.0f),
         place({-0.45f, 0.3f, 2.45f}));
     add("neon bar", make_box({0.14f, 1.5f, 0.14f}), material({0.15f, 0.75f, 1.0f}, 0.0f, 0.5f, 9.0f),
         place({0.95f, 0.75f, 2.05f}, 15.0f));
 
-    scene.light.direction = glm::normalize(glm::vec3(-0.55f, 0.75f, 0.38f));
+    scene.light.direction = glm::normalize(glm::vec3(-0.8f, 0.62f, 0.05f));
     scene.light.color = glm::vec3(1.0f, 0.93f, 0.82f);
     scene.light.intensity = 3.4f;
-    scene.eye = glm::vec3(6.2f, 4.3f, 7.4f);
-    scene.target = glm::vec3(0.0f, 0.55f, 0.2f);
-    scene.yfov = glm::radians(42.0f);
+    scene.eye = glm::vec3(6.4f, 3.4f, 7.6f);
+    scene.target = glm::vec3(0.0f, 0.75f, 0.1f);
+    scene.yfov = glm::radians(36.0f);
     scene.environment.fog_density = 0.05f;
     scene.environment.fog_start = 14.0f;
     scene.bounds = scene_bounds(scene.items);

@@ -1,7 +1,7 @@
 #pragma once
-// The built-in scene of loom-deferred: a checkered ground, a pillar, a cube, a gold and a blue
-// sphere, a copper torus, and two glowing objects bright enough to bloom, under one sun that
-// casts long shadows across the ground.
+// The built-in scene of loom-deferred: a checkered ground fading into the haze, a pillar, two
+// cubes, a chrome and a glossy blue sphere, a gold torus, and two glowing objects bright enough
+// to bloom, under a low sun that casts long shadows across the ground.
 
 #include <cstdint>
 #include <string>

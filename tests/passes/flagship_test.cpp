@@ -169,7 +169,7 @@ TEST_P(FlagshipTest, ThePictureIsLitShadowedAndBlooms) {
     const passes::SceneView view = p.view({kWidth, kHeight});
 
     // Shadow, checked against geometry: for every ground texel, follow the ray towards the light.
-    // Where it passes through the gold or the blue sphere (well inside), the texel must be in
+    // Where it passes through the chrome or the blue sphere (well inside), the texel must be in
     // shadow; where it passes far from every object's bounding sphere, lit. Light received is
     // the lit colour over the albedo (the checkerboard alternates albedos).
     const glm::vec3 l = glm::normalize(scene.light.direction);
@@ -178,7 +178,7 @@ TEST_P(FlagshipTest, ThePictureIsLitShadowedAndBlooms) {
         float radius;
     };
     std::vector<Sphere> spheres;  // the two spheres, exactly
-    for (const char* name : {"gold sphere", "blue sphere"}) {
+    for (const char* name : {"chrome sphere", "blue sphere"}) {
         const deferred::SceneItem& sphere = item(scene, name);
         const passes::Bounds b = deferred::scene_bounds({sphere});
         spheres.push_back({glm::vec3(sphere.model[3]), (b.max.x - b.min.x) * 0.5f});

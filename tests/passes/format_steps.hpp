@@ -30,7 +30,7 @@ struct StepComparison {
     double max_local_steps = 0.0;
 
     /// True when no channel differs by more than one step at the peak.
-    [[nodiscard]] bool within_one_step() const { return max_abs <= step_at_peak; }
+    [[nodiscard]] bool within_one_step() const { return max_abs <= step_at_peak * (1.0 + 1e-9); }
     /// "12 of 57600 pixels differ (0.021%), by at most 0.000488 (one step at the peak 3.9: 0.00195;
     /// at most 1 step locally)"
     [[nodiscard]] std::string summary() const;

@@ -32,9 +32,9 @@ struct DirectionalLight {
 
 /// Ambient light, the sky seen behind the scene, and fog.
 struct Environment {
-    glm::vec3 sky{0.22f, 0.34f, 0.60f};      ///< zenith; ambient light from above
-    glm::vec3 horizon{0.66f, 0.64f, 0.60f};  ///< horizon, and the colour of fog
-    glm::vec3 ground{0.30f, 0.28f, 0.25f};   ///< light bounced up from the ground
+    glm::vec3 sky{0.16f, 0.30f, 0.62f};      ///< zenith; ambient light from above
+    glm::vec3 horizon{0.62f, 0.66f, 0.72f};  ///< horizon, and the colour of fog
+    glm::vec3 ground{0.42f, 0.40f, 0.36f};   ///< light bounced up from the (sunlit) ground
     /// Fog: a surface d world units from the eye fades to the horizon by
     /// 1 - exp(-((d - fog_start) * fog_density)^2) (nothing nearer than fog_start).
     float fog_density = 0.0f;

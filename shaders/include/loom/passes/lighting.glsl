@@ -51,7 +51,9 @@ vec3 fresnel_schlick_roughness(float cos_theta, vec3 f0, float roughness) {
 // The sky seen in `direction` (unit length): horizon to zenith above, darker towards the ground.
 vec3 sky_radiance(vec3 direction) {
     float y = clamp(direction.y, -1.0, 1.0);
-    if (y >= 0.0) return mix(lighting.horizon_radiance.rgb, lighting.sky_radiance.rgb, sqrt(y));
+    // 1 - (1 - y)^3: starts at the horizon's colour (where the fog ends) and turns blue quickly.
+    float up = 1.0 - y;
+    if (y >= 0.0) return mix(lighting.horizon_radiance.rgb, lighting.sky_radiance.rgb, 1.0 - up * up * up);
     return mix(lighting.horizon_radiance.rgb, lighting.ground_radiance.rgb, min(-y * 4.0, 1.0));
 }
 
