@@ -21,6 +21,7 @@ struct StepComparison {
     double max_abs = 0.0;           ///< largest difference of a channel, in value units
     double peak = 0.0;              ///< largest magnitude of a channel in either image
     double step_at_peak = 0.0;      ///< format_step(format, peak)
+    uint64_t pixels_beyond_one_step = 0;  ///< pixels with a channel differing by more than step_at_peak
 
     [[nodiscard]] double fraction_differing() const {
         return pixel_count == 0 ? 0.0 : static_cast<double>(pixels_differing) / static_cast<double>(pixel_count);
@@ -30,7 +31,7 @@ struct StepComparison {
     double max_local_steps = 0.0;
 
     /// True when no channel differs by more than one step at the peak.
-    [[nodiscard]] bool within_one_step() const { return max_abs <= step_at_peak * (1.0 + 1e-9); }
+    [[nodiscard]] bool within_one_step() const { return pixels_beyond_one_step == 0; }
     /// "12 of 57600 pixels differ (0.021%), by at most 0.000488 (one step at the peak 3.9: 0.00195;
     /// at most 1 step locally)"
     [[nodiscard]] std::string summary() const;
