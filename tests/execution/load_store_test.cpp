@@ -124,6 +124,46 @@ TEST_P(LoadStoreTest, FirstWriteClearsWithThePassesValueAndUnreadContentsAreNotS
     EXPECT_EQ(overwrite.colors[0].store, rhi::StoreOp::Store);
 }
 
+TEST_P(LoadStoreTest, PassCopyingItsOutputLeavesItReadableForTheNext) {
+    // A pass that copies its output (e.g. to capture it) leaves it in CopySrc; the executor's
+    // transition before the reading pass must still bring it to ShaderRead.
+    TestPrograms& programs = *programs_;
+    LOOM_ASSIGN_OR_FAIL(auto filter, programs.filter(Format::RGBA16Float));
+    LOOM_ASSIGN_OR_FAIL(auto sampler, programs.sampler());
+    rhi::TextureDesc desc;
+    desc.name = "capture";
+    desc.format = Format::RGBA16Float;
+    desc.width = 16;
+    desc.height = 8;
+    desc.usage = rhi::TextureUsage::CopyDst | rhi::TextureUsage::CopySrc;
+    LOOM_ASSIGN_OR_FAIL(rhi::TextureHandle capture, device().create_texture(desc));
+    fg::FrameGraph graph;
+    ASSERT_TRUE(graph.add_pass(fg::Pass("draw").output("color", kColor.with_usage(rhi::TextureUsage::CopySrc)).on_execute([&](fg::PassContext& ctx) {
+        ctx.begin_render_pass({"color"});
+        ctx.commands().set_pipeline(fill_);
+        ctx.commands().push_constants_of(FillConstants{{0.25f, 0.5f, 0.75f, 1}, {0.25f, 0.5f, 0.75f, 1}, 0.0f});
+        ctx.commands().draw(3);
+        ctx.end_render_pass();
+        rhi::TextureCopy copy;
+        copy.src = ctx.texture("color");
+        copy.dst = capture;
+        ctx.commands().copy_texture(copy);
+        return Status{};
+    })).ok());
+    ASSERT_TRUE(graph.add_pass(filter_pass("read", "in", "out", kColor, filter, sampler, {{2, 2, 2, 1}, {}})).ok());
+    LOOM_ASSERT_OK(graph.connect(fg::port("draw", "color"), fg::port("read", "in")));
+    LOOM_ASSERT_OK(graph.mark_output(fg::port("read", "out")));
+    fg::Executor executor(device());
+    fg::PlanOptions options;
+    options.frame = {16, 8};
+    for (int frame = 0; frame < 2; ++frame) {
+        LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        EXPECT_EQ(texel(device(), executor.texture("read", "out"), 4, 4), (std::array<double, 4>{0.5, 1.0, 1.5, 1.0}));
+        EXPECT_EQ(texel(device(), capture, 4, 4), (std::array<double, 4>{0.25, 0.5, 0.75, 1.0}));
+    }
+    (void)device().destroy(capture);
+}
+
 }  // namespace
 
 LOOM_INSTANTIATE_RENDER_TEST(LoadStoreTest);
