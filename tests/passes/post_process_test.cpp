@@ -145,6 +145,24 @@ TEST_P(PostProcessTest, BlurInEachDirectionMatchesTheReference) {
     }
 }
 
+TEST_P(PostProcessTest, BlurInFloat32MatchesTheReference) {
+    // The passes take their colour format from PassConfig: with RGBA32F nothing is rounded to
+    // half, so this shows the float arithmetic itself agrees.
+    const rhi::Image input = known_image(kWidth, kHeight, Format::RGBA32Float, 6);
+    PassConfig config;
+    config.color_format = Format::RGBA32Float;
+    fg::FrameGraph& graph = graph_with_sources({input}, config);
+    ASSERT_TRUE(graph.add_pass(std::make_unique<passes::BlurPass>(config, BlurAxis::Horizontal, 9, "blur")).ok());
+    ASSERT_TRUE(graph.connect(fg::port("source0", "color"), fg::port("blur", "previous_pass")).ok());
+    ASSERT_TRUE(graph.mark_output(fg::port("blur", "color")).ok());
+    const rhi::Image gpu = run(kWidth, kHeight, "blur", "color");
+    const rhi::Image reference = reference_blur(input, BlurAxis::Horizontal, passes::gaussian_weights(9));
+    ASSERT_EQ(gpu.format, Format::RGBA32Float);
+    const StepComparison comparison = compare_steps(gpu, reference);
+    std::cout << rhi::backend_name(backend()) << ", blur_f32 vs CPU: " << comparison.summary() << "\n";
+    EXPECT_EQ(comparison.pixels_differing, 0u) << comparison.summary();
+}
+
 TEST_P(PostProcessTest, SeparableBlurOfTwoPassesMatchesTheReference) {
     const rhi::Image input = known_image(kWidth, kHeight, Format::RGBA16Float, 2);
     PassConfig config;
