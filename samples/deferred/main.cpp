@@ -197,8 +197,11 @@ loom::Status write_pictures(loom::rhi::Device& device, const loom::deferred::Def
     if (have("geometry.position") && have("geometry.normal") && have("geometry.albedo")) {
         pictures["geometry.material"] = loom::deferred::material_map(images["geometry.position"], images["geometry.normal"],
                                                                      images["geometry.albedo"]);
-        pictures["figure3-gbuffer"] = loom::deferred::mosaic(pictures["geometry.position"], pictures["geometry.normal"],
-                                                             pictures["geometry.albedo"], pictures["geometry.material"]);
+        // The 2x2 mosaic halves each map: only for frames of at least 2x2.
+        if (final_image->width >= 2 && final_image->height >= 2) {
+            pictures["figure3-gbuffer"] = loom::deferred::mosaic(pictures["geometry.position"], pictures["geometry.normal"],
+                                                                 pictures["geometry.albedo"], pictures["geometry.material"]);
+        }
     }
     pictures["final"] = loom::deferred::visualize("present.target", *final_image, images, display);
 
