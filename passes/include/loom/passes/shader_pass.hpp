@@ -112,8 +112,10 @@ struct CapturedTexture {
 
 class ShaderPass : public fg::Pass {
 public:
+    /// A pass with no parts yet; `library` compiles its programs (null: a library of its own).
     ShaderPass(std::string name, std::shared_ptr<ShaderLibrary> library = nullptr);
-    /// Destroys the GPU objects the pass created (pipelines, shaders, samplers, captures).
+    /// Destroys the GPU objects the pass created (pipelines, shaders, samplers, captures): the
+    /// device they were made on must outlive the pass (or call release_gpu() first).
     ~ShaderPass() override;
     ShaderPass(const ShaderPass&) = delete;
     ShaderPass& operator=(const ShaderPass&) = delete;
