@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# The README's main job: renders the flagship sample headless on every compiled-in backend and
-# writes its pictures under OUT. Usage: scripts/demo.sh BUILD_DIR OUT_DIR
+# The README's main job: renders the flagship sample (samples/deferred, the paper's Figure 2
+# pipeline) headless on every compiled-in backend and writes its pictures under OUT:
+# OUT/deferred-<backend>/final.png, every intermediate texture, plan.json, plan.dot and, with
+# Graphviz installed, plan.svg. Usage: scripts/demo.sh BUILD_DIR OUT_DIR
 set -euo pipefail
 build=${1:?build directory}
 out=${2:?output directory}
@@ -9,15 +11,21 @@ mkdir -p "$out"
 backends=()
 grep -q '^LOOM_WITH_GL:BOOL=ON' "$build/CMakeCache.txt" && backends+=(gl)
 grep -q '^LOOM_WITH_VULKAN:BOOL=ON' "$build/CMakeCache.txt" && backends+=(vulkan)
-
-if [[ -x "$build/samples/deferred/loom-deferred" ]]; then
-  for b in "${backends[@]}"; do
-    "$build/samples/deferred/loom-deferred" --backend "$b" --out "$out/deferred-$b"
-  done
-else
-  # Until the deferred sample lands (issue 5), the triangle sample is the main job.
-  for b in "${backends[@]}"; do
-    "$build/samples/triangle/loom-triangle" --backend "$b" --out "$out/triangle-$b.png"
-  done
+if [[ ${#backends[@]} -eq 0 ]]; then
+  echo "demo: no backend compiled in (LOOM_WITH_GL and LOOM_WITH_VULKAN are both OFF)" >&2
+  exit 1
 fi
-echo "demo: pictures written under $out/"
+
+sample="$build/samples/deferred/loom-deferred"
+if [[ ! -x "$sample" ]]; then
+  echo "demo: $sample was not built (LOOM_BUILD_SAMPLES=OFF?)" >&2
+  exit 1
+fi
+
+for b in "${backends[@]}"; do
+  "$sample" --backend "$b" --out "$out/deferred-$b"
+  if command -v dot >/dev/null 2>&1; then
+    dot -Tsvg "$out/deferred-$b/plan.dot" -o "$out/deferred-$b/plan.svg"
+  fi
+done
+echo "demo: pictures written under $out/ (final.png, every intermediate, plan.json/.dot/.svg per backend)"

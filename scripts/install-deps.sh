@@ -20,6 +20,8 @@ packages=(
   libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # Graphviz renders the plan DOT pictures (make demo; the DOT export tests)
+  graphviz
 )
 
 missing=()
