@@ -3,6 +3,7 @@
 #include <atomic>
 
 #include "loom/rhi/handle_pool.hpp"
+#include "loom/rhi/log.hpp"
 
 namespace loom::rhi {
 
@@ -18,6 +19,13 @@ std::optional<Backend> parse_backend(std::string_view name) {
     if (name == "gl" || name == "opengl") return Backend::OpenGL;
     if (name == "vulkan" || name == "vk") return Backend::Vulkan;
     return std::nullopt;
+}
+
+void CommandList::draw_indexed_indirect(BufferHandle, uint64_t, uint32_t draw_count, uint32_t) {
+    // A backend without indirect draws (Capabilities::draw_indirect false) cannot record an
+    // error in its own list through this base class; say so loudly instead of drawing nothing.
+    log_error("rhi", "draw_indexed_indirect of " + std::to_string(draw_count) +
+                         " draws: this backend does not implement indirect draws (Capabilities::draw_indirect is false)");
 }
 
 uint16_t next_device_id() {

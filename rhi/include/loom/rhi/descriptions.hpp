@@ -116,6 +116,18 @@ struct BufferDesc {
 
 enum class IndexType : uint8_t { Uint16, Uint32 };
 
+/// The arguments of one indexed draw as indirect draws read them from a buffer
+/// (CommandList::draw_indexed_indirect): the layout of GL's DrawElementsIndirectCommand and of
+/// VkDrawIndexedIndirectCommand, 20 bytes.
+struct DrawIndexedIndirectCommand {
+    uint32_t index_count = 0;
+    uint32_t instance_count = 1;
+    uint32_t first_index = 0;
+    int32_t base_vertex = 0;
+    uint32_t first_instance = 0;
+};
+static_assert(sizeof(DrawIndexedIndirectCommand) == 20, "indirect commands are read by the GPU as five 32-bit words");
+
 // ---- samplers --------------------------------------------------------------------------------
 
 enum class Filter : uint8_t { Nearest, Linear };

@@ -69,6 +69,9 @@ struct Capabilities {
     /// Textures can be placed at offsets inside heaps (memory aliasing); Vulkan yes, GL no.
     bool placed_resources = false;
     bool timestamps = false;
+    /// CommandList::draw_indexed_indirect is implemented (both built-in backends). Where it is
+    /// false, draw each DrawIndexedIndirectCommand with draw_indexed instead.
+    bool draw_indirect = false;
     uint32_t max_texture_size = 0;
     uint32_t max_color_attachments = 0;
     uint64_t uniform_buffer_offset_alignment = 256;
@@ -141,6 +144,17 @@ public:
     virtual void draw_indexed(uint32_t index_count, uint32_t instance_count = 1, uint32_t first_index = 0,
                               int32_t base_vertex = 0, uint32_t first_instance = 0) = 0;
     virtual void dispatch(uint32_t groups_x, uint32_t groups_y = 1, uint32_t groups_z = 1) = 0;
+    /// `draw_count` indexed draws with the bound state, their arguments read by the GPU from
+    /// `buffer` (BufferUsage::Indirect) at `offset` + i * `stride` (DrawIndexedIndirectCommand;
+    /// offset and stride multiples of 4): one command for many draws that share a pipeline,
+    /// bindings and vertex/index buffers (a multi-draw). The instance index of draw i starts at
+    /// its first_instance, so per-instance vertex attributes can select per-draw data; GL's
+    /// emulation of gl_InstanceIndex (SPIRV-Cross's base-instance uniform) is not updated per
+    /// draw, so shaders drawn this way should not use gl_InstanceIndex. Only where
+    /// Capabilities::draw_indirect; the default implementation, for backends without it, logs
+    /// an error and draws nothing.
+    virtual void draw_indexed_indirect(BufferHandle buffer, uint64_t offset, uint32_t draw_count,
+                                       uint32_t stride = sizeof(DrawIndexedIndirectCommand));
 
     virtual void copy_buffer(BufferHandle src, uint64_t src_offset, BufferHandle dst, uint64_t dst_offset,
                              uint64_t size) = 0;
