@@ -112,6 +112,17 @@ Result<std::unique_ptr<GlContext>> GlContext::create_windowed(const rhi::WindowD
     return out;
 }
 
+Result<std::unique_ptr<GlContext>> GlContext::adopt_current() {
+    // Without a current context GL returns no strings (the calls reach no driver).
+    if (glGetString(GL_VERSION) == nullptr) {
+        return Error{ErrorCode::Unsupported, "no OpenGL context is current on this thread: make the application's context "
+                                             "current before creating the device"};
+    }
+    std::unique_ptr<GlContext> out(new GlContext());
+    out->adopted_ = true;
+    return out;
+}
+
 GlContext::~GlContext() {
     std::lock_guard lock(g_platform_mutex);
     if (window_) {
@@ -132,6 +143,7 @@ GlContext::~GlContext() {
 }
 
 void GlContext::make_current() {
+    if (adopted_) return;  // the application keeps its context current while it calls loom
     if (window_) {
         if (glfwGetCurrentContext() != window_) glfwMakeContextCurrent(window_);
         return;

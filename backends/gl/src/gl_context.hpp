@@ -18,6 +18,9 @@ public:
     static Result<std::unique_ptr<GlContext>> create_headless(bool debug);
     /// A GLFW window with a 4.5 core context; Unsupported when there is no display.
     static Result<std::unique_ptr<GlContext>> create_windowed(const rhi::WindowDesc& window, bool debug);
+    /// The context current on the calling thread, owned by the application: never made current
+    /// by loom, never destroyed, no window. Unsupported when no context is current.
+    static Result<std::unique_ptr<GlContext>> adopt_current();
 
     ~GlContext();
     GlContext(const GlContext&) = delete;
@@ -26,6 +29,8 @@ public:
     /// Makes this context current on the calling thread if it is not already.
     void make_current();
     [[nodiscard]] bool windowed() const { return window_ != nullptr; }
+    /// True for a context adopted from the application (adopt_current).
+    [[nodiscard]] bool adopted() const { return adopted_; }
     /// Processes window events; false once the window should close (always false headless).
     bool poll_events();
     /// The window's framebuffer size in pixels (0x0 headless).
@@ -40,6 +45,7 @@ private:
     void* egl_display_ = nullptr;
     void* egl_context_ = nullptr;
     GLFWwindow* window_ = nullptr;
+    bool adopted_ = false;
 };
 
 }  // namespace loom::gl

@@ -2,8 +2,6 @@
 
 #include <string>
 
-#include <epoxy/gl.h>
-
 #include "loom/rhi/log.hpp"
 
 namespace loom::gl {
@@ -64,6 +62,37 @@ void install_debug_output() {
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
     glDebugMessageCallback(on_debug_message, nullptr);
     glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
+}
+
+SavedDebugOutput take_over_debug_output() {
+    SavedDebugOutput saved;
+    void* callback = nullptr;
+    void* user = nullptr;
+    glGetPointerv(GL_DEBUG_CALLBACK_FUNCTION, &callback);
+    glGetPointerv(GL_DEBUG_CALLBACK_USER_PARAM, &user);
+    // A function pointer comes back as a data pointer; GL stored the one it was given.
+    saved.callback = reinterpret_cast<GLDEBUGPROC>(callback);
+    saved.user = user;
+    saved.enabled = glIsEnabled(GL_DEBUG_OUTPUT) == GL_TRUE;
+    saved.synchronous = glIsEnabled(GL_DEBUG_OUTPUT_SYNCHRONOUS) == GL_TRUE;
+    glEnable(GL_DEBUG_OUTPUT);
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    glDebugMessageCallback(on_debug_message, nullptr);
+    return saved;
+}
+
+void restore_debug_output(const SavedDebugOutput& saved) {
+    glDebugMessageCallback(saved.callback, saved.user);
+    if (saved.synchronous) {
+        glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    } else {
+        glDisable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    }
+    if (saved.enabled) {
+        glEnable(GL_DEBUG_OUTPUT);
+    } else {
+        glDisable(GL_DEBUG_OUTPUT);
+    }
 }
 
 }  // namespace loom::gl

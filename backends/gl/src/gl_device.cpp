@@ -14,6 +14,12 @@ Result<std::unique_ptr<rhi::Device>> create_gl_device(const rhi::DeviceDesc& des
     return std::unique_ptr<rhi::Device>(std::move(*device));
 }
 
+Result<std::unique_ptr<rhi::Device>> create_gl_device_on_current_context(const CurrentContextDesc& desc) {
+    auto device = GlDevice::create_on_current_context(desc);
+    if (!device.ok()) return device.take_error();
+    return std::unique_ptr<rhi::Device>(std::move(*device));
+}
+
 std::optional<GlCacheStats> gl_cache_stats(const rhi::Device& device) {
     if (const auto* gl = dynamic_cast<const GlDevice*>(&device)) return gl->cache_stats();
     return std::nullopt;
@@ -25,7 +31,20 @@ Result<std::unique_ptr<GlDevice>> GlDevice::create(const rhi::DeviceDesc& desc) 
     if (!context.ok()) return context.take_error();
     std::unique_ptr<GlDevice> device(new GlDevice());
     device->context_ = std::move(*context);
+    LOOM_TRY(device->init(desc.debug));
+    return device;
+}
 
+Result<std::unique_ptr<GlDevice>> GlDevice::create_on_current_context(const CurrentContextDesc& desc) {
+    auto context = GlContext::adopt_current();
+    if (!context.ok()) return context.take_error();
+    std::unique_ptr<GlDevice> device(new GlDevice());
+    device->context_ = std::move(*context);
+    LOOM_TRY(device->init(desc.debug_output));
+    return device;
+}
+
+Status GlDevice::init(bool debug) {
     GLint major = 0, minor = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
     glGetIntegerv(GL_MINOR_VERSION, &minor);
@@ -33,23 +52,33 @@ Result<std::unique_ptr<GlDevice>> GlDevice::create(const rhi::DeviceDesc& desc) 
         return Error{ErrorCode::Unsupported, "OpenGL 4.5 is required, the context is " + std::to_string(major) + "." +
                                                  std::to_string(minor)};
     }
-    if (desc.debug) install_debug_output();
-
-    // loom's conventions: NDC y=+1 lands on row 0 (the top row in memory), depth 0..1.
-    glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);
-    // Tightly packed rows for every upload and readback.
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    // Writes to sRGB attachments encode, as they do on Vulkan.
-    glEnable(GL_FRAMEBUFFER_SRGB);
-    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-    glEnable(GL_PROGRAM_POINT_SIZE);
-
-    device->init_capabilities();
-    device->cache_ = std::make_unique<GlStateCache>(device->counters_);
-    device->list_ = std::make_unique<GlCommandList>(*device);
-    log_info("gl", "device: " + device->caps_.device_name + " | " + device->caps_.api_version);
-    return device;
+    if (context_->adopted()) {
+        // The application's context: loom's conventions are set around each of its calls and
+        // the application's state is put back after (gl_app_state.hpp), so nothing is set here.
+        app_state_ = std::make_unique<GlAppState>();
+        if (debug) saved_debug_output_ = take_over_debug_output();
+    } else {
+        if (debug) install_debug_output();
+        // loom's conventions: NDC y=+1 lands on row 0 (the top row in memory), depth 0..1.
+        glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);
+        // Tightly packed rows for every upload and readback.
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        // Writes to sRGB attachments encode, as they do on Vulkan.
+        glEnable(GL_FRAMEBUFFER_SRGB);
+        glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+        glEnable(GL_PROGRAM_POINT_SIZE);
+    }
+    cache_ = std::make_unique<GlStateCache>(counters_);
+    cache_->set_app_state(app_state_.get());
+    {
+        const GlAppStateScope scope = app_state_scope();
+        init_capabilities();
+    }
+    list_ = std::make_unique<GlCommandList>(*this);
+    log_info("gl", "device: " + caps_.device_name + " | " + caps_.api_version +
+                       (context_->adopted() ? " (the application's context)" : ""));
+    return {};
 }
 
 void GlDevice::init_capabilities() {
@@ -82,8 +111,8 @@ void GlDevice::init_capabilities() {
 
 // Mesa 22.3's llvmpipe answers the first GL_TIME_ELAPSED query of a context that contains
 // rendering work with the time since boot (the start timestamp is never written); an empty
-// query does not count. One discarded query around a clear of a 1x1 target, before the state
-// cache exists, keeps that value out of the user's timings. Later queries are right.
+// query does not count. One discarded query around a clear of a 1x1 target, before the first
+// frame, keeps that value out of the user's timings. Later queries are right.
 void GlDevice::discard_first_timer_query() {
     GLuint texture = 0, framebuffer = 0, query = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &texture);
@@ -125,12 +154,15 @@ GlDevice::~GlDevice() {
         for (auto& [label, query] : frame.queries) free_queries_.push_back(query);
     }
     if (!free_queries_.empty()) glDeleteQueries(static_cast<GLsizei>(free_queries_.size()), free_queries_.data());
-    // Whatever the user did not destroy goes with the device.
-    textures_.clear([](rhi::TextureHandle, GlTexture& t) { glDeleteTextures(1, &t.name); });
+    // Whatever the user did not destroy goes with the device (imports stay the application's).
+    textures_.clear([](rhi::TextureHandle, GlTexture& t) {
+        if (!t.imported) glDeleteTextures(1, &t.name);
+    });
     buffers_.clear([](rhi::BufferHandle, GlBuffer& b) { glDeleteBuffers(1, &b.name); });
     samplers_.clear([](rhi::SamplerHandle, GlSampler& s) { glDeleteSamplers(1, &s.name); });
     pipelines_.clear([](rhi::PipelineHandle, GlPipeline& p) { glDeleteProgram(p.program); });
     shaders_.clear([](rhi::ShaderHandle, GlShader& s) { glDeleteShader(s.name_gl); });
+    if (saved_debug_output_) restore_debug_output(*saved_debug_output_);
     glFinish();
 }
 

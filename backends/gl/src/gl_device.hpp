@@ -17,10 +17,13 @@
 
 #include <epoxy/gl.h>
 
+#include "gl_app_state.hpp"
 #include "gl_context.hpp"
+#include "gl_debug.hpp"
 #include "gl_objects.hpp"
 #include "gl_state_cache.hpp"
 #include "loom/gl/gl_device.hpp"
+#include "loom/gl/gl_embed.hpp"
 #include "loom/rhi/handle_pool.hpp"
 
 namespace loom::gl {
@@ -140,6 +143,8 @@ private:
 class GlDevice final : public rhi::Device {
 public:
     static Result<std::unique_ptr<GlDevice>> create(const rhi::DeviceDesc& desc);
+    /// A device on the application's current context (see loom/gl/gl_embed.hpp).
+    static Result<std::unique_ptr<GlDevice>> create_on_current_context(const CurrentContextDesc& desc);
     ~GlDevice() override;
 
     [[nodiscard]] rhi::Backend backend() const override { return rhi::Backend::OpenGL; }
@@ -183,6 +188,15 @@ public:
 
     [[nodiscard]] GlCacheStats cache_stats() const { return {framebuffers_.size(), vertex_arrays_.size()}; }
 
+    // -- embedding (loom/gl/gl_embed.hpp) ------------------------------------------------
+    Result<rhi::TextureHandle> import_texture(GLuint name, const rhi::TextureDesc& desc, rhi::ResourceState state);
+    Result<GLuint> texture_name(rhi::TextureHandle texture);
+    Status blit_to_framebuffer(rhi::TextureHandle texture, GLuint framebuffer, GLint x, GLint y, GLsizei width,
+                               GLsizei height);
+    /// On the application's context: saves its GL state for the lifetime of the scope and
+    /// restores it after (nothing on a context loom owns).
+    [[nodiscard]] GlAppStateScope app_state_scope() { return GlAppStateScope(app_state_.get(), *cache_); }
+
     // -- used by GlCommandList ----------------------------------------------------------
     rhi::HandlePool<rhi::TextureTag, GlTexture>& textures() { return textures_; }
     rhi::HandlePool<rhi::BufferTag, GlBuffer>& buffers() { return buffers_; }
@@ -211,6 +225,9 @@ public:
 
 private:
     GlDevice() : textures_(id_), buffers_(id_), samplers_(id_), shaders_(id_), pipelines_(id_) {}
+    /// Sets up a device on `context_` (current): checks the version, loom's global state
+    /// (owned contexts only), capabilities, the state cache and the command list.
+    Status init(bool debug);
 
     void init_capabilities();
     /// Runs `destroy_gl` now, or after the recorded frame has executed.
@@ -243,6 +260,9 @@ private:
 
     uint16_t id_ = rhi::next_device_id();
     std::unique_ptr<GlContext> context_;
+    /// On an application's context: its state around loom's work, and its debug output.
+    std::unique_ptr<GlAppState> app_state_;
+    std::optional<SavedDebugOutput> saved_debug_output_;
     rhi::Capabilities caps_;
     Limits limits_;
     rhi::HandlePool<rhi::TextureTag, GlTexture> textures_;

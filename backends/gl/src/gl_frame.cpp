@@ -65,6 +65,8 @@ Status GlDevice::end_frame() {
     if (!list_->recording()) return Error{ErrorCode::InvalidState, "end_frame: no frame is being recorded (call begin_frame)"};
     std::vector<GlCommand> commands = list_->finish();
     std::optional<Error> error = std::move(list_->first_error());
+    // On the application's context: its state is saved here and put back before returning.
+    const GlAppStateScope scope = app_state_scope();
 
     counters_ = {};
     // State left by transfers or by another device's use of GL is not trusted across frames,

@@ -24,7 +24,12 @@ struct GlTexture {
     uint64_t bytes = 0;
     /// Owned by the device (the window back buffer): not counted in ResourceStats.
     bool internal = false;
+    /// Wraps an application texture (import_gl_texture): never deleted, not counted.
+    bool imported = false;
 };
+
+/// The GL texture target of a description (2D, 2D multisample, 2D array, 3D, cube).
+GLenum texture_target(const rhi::TextureDesc& desc);
 
 struct GlBuffer {
     rhi::BufferDesc desc;

@@ -25,16 +25,6 @@ uint64_t texture_bytes(const rhi::TextureDesc& d) {
     return total;
 }
 
-GLenum texture_target(const rhi::TextureDesc& d) {
-    switch (d.dimension) {
-        case rhi::TextureDimension::Tex2D: return d.samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
-        case rhi::TextureDimension::Tex2DArray: return GL_TEXTURE_2D_ARRAY;
-        case rhi::TextureDimension::Tex3D: return GL_TEXTURE_3D;
-        case rhi::TextureDimension::Cube: return GL_TEXTURE_CUBE_MAP;
-    }
-    return GL_TEXTURE_2D;
-}
-
 GLenum gl_filter(rhi::Filter f) { return f == rhi::Filter::Linear ? GL_LINEAR : GL_NEAREST; }
 
 GLenum gl_address(rhi::AddressMode m) {
@@ -159,6 +149,16 @@ void set_label(GLenum kind, GLuint object, const std::string& name) {
 
 // ---- textures --------------------------------------------------------------------------------
 
+GLenum texture_target(const rhi::TextureDesc& d) {
+    switch (d.dimension) {
+        case rhi::TextureDimension::Tex2D: return d.samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+        case rhi::TextureDimension::Tex2DArray: return GL_TEXTURE_2D_ARRAY;
+        case rhi::TextureDimension::Tex3D: return GL_TEXTURE_3D;
+        case rhi::TextureDimension::Cube: return GL_TEXTURE_CUBE_MAP;
+    }
+    return GL_TEXTURE_2D;
+}
+
 Status GlDevice::check_texture_desc(const rhi::TextureDesc& d) const {
     const std::string what = "texture " + quote_name(d.name) + ": ";
     auto invalid = [&](const std::string& message) { return Error{ErrorCode::InvalidArgument, what + message}; };
@@ -274,9 +274,14 @@ Status GlDevice::destroy(rhi::TextureHandle texture) {
         return Error{ErrorCode::InvalidArgument, "texture " + quote_name((*found)->desc.name) + " belongs to the device"};
     }
     GlTexture t = std::move(*textures_.remove(texture));
+    const GLuint name = t.name;
+    if (t.imported) {
+        // The application's texture: only loom's framebuffers of it go.
+        delete_later([this, name] { forget_framebuffers_with(name); });
+        return {};
+    }
     --stats_.textures;
     stats_.texture_bytes -= t.bytes;
-    const GLuint name = t.name;
     delete_later([this, name] {
         forget_framebuffers_with(name);
         glDeleteTextures(1, &name);

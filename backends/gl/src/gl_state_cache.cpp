@@ -1,5 +1,7 @@
 #include "gl_state_cache.hpp"
 
+#include "gl_app_state.hpp"
+
 namespace loom::gl {
 
 void GlStateCache::invalidate() {
@@ -41,6 +43,7 @@ void GlStateCache::bind_draw_framebuffer(GLuint fbo) {
 
 void GlStateCache::bind_texture(uint32_t unit, GLuint texture) {
     if (!changed(textures_[unit], texture)) return;
+    if (app_) app_->save_texture_unit(unit);
     glBindTextureUnit(unit, texture);
     ++counters_->api_calls;
     ++counters_->texture_binds;
@@ -48,12 +51,14 @@ void GlStateCache::bind_texture(uint32_t unit, GLuint texture) {
 
 void GlStateCache::bind_sampler(uint32_t unit, GLuint sampler) {
     if (!changed(samplers_[unit], sampler)) return;
+    if (app_) app_->save_sampler_unit(unit);
     glBindSampler(unit, sampler);
     ++counters_->api_calls;
 }
 
 void GlStateCache::bind_uniform_buffer(uint32_t point, GLuint buffer, GLintptr offset, GLsizeiptr size) {
     if (!changed(uniform_buffers_[point], BufferRange{buffer, offset, size})) return;
+    if (app_) app_->save_uniform_buffer(point);
     glBindBufferRange(GL_UNIFORM_BUFFER, point, buffer, offset, size);
     ++counters_->api_calls;
     ++counters_->buffer_binds;
@@ -61,6 +66,7 @@ void GlStateCache::bind_uniform_buffer(uint32_t point, GLuint buffer, GLintptr o
 
 void GlStateCache::bind_storage_buffer(uint32_t point, GLuint buffer, GLintptr offset, GLsizeiptr size) {
     if (!changed(storage_buffers_[point], BufferRange{buffer, offset, size})) return;
+    if (app_) app_->save_storage_buffer(point);
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, point, buffer, offset, size);
     ++counters_->api_calls;
     ++counters_->buffer_binds;
@@ -69,6 +75,7 @@ void GlStateCache::bind_storage_buffer(uint32_t point, GLuint buffer, GLintptr o
 void GlStateCache::bind_image(uint32_t unit, GLuint texture, GLint level, bool layered, GLint layer, GLenum access,
                               GLenum format) {
     if (!changed(images_[unit], ImageBinding{texture, level, layered, layer, access, format})) return;
+    if (app_) app_->save_image_unit(unit);
     glBindImageTexture(unit, texture, level, layered ? GL_TRUE : GL_FALSE, layer, access, format);
     ++counters_->api_calls;
     ++counters_->texture_binds;
@@ -187,6 +194,7 @@ void GlStateCache::raster(const GlRasterState& s) {
 void GlStateCache::blend(uint32_t i, const GlBlendState& s) {
     GlBlendState& c = blend_[i];
     const bool all = !blend_known_[i];
+    if (app_) app_->save_draw_buffer(i);
     if (all || c.enabled != s.enabled) {
         if (s.enabled) {
             glEnablei(GL_BLEND, i);
@@ -223,6 +231,7 @@ void GlStateCache::prepare_clear(uint32_t color_attachments) {
     enable(GL_SCISSOR_TEST, false);
     for (uint32_t i = 0; i < color_attachments && i < kMaxColorAttachments; ++i) {
         if (blend_known_[i] && blend_[i].write_mask == 15) continue;
+        if (app_) app_->save_draw_buffer(i);
         glColorMaski(i, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         ++counters_->api_calls;
         // A slot whose state is unknown stays unknown: the next blend() sends all of it.

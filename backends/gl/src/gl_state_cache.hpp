@@ -49,9 +49,15 @@ inline constexpr uint32_t kMaxColorAttachments = 8;
 /// push-constant buffer.
 inline constexpr uint32_t kTrackedBindings = rhi::kMaxBindGroups * rhi::kMaxBindingsPerGroup + 1;
 
+class GlAppState;
+
 class GlStateCache {
 public:
     explicit GlStateCache(GlCallCounters& counters) : counters_(&counters) { invalidate(); }
+
+    /// On a context the application owns: the application state to save before an indexed
+    /// binding is changed for the first time (null: nothing to save).
+    void set_app_state(GlAppState* app) { app_ = app; }
 
     /// Forgets everything, so the next call of each kind reaches GL (after objects were
     /// deleted, whose names GL may hand out again).
@@ -120,6 +126,7 @@ private:
     static constexpr GLuint kUnknown = ~0u;
 
     GlCallCounters* counters_;
+    GlAppState* app_ = nullptr;
     GLuint program_ = kUnknown;
     GLuint vao_ = kUnknown;
     GLuint framebuffer_ = kUnknown;

@@ -92,6 +92,8 @@ Status GlDevice::write_texture(rhi::TextureHandle texture, const rhi::TextureReg
     }
     std::vector<std::byte> converted(data.begin(), data.end());
     to_gl_layout(t.desc.format, converted);
+    // Pixel-store state and buffer bindings of the application's context must not apply.
+    const GlAppStateScope scope = app_state_scope();
     const auto level = static_cast<GLint>(region.mip);
     if (t.target == GL_TEXTURE_2D) {
         glTextureSubImage2D(t.name, level, static_cast<GLint>(region.origin.x), static_cast<GLint>(region.origin.y),
@@ -114,6 +116,7 @@ Result<rhi::Image> GlDevice::read_texture(rhi::TextureHandle texture, uint32_t m
     context_->make_current();
     auto found = textures_.get(texture);
     if (!found.ok()) return found.take_error();
+    const GlAppStateScope scope = app_state_scope();
     return read_texture_gl(**found, mip, layer);
 }
 
