@@ -6,6 +6,7 @@
 #include <string>
 
 #include "loom/rhi/log.hpp"
+#include "loom/vulkan/vulkan_embed.hpp"
 
 namespace loom::vulkan {
 namespace {
@@ -181,12 +182,7 @@ loom::Status VulkanContext::init(const ContextOptions& options) {
             vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
         VkDebugUtilsMessengerCreateInfoEXT m = messenger_info();
         if (create) create(instance_, &m, nullptr, &messenger_);
-        set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
-            vkGetInstanceProcAddr(instance_, "vkSetDebugUtilsObjectNameEXT"));
-        cmd_begin_label_ = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
-            vkGetInstanceProcAddr(instance_, "vkCmdBeginDebugUtilsLabelEXT"));
-        cmd_end_label_ = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
-            vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
+        load_debug_utils();
     }
 
     if (options.create_surface) {
@@ -258,15 +254,7 @@ loom::Status VulkanContext::init(const ContextOptions& options) {
     }
     physical_device_ = chosen->device;
     queue_family_ = chosen->queue_family;
-    properties_ = chosen->properties;
-    vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_properties_);
-    {
-        uint32_t qcount = 0;
-        vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &qcount, nullptr);
-        std::vector<VkQueueFamilyProperties> families(qcount);
-        vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &qcount, families.data());
-        timestamp_valid_bits_ = families[queue_family_].timestampValidBits;
-    }
+    query_device_properties();
 
     // ---- logical device -------------------------------------------------------------------
     VkPhysicalDeviceFeatures supported{};
@@ -321,7 +309,63 @@ loom::Status VulkanContext::init(const ContextOptions& options) {
     return {};
 }
 
+loom::Result<std::unique_ptr<VulkanContext>> VulkanContext::adopt(const ExternalDeviceDesc& desc) {
+    if (!desc.instance || !desc.physical_device || !desc.device || !desc.queue) {
+        return Error{ErrorCode::InvalidArgument,
+                     "create_vulkan_device_on: instance, physical_device, device and queue must all be set"};
+    }
+    std::unique_ptr<VulkanContext> context(new VulkanContext());
+    context->adopted_ = true;
+    context->instance_ = desc.instance;
+    context->physical_device_ = desc.physical_device;
+    context->device_ = desc.device;
+    context->queue_ = desc.queue;
+    context->queue_family_ = desc.queue_family;
+    context->query_device_properties();
+    const VkPhysicalDeviceProperties& props = context->properties_;
+    if (props.apiVersion < VK_API_VERSION_1_3) {
+        return Error{ErrorCode::Unsupported, std::string(props.deviceName) + " supports Vulkan " +
+                                                 std::to_string(VK_API_VERSION_MAJOR(props.apiVersion)) + "." +
+                                                 std::to_string(VK_API_VERSION_MINOR(props.apiVersion)) + ", loom needs 1.3"};
+    }
+    uint32_t qcount = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(desc.physical_device, &qcount, nullptr);
+    std::vector<VkQueueFamilyProperties> families(qcount);
+    vkGetPhysicalDeviceQueueFamilyProperties(desc.physical_device, &qcount, families.data());
+    const VkQueueFlags needed = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+    if (desc.queue_family >= qcount || (families[desc.queue_family].queueFlags & needed) != needed) {
+        return Error{ErrorCode::Unsupported, "queue family " + std::to_string(desc.queue_family) + " of " + props.deviceName +
+                                                 " does not exist or lacks graphics and compute"};
+    }
+    context->fill_mode_non_solid_ = desc.enabled_features.fillModeNonSolid;
+    context->depth_clamp_ = desc.enabled_features.depthClamp;
+    context->sampler_anisotropy_ = desc.enabled_features.samplerAnisotropy;
+    context->independent_blend_ = desc.enabled_features.independentBlend;
+    if (desc.debug_utils) context->load_debug_utils();
+    return context;
+}
+
+void VulkanContext::query_device_properties() {
+    vkGetPhysicalDeviceProperties(physical_device_, &properties_);
+    vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_properties_);
+    uint32_t qcount = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &qcount, nullptr);
+    std::vector<VkQueueFamilyProperties> families(qcount);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &qcount, families.data());
+    timestamp_valid_bits_ = queue_family_ < qcount ? families[queue_family_].timestampValidBits : 0;
+}
+
+void VulkanContext::load_debug_utils() {
+    set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+        vkGetInstanceProcAddr(instance_, "vkSetDebugUtilsObjectNameEXT"));
+    cmd_begin_label_ = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
+        vkGetInstanceProcAddr(instance_, "vkCmdBeginDebugUtilsLabelEXT"));
+    cmd_end_label_ = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
+        vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
+}
+
 VulkanContext::~VulkanContext() {
+    if (adopted_) return;  // the application's objects
     if (device_) vkDestroyDevice(device_, nullptr);
     if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
     if (messenger_) {

@@ -34,11 +34,7 @@ loom::Status VulkanDevice::begin_frame_commands() {
     return {};
 }
 
-rhi::CommandList& VulkanDevice::begin_frame() {
-    if (frame_recording_) {
-        command_list_->record_error(ErrorCode::InvalidState, "begin_frame: the previous frame was not ended; continuing it");
-        return *command_list_;
-    }
+void VulkanDevice::recycle_current_slot() {
     FrameSlot& slot = current_frame();
     // The frame that used this slot kFramesInFlight frames ago must be done.
     if (auto status = submissions_->wait(slot.serial); !status.ok()) loom::log_error("vulkan", status.error().to_string());
@@ -50,7 +46,15 @@ rhi::CommandList& VulkanDevice::begin_frame() {
     slot.used_command_buffers = 0;
     staging_->release(submissions_->completed_serial());
     recycle_setup_buffers();
+}
 
+rhi::CommandList& VulkanDevice::begin_frame() {
+    if (frame_recording_) {
+        command_list_->record_error(ErrorCode::InvalidState, "begin_frame: the previous frame was not ended; continuing it");
+        return *command_list_;
+    }
+    recycle_current_slot();
+    external_frame_ = false;
     frame_recording_ = true;
     if (swapchain_) {
         if (auto status = acquire_backbuffer(); !status.ok()) loom::log_error("vulkan", status.error().to_string());
@@ -61,6 +65,7 @@ rhi::CommandList& VulkanDevice::begin_frame() {
 
 loom::Status VulkanDevice::end_frame() {
     if (!frame_recording_) return Error{ErrorCode::InvalidState, "end_frame without begin_frame"};
+    if (external_frame_) return end_external_frame();
     command_list_->finish();
     FrameSlot& slot = current_frame();
     VkCommandBuffer cmd = command_list_->command_buffer();

@@ -245,7 +245,7 @@ void VulkanDevice::release_texture(Texture& t) {
     std::vector<VkImageView> views;
     if (t.sampled_view) views.push_back(t.sampled_view);
     for (auto& [key, view] : t.views) views.push_back(view);
-    VkImage image = t.swapchain ? VK_NULL_HANDLE : t.image;
+    VkImage image = t.swapchain || t.imported ? VK_NULL_HANDLE : t.image;
     MemoryAllocation memory = t.memory;
     VkDevice device = context_->device();
     MemoryAllocator* allocator = allocator_.get();

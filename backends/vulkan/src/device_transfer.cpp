@@ -239,6 +239,11 @@ loom::Result<std::vector<std::byte>> VulkanDevice::read_buffer(rhi::BufferHandle
                                                      std::to_string(buffer.desc.size) + " bytes)"};
     }
     if (size == 0) return std::vector<std::byte>{};
+    if (recording_external_frame()) {
+        return Error{ErrorCode::InvalidState, "read_buffer of " + in_quotes(buffer.desc.name) +
+                                                  " while a frame is recorded into the application's command buffer: read "
+                                                  "after end_frame, once the application has submitted the frame"};
+    }
     if (frame_recording_) {
         if (command_list_->inside_render_pass()) {
             return Error{ErrorCode::InvalidState, "read_buffer of " + in_quotes(buffer.desc.name) + " inside a render pass"};
@@ -272,6 +277,9 @@ loom::Status VulkanDevice::write_texture(rhi::TextureHandle handle, const rhi::T
     Texture& t = **tex;
     const std::string name = "write_texture to " + in_quotes(t.desc.name);
     if (t.desc.samples > 1) return Error{ErrorCode::Unsupported, name + ": multisampled textures cannot be uploaded"};
+    if (t.imported && !rhi::has_all(t.desc.usage, rhi::TextureUsage::CopyDst)) {
+        return Error{ErrorCode::InvalidArgument, name + ": the application's image has no TRANSFER_DST usage"};
+    }
     const bool is3d = t.desc.dimension == rhi::TextureDimension::Tex3D;
     if (region.mip >= t.desc.mip_levels || region.layer >= t.array_layers) {
         return Error{ErrorCode::InvalidArgument, name + ": mip " + std::to_string(region.mip) + " layer " +
@@ -354,6 +362,13 @@ loom::Result<rhi::Image> VulkanDevice::read_texture(rhi::TextureHandle handle, u
     if (mip >= t.desc.mip_levels || (is3d ? layer >= full.depth : layer >= t.array_layers)) {
         return Error{ErrorCode::InvalidArgument, name + ": mip " + std::to_string(mip) + " layer " + std::to_string(layer) +
                                                      " does not exist"};
+    }
+    if (t.imported && !rhi::has_all(t.desc.usage, rhi::TextureUsage::CopySrc)) {
+        return Error{ErrorCode::InvalidArgument, name + ": the application's image has no TRANSFER_SRC usage"};
+    }
+    if (recording_external_frame()) {
+        return Error{ErrorCode::InvalidState, name + " while a frame is recorded into the application's command buffer: read "
+                                                     "after end_frame, once the application has submitted the frame"};
     }
     if (frame_recording_) {
         if (command_list_->inside_render_pass()) return Error{ErrorCode::InvalidState, name + " inside a render pass"};

@@ -25,6 +25,7 @@ struct Texture {
     MemoryAllocation memory;         ///< empty for placed and swapchain textures
     uint64_t bytes = 0;              ///< counted in ResourceStats::texture_bytes
     bool swapchain = false;          ///< wraps a swapchain image (not counted, not destroyed)
+    bool imported = false;           ///< wraps an application image (not counted, not destroyed)
     VkImageView sampled_view = VK_NULL_HANDLE;  ///< all mips and layers; depth aspect for depth/stencil
     std::unordered_map<uint64_t, VkImageView> views;  ///< attachment and storage views by key
 

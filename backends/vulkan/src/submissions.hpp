@@ -29,6 +29,10 @@ public:
 
     /// Submits `info` (one batch) with a fence and returns its serial.
     loom::Result<uint64_t> submit(VkQueue queue, const VkSubmitInfo2& info);
+    /// Numbers work the application submits itself (a frame recorded into its command
+    /// buffer): it has completed once `timeline` reaches `value`. Returns its serial. The
+    /// application submits it before loom's next submission, so serials stay in queue order.
+    uint64_t add_external(VkSemaphore timeline, uint64_t value);
 
     /// Updates completed_serial() from the fences without waiting, then runs due work.
     void poll();
@@ -44,9 +48,13 @@ public:
     void run_all_deferred();
 
 private:
+    /// A submission, finished when its fence signals, or (external work, no fence) when its
+    /// timeline semaphore reaches `value`.
     struct InFlight {
         uint64_t serial;
         VkFence fence;
+        VkSemaphore timeline = VK_NULL_HANDLE;
+        uint64_t value = 0;
     };
     struct Deferred {
         uint64_t serial;
@@ -54,6 +62,7 @@ private:
     };
 
     void run_due();
+    bool finished(const InFlight& f) const;
     void retire(InFlight& f);
 
     VkDevice device_;

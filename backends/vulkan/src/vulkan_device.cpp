@@ -22,6 +22,18 @@ loom::Result<std::unique_ptr<rhi::Device>> VulkanDevice::create(const rhi::Devic
     return std::unique_ptr<rhi::Device>(std::move(device));
 }
 
+loom::Result<std::unique_ptr<rhi::Device>> VulkanDevice::create_external(const ExternalDeviceDesc& desc) {
+    std::unique_ptr<VulkanDevice> device(new VulkanDevice());
+    auto context = VulkanContext::adopt(desc);
+    if (!context.ok()) return context.take_error();
+    device->context_ = std::move(*context);
+    rhi::DeviceDesc device_desc;
+    device_desc.backend = rhi::Backend::Vulkan;
+    device_desc.debug = desc.debug_utils;
+    if (auto status = device->init_device(device_desc); !status.ok()) return status.take_error();
+    return std::unique_ptr<rhi::Device>(std::move(device));
+}
+
 loom::Status VulkanDevice::init(const rhi::DeviceDesc& desc) {
     debug_ = desc.debug;
     ContextOptions options;
@@ -37,6 +49,10 @@ loom::Status VulkanDevice::init(const rhi::DeviceDesc& desc) {
     auto context = VulkanContext::create(options);
     if (!context.ok()) return context.take_error();
     context_ = std::move(*context);
+    return init_device(desc);
+}
+
+loom::Status VulkanDevice::init_device(const rhi::DeviceDesc& desc) {
     VkDevice device = context_->device();
 
     allocator_ = std::make_unique<MemoryAllocator>(context_->physical_device(), device);
@@ -102,9 +118,13 @@ loom::Status VulkanDevice::init(const rhi::DeviceDesc& desc) {
         swapchain_ = std::make_unique<Swapchain>(*context_, desc.window.vsync);
         LOOM_TRY(recreate_swapchain());
     }
-    loom::log_info("vulkan", "device " + caps_.device_name + " (" + caps_.api_version + "), validation " +
-                                 (context_->validation_enabled() ? "on" : "off") + ", synchronisation validation " +
-                                 (context_->synchronization_validation_enabled() ? "on" : "off"));
+    if (context_->adopted()) {
+        loom::log_info("vulkan", "device " + caps_.device_name + " (" + caps_.api_version + ") of the application");
+    } else {
+        loom::log_info("vulkan", "device " + caps_.device_name + " (" + caps_.api_version + "), validation " +
+                                     (context_->validation_enabled() ? "on" : "off") + ", synchronisation validation " +
+                                     (context_->synchronization_validation_enabled() ? "on" : "off"));
+    }
     return {};
 }
 
@@ -134,6 +154,7 @@ void VulkanDevice::destroy_everything() {
         if (frame.image_available) vkDestroySemaphore(device, frame.image_available, nullptr);
     }
     if (setup_pool_) vkDestroyCommandPool(device, setup_pool_, nullptr);
+    if (frame_timeline_) vkDestroySemaphore(device, frame_timeline_, nullptr);
     if (pipeline_cache_) vkDestroyPipelineCache(device, pipeline_cache_, nullptr);
     swapchain_.reset();
     layouts_.reset();
@@ -148,7 +169,7 @@ rhi::ResourceStats VulkanDevice::resource_stats() const {
     rhi::ResourceStats s;
     auto& self = const_cast<VulkanDevice&>(*this);
     self.textures_.for_each([&](rhi::TextureHandle, const Texture& t) {
-        if (t.swapchain) return;
+        if (t.swapchain || t.imported) return;
         ++s.textures;
         s.texture_bytes += t.bytes;
     });

@@ -15,6 +15,7 @@
 #include "loom/vulkan/context.hpp"
 #include "loom/vulkan/memory_allocator.hpp"
 #include "loom/vulkan/resource_states.hpp"
+#include "loom/vulkan/vulkan_embed.hpp"
 #include "objects.hpp"
 #include "staging_ring.hpp"
 #include "submissions.hpp"
@@ -47,6 +48,8 @@ enum class Stream : uint8_t { Frame, Setup };
 class VulkanDevice final : public rhi::Device {
 public:
     static loom::Result<std::unique_ptr<rhi::Device>> create(const rhi::DeviceDesc& desc);
+    /// A device on the application's Vulkan objects (loom/vulkan/vulkan_embed.hpp).
+    static loom::Result<std::unique_ptr<rhi::Device>> create_external(const ExternalDeviceDesc& desc);
     ~VulkanDevice() override;
 
     [[nodiscard]] rhi::Backend backend() const override { return rhi::Backend::Vulkan; }
@@ -88,6 +91,16 @@ public:
     [[nodiscard]] rhi::Extent3D window_size() const override;
     rhi::TextureHandle backbuffer() override;
 
+    // ---- embedding (device_embed.cpp, loom/vulkan/vulkan_embed.hpp) ---------------------------
+    loom::Result<rhi::CommandList*> begin_external_frame(VkCommandBuffer cmd);
+    loom::Result<FrameSignal> external_frame_signal() const;
+    loom::Result<rhi::TextureHandle> import_image(const ExternalImage& image);
+    loom::Status set_image_layout(rhi::TextureHandle texture, VkImageLayout layout);
+    loom::Result<VkImageLayout> image_layout(rhi::TextureHandle texture);
+    loom::Result<VkImage> image(rhi::TextureHandle texture);
+    /// True while a frame recorded into an application command buffer is open.
+    [[nodiscard]] bool recording_external_frame() const { return frame_recording_ && external_frame_; }
+
     // ---- for the command list ---------------------------------------------------------------
     [[nodiscard]] VulkanContext& context() { return *context_; }
     rhi::HandlePool<rhi::TextureTag, Texture>& textures() { return textures_; }
@@ -126,6 +139,8 @@ public:
 private:
     VulkanDevice() = default;
     loom::Status init(const rhi::DeviceDesc& desc);
+    /// Everything after the context exists: allocator, pools, frames, capabilities.
+    loom::Status init_device(const rhi::DeviceDesc& desc);
     void destroy_everything();
 
     // resources (device_resources.cpp)
@@ -148,6 +163,10 @@ private:
 
     // frames (device_frames.cpp)
     loom::Status begin_frame_commands();
+    /// Waits for the frame that used the current slot and makes the slot ready to record.
+    void recycle_current_slot();
+    /// end_frame of a frame recorded into an application command buffer (device_embed.cpp).
+    loom::Status end_external_frame();
     void collect_timers(FrameSlot& slot);
     loom::Status acquire_backbuffer();
     loom::Status recreate_swapchain();
@@ -195,6 +214,11 @@ private:
     std::vector<UsedSetupBuffer> used_setup_buffers_;
     std::vector<VkCommandBuffer> free_setup_buffers_;
     uint64_t bytes_uploaded_ = 0;  ///< since the last frame began
+
+    // frames recorded into application command buffers (device_embed.cpp)
+    bool external_frame_ = false;                      ///< the open frame records into the application's buffer
+    VkSemaphore frame_timeline_ = VK_NULL_HANDLE;      ///< signalled by the application's submissions
+    uint64_t frame_timeline_value_ = 0;                ///< value of the latest external frame
 
     // windowed devices
     uint32_t backbuffer_index_ = UINT32_MAX;

@@ -16,6 +16,8 @@
 
 namespace loom::vulkan {
 
+struct ExternalDeviceDesc;
+
 struct ContextOptions {
     /// Enable VK_LAYER_KHRONOS_validation and route its messages to loom::log.
     bool validation = true;
@@ -35,6 +37,10 @@ class VulkanContext {
 public:
     /// Creates instance and device. Fails with Unsupported when no Vulkan 1.3 device exists.
     static loom::Result<std::unique_ptr<VulkanContext>> create(const ContextOptions& options);
+    /// Wraps the application's instance, device and queue (loom/vulkan/vulkan_embed.hpp); the
+    /// context then destroys nothing. Unsupported for a device older than 1.3 or a queue family
+    /// without graphics and compute.
+    static loom::Result<std::unique_ptr<VulkanContext>> adopt(const ExternalDeviceDesc& desc);
     ~VulkanContext();
     VulkanContext(const VulkanContext&) = delete;
     VulkanContext& operator=(const VulkanContext&) = delete;
@@ -51,6 +57,9 @@ public:
     [[nodiscard]] bool validation_enabled() const { return validation_enabled_; }
     [[nodiscard]] bool synchronization_validation_enabled() const { return sync_validation_enabled_; }
     [[nodiscard]] bool debug_utils() const { return set_object_name_ != nullptr; }
+    /// True for the application's objects (adopt): validation and debug output are the
+    /// application's, and nothing is destroyed with the context.
+    [[nodiscard]] bool adopted() const { return adopted_; }
     /// Optional device features that were available and enabled.
     [[nodiscard]] bool fill_mode_non_solid() const { return fill_mode_non_solid_; }
     [[nodiscard]] bool depth_clamp() const { return depth_clamp_; }
@@ -66,6 +75,10 @@ public:
 private:
     VulkanContext() = default;
     loom::Status init(const ContextOptions& options);
+    /// Properties, memory properties and timestamp bits of the chosen device and queue family.
+    void query_device_properties();
+    /// The debug-utils entry points, once the instance has the extension.
+    void load_debug_utils();
 
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
@@ -83,6 +96,7 @@ private:
     bool depth_clamp_ = false;
     bool sampler_anisotropy_ = false;
     bool independent_blend_ = false;
+    bool adopted_ = false;
     PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
     PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label_ = nullptr;
     PFN_vkCmdEndDebugUtilsLabelEXT cmd_end_label_ = nullptr;
