@@ -1,3 +1,5 @@
+include(GNUInstallDirs)
+
 # Warnings for loom's own targets. Third-party headers come in as SYSTEM includes
 # (imported targets), so their warnings never fail the build.
 function(loom_target_defaults target)
@@ -11,13 +13,15 @@ function(loom_target_defaults target)
   endif()
 endfunction()
 
-# A loom library: loom_<name> with alias loom::<name>, public headers in include/.
+# A loom library: loom_<name> with alias loom::<name>, public headers in include/. Installed
+# (cmake/LoomInstall.cmake) it is loom::<name> too.
 function(loom_add_library name)
   cmake_parse_arguments(ARG "" "" "SOURCES" ${ARGN})
   add_library(loom_${name} ${ARG_SOURCES})
   add_library(loom::${name} ALIAS loom_${name})
+  set_target_properties(loom_${name} PROPERTIES EXPORT_NAME ${name})
   target_include_directories(loom_${name} PUBLIC
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
-    $<INSTALL_INTERFACE:include>)
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   loom_target_defaults(loom_${name})
 endfunction()
