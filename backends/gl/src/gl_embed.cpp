@@ -155,8 +155,11 @@ Status GlDevice::blit_to_framebuffer(rhi::TextureHandle texture, GLuint framebuf
     cache_->enable(GL_SCISSOR_TEST, false);
     // Row 0 of the texture is loom's top row; GL window coordinates count rows from the bottom.
     const auto w = static_cast<GLint>(t.desc.width), h = static_cast<GLint>(t.desc.height);
+    // The stored values, not encoded again for an sRGB-capable framebuffer.
+    glDisable(GL_FRAMEBUFFER_SRGB);
     glBlitNamedFramebuffer(source, framebuffer, 0, 0, w, h, x, y + height, x + width, y, GL_COLOR_BUFFER_BIT,
                            width == w && height == h ? GL_NEAREST : GL_LINEAR);
+    glEnable(GL_FRAMEBUFFER_SRGB);  // loom's convention (the application's value comes back with the scope)
     glDeleteFramebuffers(1, &source);
     return {};
 }

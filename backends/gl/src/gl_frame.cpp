@@ -86,9 +86,13 @@ Status GlDevice::end_frame() {
         const rhi::Extent3D window = context_->framebuffer_size();
         cache_->enable(GL_SCISSOR_TEST, false);
         cache_->prepare_clear(1);
+        // A copy of the stored values: on an sRGB-capable window framebuffer an enabled
+        // GL_FRAMEBUFFER_SRGB would encode them a second time (Vulkan presents them as stored).
+        glDisable(GL_FRAMEBUFFER_SRGB);
         glBlitNamedFramebuffer(backbuffer_fbo_, 0, 0, 0, w, h, 0, static_cast<GLint>(window.height),
                                static_cast<GLint>(window.width), 0, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-        cache_->count_call();
+        glEnable(GL_FRAMEBUFFER_SRGB);
+        cache_->count_call(3);
         context_->swap_buffers();
         if (GlTexture* t = textures_.find(backbuffer_)) t->state = rhi::ResourceState::Present;
     }
