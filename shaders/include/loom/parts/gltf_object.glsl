@@ -1,0 +1,37 @@
+// The per-draw uniforms of glTF mesh objects (object kind "gltf-mesh"): one block, declared by
+// the "gltf-geometry" part as its resource LOOM_BINDING(0) in set 1 and read by its vertex stage
+// and by the "gltf-material" part. Mirrored in C++ by loom::scene_objects (gltf_object.cpp).
+#ifndef LOOM_PARTS_GLTF_OBJECT_GLSL
+#define LOOM_PARTS_GLTF_OBJECT_GLSL
+
+layout(set = LOOM_SET, binding = LOOM_BINDING(0)) uniform GltfObjectUniforms {
+    mat4 model;               // object to world
+    mat4 normal_matrix;       // upper 3x3: normals to world (cofactor matrix, sign-corrected)
+    vec4 base_color_factor;   // linear RGBA
+    vec4 emissive_factor;     // rgb: linear emitted radiance factor
+    vec4 factors;             // x metallic, y roughness, z normal scale, w occlusion strength
+    vec4 alpha;               // x alpha mode (0 opaque, 1 mask, 2 blend), y cutoff,
+                              // z -1 when the model matrix mirrors, else +1
+    ivec4 uv_sets;            // UV set (0 or 1) of base colour, metallic-roughness, normal, occlusion
+    ivec4 textures;           // x UV set of emissive, y which textures are bound (kGltf* bits)
+} gltf;
+
+// Bits of gltf.textures.y.
+const int kGltfBaseColor = 1;
+const int kGltfMetallicRoughness = 2;
+const int kGltfNormal = 4;
+const int kGltfOcclusion = 8;
+const int kGltfEmissive = 16;
+
+// The pass parts that hand the fragment stage the surface varyings (locations 0..3): with them
+// the object adds its own (tangent frame, second UV set) at locations 6 and 7. Elsewhere (the
+// shadow map) no fragment stage would read them.
+#if defined(LOOM_PART_CAMERA) || defined(LOOM_PART_MASKED_SHADOW_CASTER)
+#define LOOM_GLTF_VARYINGS 1
+#endif
+
+// alpha.x
+const float kGltfAlphaMask = 1.0;
+const float kGltfAlphaBlend = 2.0;
+
+#endif
