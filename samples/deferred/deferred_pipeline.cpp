@@ -19,20 +19,59 @@ Result<P*> add_pass(fg::FrameGraph& graph, std::unique_ptr<P> pass, std::vector<
 
 }  // namespace
 
-DeferredPipeline::DeferredPipeline(rhi::Device& device, SceneContent scene, PipelineSettings settings)
+Result<PipelineScene> procedural_pipeline_scene(rhi::Device& device, const SceneContent& content) {
+    PipelineScene scene;
+    scene.name = "builtin";
+    const auto pbr = passes::pbr_mesh_kind();
+    const auto checker = passes::checker_mesh_kind();
+    for (const SceneItem& item : content.items) {
+        auto mesh = passes::GpuMesh::create(device, item.mesh.vertices, item.mesh.indices, item.name);
+        if (!mesh) return mesh.take_error();
+        auto object = std::make_shared<passes::MeshObject>(item.name, item.checker ? checker : pbr, *mesh, item.model,
+                                                           item.material);
+        // Only casters go into the shadow map (the ground has nothing below it to shadow).
+        if (item.casts_shadow) scene.shadow_casters.push_back(object);
+        scene.opaque.push_back(object);
+    }
+    const glm::vec3 eye = content.eye, target = content.target;
+    const float yfov = content.yfov;
+    scene.camera = [eye, target, yfov](float aspect) {
+        passes::Camera camera;
+        camera.view = glm::lookAtRH(eye, target, glm::vec3(0.0f, 1.0f, 0.0f));
+        camera.projection = glm::perspectiveRH_ZO(yfov, aspect, 0.1f, 150.0f);
+        camera.position = eye;
+        return camera;
+    };
+    scene.light = content.light;
+    scene.environment = content.environment;
+    scene.bounds = content.bounds;
+    scene.shadow_bounds = content.shadow_bounds;
+    return scene;
+}
+
+DeferredPipeline::DeferredPipeline(rhi::Device& device, PipelineScene scene, PipelineSettings settings)
     : device_(device), scene_(std::move(scene)), settings_(std::move(settings)),
-      library_(std::make_shared<passes::ShaderLibrary>()), executor_(std::make_unique<fg::Executor>(device)) {}
+      library_(settings_.library ? settings_.library : std::make_shared<passes::ShaderLibrary>()),
+      executor_(std::make_unique<fg::Executor>(device)) {}
 
 DeferredPipeline::~DeferredPipeline() {
     // The executor's textures, then the passes' GPU objects (with the graph), then the meshes.
     executor_.reset();
 }
 
-Result<std::unique_ptr<DeferredPipeline>> DeferredPipeline::create(rhi::Device& device, const SceneContent& scene,
+Result<std::unique_ptr<DeferredPipeline>> DeferredPipeline::create(rhi::Device& device, PipelineScene scene,
                                                                    const PipelineSettings& settings) {
-    std::unique_ptr<DeferredPipeline> pipeline(new DeferredPipeline(device, scene, settings));
+    if (!scene.camera) return make_error(ErrorCode::InvalidArgument, "scene '" + scene.name + "' has no camera");
+    std::unique_ptr<DeferredPipeline> pipeline(new DeferredPipeline(device, std::move(scene), settings));
     LOOM_TRY(pipeline->build());
     return pipeline;
+}
+
+Result<std::unique_ptr<DeferredPipeline>> DeferredPipeline::create(rhi::Device& device, const SceneContent& scene,
+                                                                   const PipelineSettings& settings) {
+    auto content = procedural_pipeline_scene(device, scene);
+    if (!content) return content.take_error();
+    return create(device, std::move(*content), settings);
 }
 
 Status DeferredPipeline::build() {
@@ -43,6 +82,11 @@ Status DeferredPipeline::build() {
     auto shadow = add_pass(graph_, std::make_unique<passes::ShadowMapPass>(config, settings_.shadow_map_size), passes_);
     if (!shadow) return shadow.take_error();
     shadow_ = *shadow;
+    if (!scene_.masked_shadow_casters.empty()) {
+        auto masked = add_pass(graph_, std::make_unique<scene_objects::MaskedShadowPass>(config), passes_);
+        if (!masked) return masked.take_error();
+        masked_shadow_ = *masked;
+    }
     if (settings_.forward) {
         auto forward = add_pass(graph_, std::make_unique<passes::ForwardPass>(config), passes_);
         if (!forward) return forward.take_error();
@@ -54,6 +98,11 @@ Status DeferredPipeline::build() {
         auto deferred = add_pass(graph_, std::make_unique<passes::DeferredPass>(config), passes_);
         if (!deferred) return deferred.take_error();
         deferred_ = *deferred;
+    }
+    if (!scene_.blended.empty()) {
+        auto transparent = add_pass(graph_, std::make_unique<scene_objects::TransparentPass>(config), passes_);
+        if (!transparent) return transparent.take_error();
+        transparent_ = *transparent;
     }
     auto blur_h = add_pass(graph_, std::make_unique<passes::BlurPass>(config, passes::BlurAxis::Horizontal, 1, "blur-h"),
                            passes_);
@@ -75,14 +124,29 @@ Status DeferredPipeline::build() {
     // Listing 6, connection for connection, then the blur's second half and the present pass.
     using fg::port;
     const std::string lit = settings_.forward ? "forward" : "deferred";
-    LOOM_TRY(graph_.connect(port("shadow", "shadow_map"), port(lit, "shadow_map")));
+    // The shadow map's last writer: the masked shadow pass adds to the standard one's in place.
+    std::string shadows = "shadow";
+    if (masked_shadow_) {
+        LOOM_TRY(graph_.connect(port("shadow", "shadow_map"), port(masked_shadow_->name(), "shadow_map")));
+        shadows = masked_shadow_->name();
+    }
+    LOOM_TRY(graph_.connect(port(shadows, "shadow_map"), port(lit, "shadow_map")));
     if (!settings_.forward) {
         LOOM_TRY(graph_.connect(port("geometry", "position"), port("deferred", "position")));
         LOOM_TRY(graph_.connect(port("geometry", "normal"), port("deferred", "normal")));
         LOOM_TRY(graph_.connect(port("geometry", "albedo"), port("deferred", "albedo")));
     }
-    LOOM_TRY(graph_.connect(port(lit, "high_pass"), port("blur-h", "previous_pass")));
-    LOOM_TRY(graph_.connect(port(lit, "color"), port("composite", "color")));
+    // The transparent pass blends onto the lit pass's outputs in place; what follows reads its.
+    std::string blended = lit;
+    if (transparent_) {
+        blended = transparent_->name();
+        LOOM_TRY(graph_.connect(port(shadows, "shadow_map"), port(blended, "shadow_map")));
+        LOOM_TRY(graph_.connect(port(lit, "color"), port(blended, "color")));
+        LOOM_TRY(graph_.connect(port(lit, "high_pass"), port(blended, "high_pass")));
+        LOOM_TRY(graph_.connect(port(settings_.forward ? "forward" : "geometry", "depth"), port(blended, "depth")));
+    }
+    LOOM_TRY(graph_.connect(port(blended, "high_pass"), port("blur-h", "previous_pass")));
+    LOOM_TRY(graph_.connect(port(blended, "color"), port("composite", "color")));
     LOOM_TRY(graph_.connect(port("blur-h", "color"), port("blur-v", "previous_pass")));
     LOOM_TRY(graph_.connect(port("blur-v", "color"), port("composite", "bloom")));
     LOOM_TRY(graph_.connect(port("composite", "final"), port("present", "source")));
@@ -94,21 +158,16 @@ Status DeferredPipeline::build() {
     composite_->set_bloom_strength(settings_.bloom_strength);
     if (deferred_) deferred_->set_threshold(settings_.threshold);
     if (forward_) forward_->set_threshold(settings_.threshold);
+    if (transparent_) transparent_->set_threshold(settings_.threshold);
     for (passes::ShaderPass* pass : passes_) pass->set_capture(settings_.capture);
 
-    // Objects: upload each mesh once, register every object with each pass that draws objects.
-    const auto pbr = passes::pbr_mesh_kind();
-    const auto checker = passes::checker_mesh_kind();
-    for (const SceneItem& item : scene_.items) {
-        auto mesh = passes::GpuMesh::create(device_, item.mesh.vertices, item.mesh.indices, item.name);
-        if (!mesh) return mesh.take_error();
-        meshes_.push_back(*mesh);
-        auto object = std::make_shared<passes::MeshObject>(item.name, item.checker ? checker : pbr, *mesh, item.model,
-                                                           item.material);
-        objects_.push_back(object);
-        // Only casters go into the shadow map (the ground has nothing below it to shadow).
-        if (item.casts_shadow) LOOM_TRY(passes::register_object(*shadow_, object));
-        LOOM_TRY(passes::register_object(geometry_ ? static_cast<passes::ShaderPass&>(*geometry_) : *forward_, object));
+    // Objects: each registered with every pass that draws it (one program per pass and kind).
+    passes::ShaderPass& lit_pass = geometry_ ? static_cast<passes::ShaderPass&>(*geometry_) : *forward_;
+    for (const auto& object : scene_.shadow_casters) LOOM_TRY(passes::register_object(*shadow_, object));
+    for (const auto& object : scene_.masked_shadow_casters) LOOM_TRY(passes::register_object(*masked_shadow_, object));
+    for (const auto& object : scene_.opaque) LOOM_TRY(passes::register_object(lit_pass, object));
+    for (const BlendedObject& blended_object : scene_.blended) {
+        LOOM_TRY(transparent_->register_object(blended_object.object, blended_object.bounds));
     }
     return {};
 }
@@ -116,9 +175,7 @@ Status DeferredPipeline::build() {
 passes::SceneView DeferredPipeline::view(fg::Extent2D frame) const {
     const float aspect = static_cast<float>(frame.width) / static_cast<float>(frame.height);
     passes::SceneView view;
-    view.camera.view = glm::lookAtRH(scene_.eye, scene_.target, glm::vec3(0.0f, 1.0f, 0.0f));
-    view.camera.projection = glm::perspectiveRH_ZO(scene_.yfov, aspect, 0.1f, 150.0f);
-    view.camera.position = scene_.eye;
+    view.camera = scene_.camera(aspect);
     view.light = scene_.light;
     view.environment = scene_.environment;
     view.shadow.light_view_projection = passes::fit_directional_shadow(scene_.light.direction, scene_.shadow_bounds);
@@ -141,9 +198,11 @@ Status DeferredPipeline::prepare(fg::Extent2D frame) {
 
     const passes::SceneView view = this->view(frame);
     shadow_->set_light_view_projection(view.shadow.light_view_projection);
+    if (masked_shadow_) masked_shadow_->set_light_view_projection(view.shadow.light_view_projection);
     if (geometry_) geometry_->set_camera(view.camera);
     if (deferred_) deferred_->set_view(view);
     if (forward_) forward_->set_view(view);
+    if (transparent_) transparent_->set_view(view);
     const uint32_t radius = settings_.blur_radius.value_or(
         std::clamp<uint32_t>(static_cast<uint32_t>(std::lround(frame.height / 24.0)), 1u, passes::kMaxBlurRadius));
     LOOM_TRY(blur_h_->set_radius(radius));

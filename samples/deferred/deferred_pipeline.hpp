@@ -10,8 +10,21 @@
 // one forward pass ("forward-render" + the same two parts) replaces geometry and deferred. Every colour port shares one spec
 // (RGBA16Float at the frame size), so the plan shares their textures; the present pass converts
 // to the target format (RGBA8Unorm offscreen, the back buffer's format in a window).
+//
+// Scenes with blended surfaces (PipelineScene::blended) get a transparent pass after the lit
+// pass: it blends them, back to front, onto the lit colour and high pass in place, tested
+// against the opaque depth (geometry.depth, or forward.depth):
+//
+//   deferred|forward ──color/high_pass──► transparent ──color──► composite, ──high_pass──► blur-h
+//   geometry|forward ──depth────────────┘
+//
+// Scenes with cut-out surfaces (PipelineScene::masked_shadow_casters) get a masked shadow pass
+// that draws them into the shadow map in place, after the standard shadow pass:
+//
+//   shadow ──shadow_map──► masked-shadow ──shadow_map──► deferred|forward, transparent
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,6 +41,8 @@
 #include "loom/passes/mesh_object.hpp"
 #include "loom/passes/shadow_map_pass.hpp"
 #include "loom/rhi/device.hpp"
+#include "loom/scene_objects/masked_shadow_pass.hpp"
+#include "loom/scene_objects/transparent_pass.hpp"
 #include "procedural_scene.hpp"
 
 namespace loom::deferred {
@@ -47,7 +62,44 @@ struct PipelineSettings {
     float threshold = 1.0f;
     /// Format of present.target (RGBA8Unorm offscreen; the back buffer's in a window).
     rhi::Format target_format = rhi::Format::RGBA8Unorm;
+    /// Compiles the passes' programs; share one between pipelines (also on different devices:
+    /// it holds no GPU objects) so that equal programs compile once. Null: one of its own.
+    std::shared_ptr<passes::ShaderLibrary> library;
 };
+
+/// An object the transparent pass draws, with the world bounds it is sorted by.
+struct BlendedObject {
+    std::shared_ptr<const passes::Object> object;
+    passes::Bounds bounds;
+};
+
+/// What the pipeline draws and how it looks at it, whatever kind the objects are: the
+/// procedural scene's MeshObjects (procedural_pipeline_scene) or a glTF file's GltfObjects
+/// (gltf_scene.hpp).
+struct PipelineScene {
+    std::string name;
+    /// Drawn into the shadow map (their vertex parts only).
+    std::vector<std::shared_ptr<const passes::Object>> shadow_casters;
+    /// Drawn into the shadow map with their material, which cuts them out (glTF MASK); none:
+    /// the pipeline has no masked shadow pass.
+    std::vector<std::shared_ptr<const passes::Object>> masked_shadow_casters;
+    /// Drawn by the geometry pass (deferred) or the forward pass.
+    std::vector<std::shared_ptr<const passes::Object>> opaque;
+    /// Drawn by the transparent pass; none: the pipeline has no transparent pass.
+    std::vector<BlendedObject> blended;
+    /// The camera of a frame of aspect ratio width / height.
+    std::function<passes::Camera(float aspect)> camera;
+    passes::DirectionalLight light;
+    passes::Environment environment;
+    /// World bounds of everything drawn (the position map is shown relative to them).
+    passes::Bounds bounds;
+    /// What the shadow map covers.
+    passes::Bounds shadow_bounds;
+};
+
+/// Uploads the procedural scene's meshes (one GpuMesh per item) and makes its objects
+/// ("pbr-mesh" or "checker-mesh"), camera, light, sky and bounds.
+Result<PipelineScene> procedural_pipeline_scene(rhi::Device& device, const SceneContent& content);
 
 /// A texture of the latest captured frame, by "pass.port".
 struct Intermediate {
@@ -57,8 +109,11 @@ struct Intermediate {
 
 class DeferredPipeline {
 public:
-    /// Uploads the scene's meshes, builds the graph and registers every object with the shadow
-    /// and geometry passes (composing one program per pass and object kind).
+    /// Builds the graph and registers every object of `scene` with the passes that draw it
+    /// (composing one program per pass and object kind).
+    static Result<std::unique_ptr<DeferredPipeline>> create(rhi::Device& device, PipelineScene scene,
+                                                            const PipelineSettings& settings = {});
+    /// The procedural scene (procedural_pipeline_scene, then create).
     static Result<std::unique_ptr<DeferredPipeline>> create(rhi::Device& device, const SceneContent& scene,
                                                             const PipelineSettings& settings = {});
     ~DeferredPipeline();
@@ -90,28 +145,32 @@ public:
     [[nodiscard]] const PipelineSettings& settings() const { return settings_; }
     /// Sets the composite's bloom strength (for comparisons with and without bloom).
     void set_bloom_strength(float strength) { composite_->set_bloom_strength(strength); }
-    [[nodiscard]] const SceneContent& scene() const { return scene_; }
+    [[nodiscard]] const PipelineScene& scene() const { return scene_; }
+    /// The masked shadow pass; null when the scene has no masked shadow casters.
+    [[nodiscard]] const scene_objects::MaskedShadowPass* masked_shadow() const { return masked_shadow_; }
+    /// The transparent pass; null when the scene has no blended objects.
+    [[nodiscard]] const scene_objects::TransparentPass* transparent() const { return transparent_; }
 
 private:
-    DeferredPipeline(rhi::Device& device, SceneContent scene, PipelineSettings settings);
+    DeferredPipeline(rhi::Device& device, PipelineScene scene, PipelineSettings settings);
     Status build();
     Status prepare(fg::Extent2D frame);
 
     rhi::Device& device_;
-    SceneContent scene_;
+    PipelineScene scene_;
     PipelineSettings settings_;
     std::shared_ptr<passes::ShaderLibrary> library_;
-    std::vector<std::shared_ptr<passes::GpuMesh>> meshes_;
-    std::vector<std::shared_ptr<passes::MeshObject>> objects_;
     fg::FrameGraph graph_;
     std::unique_ptr<fg::Executor> executor_;
     fg::PlanOptions options_;
 
     std::vector<passes::ShaderPass*> passes_;
     passes::ShadowMapPass* shadow_ = nullptr;
+    scene_objects::MaskedShadowPass* masked_shadow_ = nullptr;
     passes::GeometryPass* geometry_ = nullptr;
     passes::DeferredPass* deferred_ = nullptr;
     passes::ForwardPass* forward_ = nullptr;
+    scene_objects::TransparentPass* transparent_ = nullptr;
     passes::BlurPass* blur_h_ = nullptr;
     passes::BlurPass* blur_v_ = nullptr;
     passes::CompositePass* composite_ = nullptr;

@@ -1,16 +1,21 @@
 // loom-deferred: the paper's Figure 2 pipeline (shadow map → G-buffer → deferred lighting with
 // shadows and high pass → blur → composite with bloom and tone mapping) on one frame graph, on
 // GL or Vulkan. Headless it writes the final frame, every intermediate texture (the paper's
-// Figures 3-7), the plan as JSON and DOT, and prints what the plan and the device used.
+// Figures 3-7), the plan as JSON and DOT, and prints what the plan and the device used. The
+// scene is the built-in procedural one or a glTF file (--scene FILE).
 #include <cinttypes>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <filesystem>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "deferred_pipeline.hpp"
+#include "gltf_scene.hpp"
 #include "loom/framegraph/export.hpp"
 #include "loom/framegraph/plan.hpp"
 #include "loom/rhi/device.hpp"
@@ -34,19 +39,24 @@ struct Options {
     uint64_t frames = 1;
     std::string allocator = "interval";
     bool forward = false;
+    /// A glTF file; empty: the built-in scene.
+    std::filesystem::path scene;
+    std::optional<uint32_t> camera;
 };
 
 const char* kUsage =
     "usage: loom-deferred [options]\n"
     "Renders the paper's Figure 2 pipeline (shadow map, G-buffer, deferred lighting with shadows\n"
-    "and high pass, separable blur, composite with bloom and tone mapping) on a procedural scene.\n"
+    "and high pass, separable blur, composite with bloom and tone mapping) on a procedural scene\n"
+    "or a glTF 2.0 file (.gltf or .glb).\n"
     "Headless, it writes into --out DIR: final.png, one PNG per pass output (<pass>.<port>.png),\n"
     "geometry.material.png and figure3-gbuffer.png, plan.json, plan.dot and summary.txt.\n\n";
 
 std::string extra_help() {
     return "  --frames N            frames to render (default 1; with --window 0 runs until closed)\n"
            "  --allocator NAME      paper, interval or heap (default interval, the same on every backend)\n"
-           "  --scene builtin       the built-in procedural scene (the default; glTF files come later)\n"
+           "  --scene FILE|builtin  a glTF 2.0 file (.gltf, .glb), or the built-in procedural scene (the default)\n"
+           "  --camera N            the file's camera N (default: its first camera, or one framing the scene)\n"
            "  --pipeline NAME       deferred (Figure 2, the default) or forward (one forward pass with the\n"
            "                        same shadow-render and high-pass-render parts)\n";
 }
@@ -97,14 +107,23 @@ loom::Result<Options> parse(int argc, char** argv) {
         } else if (name == "--scene") {
             auto v = take();
             if (!v) return v.take_error();
-            if (*v != "builtin") {
-                return loom::make_error(loom::ErrorCode::Unsupported,
-                                        "--scene " + *v + ": glTF scenes are not supported yet (they arrive with the "
-                                        "glTF issue); use --scene builtin or leave --scene out");
+            if (v->empty()) return loom::make_error(loom::ErrorCode::InvalidArgument, "--scene needs a file or 'builtin'");
+            options.scene = *v == "builtin" ? std::filesystem::path() : std::filesystem::path(*v);
+        } else if (name == "--camera") {
+            auto v = take();
+            if (!v) return v.take_error();
+            char* end = nullptr;
+            const unsigned long n = std::strtoul(v->c_str(), &end, 10);
+            if (v->empty() || *end != '\0' || (*v)[0] == '-' || n > UINT32_MAX) {
+                return loom::make_error(loom::ErrorCode::InvalidArgument, "--camera expects a camera index, got '" + *v + "'");
             }
+            options.camera = static_cast<uint32_t>(n);
         } else {
             return loom::make_error(loom::ErrorCode::InvalidArgument, "unknown argument '" + rest[i] + "'");
         }
+    }
+    if (options.camera && options.scene.empty()) {
+        return loom::make_error(loom::ErrorCode::InvalidArgument, "--camera needs a glTF scene (--scene FILE)");
     }
     if (!options.common.window && options.frames == 0) {
         return loom::make_error(loom::ErrorCode::InvalidArgument, "--frames 0 only makes sense with --window");
@@ -114,9 +133,37 @@ loom::Result<Options> parse(int argc, char** argv) {
 
 std::string file_name(const std::string& texture) { return texture + ".png"; }
 
+/// The pipeline on the scene the options name (built-in, or a glTF file seen from its camera).
+/// `scene_line` says what was loaded, for the summary.
+loom::Result<std::unique_ptr<loom::deferred::DeferredPipeline>> make_pipeline(loom::rhi::Device& device,
+                                                                             const Options& options,
+                                                                             const loom::deferred::PipelineSettings& settings,
+                                                                             std::string& scene_line) {
+    using namespace loom;
+    if (options.scene.empty()) {
+        scene_line = "scene: builtin (procedural)";
+        return deferred::DeferredPipeline::create(device, deferred::procedural_scene(), settings);
+    }
+    auto prepared = deferred::load_gltf_scene(options.scene);
+    if (!prepared) return prepared.take_error();
+    const scene::Scene& scene = (*prepared)->scene;
+    auto viewpoint = scene_objects::SceneViewpoint::choose(scene, options.camera);
+    if (!viewpoint) return viewpoint.take_error();
+    auto gpu = scene_objects::GpuScene::create(device, *prepared);
+    if (!gpu) return gpu.take_error();
+    deferred::PipelineScene content = deferred::gltf_pipeline_scene(*gpu, *viewpoint);
+    scene_line = "scene: " + options.scene.string() + ": " + std::to_string(content.opaque.size()) + " opaque and " +
+                 std::to_string(content.blended.size()) + " blended draw item(s), " +
+                 std::to_string(scene.materials.size()) + " material(s), " + std::to_string(scene.images.size()) +
+                 " image(s) (" + fg::format_bytes((*gpu)->texture_bytes()) + " with mipmaps), " +
+                 viewpoint->describe();
+    for (const std::string& warning : scene.warnings) scene_line += "\n  warning: " + warning;
+    return deferred::DeferredPipeline::create(device, std::move(content), settings);
+}
+
 /// The plan, what the device created for it, and the timings of the latest frame.
 std::string summary(const loom::deferred::DeferredPipeline& pipeline, loom::fg::Executor& executor,
-                    loom::rhi::Device& device, const Options& options) {
+                    loom::rhi::Device& device, const Options& options, const std::string& scene_line) {
     using loom::fg::format_bytes;
     const auto plan = executor.plan();
     std::ostringstream out;
@@ -124,6 +171,7 @@ std::string summary(const loom::deferred::DeferredPipeline& pipeline, loom::fg::
     out << kName << ": " << loom::rhi::backend_name(device.backend()) << ", " << caps.device_name << ", "
         << plan->frame.width << "x" << plan->frame.height << ", allocator " << plan->allocator << ", "
         << options.frames << " frame(s)\n";
+    out << scene_line << "\n";
     char hash[32];
     std::snprintf(hash, sizeof(hash), "%016" PRIx64, loom::fg::plan_hash(*plan));
     out << "plan " << hash << ": " << plan->order.size() << " passes, " << plan->resources.size() << " resources -> "
@@ -151,21 +199,21 @@ std::string summary(const loom::deferred::DeferredPipeline& pipeline, loom::fg::
     out << "programs: composed " << pipeline.library().requests() << " stages, compiled "
         << pipeline.library().compilations() << "\n";
     out << "timings of the latest frame (ms):\n";
-    out << "  pass          gpu       cpu\n";
+    out << "  pass              gpu       cpu\n";
     double gpu_total = 0.0, cpu_total = 0.0;
     for (const auto& timing : executor.timings()) {
         char line[128];
         if (timing.gpu_ms) {
-            std::snprintf(line, sizeof(line), "  %-10s %8.3f  %8.3f\n", timing.pass.c_str(), *timing.gpu_ms, timing.cpu_ms);
+            std::snprintf(line, sizeof(line), "  %-14s %8.3f  %8.3f\n", timing.pass.c_str(), *timing.gpu_ms, timing.cpu_ms);
             gpu_total += *timing.gpu_ms;
         } else {
-            std::snprintf(line, sizeof(line), "  %-10s %8s  %8.3f\n", timing.pass.c_str(), "n/a", timing.cpu_ms);
+            std::snprintf(line, sizeof(line), "  %-14s %8s  %8.3f\n", timing.pass.c_str(), "n/a", timing.cpu_ms);
         }
         cpu_total += timing.cpu_ms;
         out << line;
     }
     char total[128];
-    std::snprintf(total, sizeof(total), "  %-10s %8.3f  %8.3f\n", "total", gpu_total, cpu_total);
+    std::snprintf(total, sizeof(total), "  %-14s %8.3f  %8.3f\n", "total", gpu_total, cpu_total);
     out << total;
     return out.str();
 }
@@ -231,7 +279,8 @@ int run_window(const Options& options) {
     settings.forward = options.forward;
     settings.capture = false;
     settings.target_format = desc->format;
-    auto pipeline = deferred::DeferredPipeline::create(dev, deferred::procedural_scene(), settings);
+    std::string scene_line;
+    auto pipeline = make_pipeline(dev, options, settings, scene_line);
     if (!pipeline) return fail(pipeline.error());
     uint64_t frames = 0;
     while (dev.poll_window()) {
@@ -244,7 +293,7 @@ int run_window(const Options& options) {
         if (options.frames != 0 && ++frames >= options.frames) break;
     }
     if (auto idle = dev.wait_idle(); !idle) return fail(idle.error());
-    std::printf("%s", summary(**pipeline, (*pipeline)->executor(), dev, options).c_str());
+    std::printf("%s", summary(**pipeline, (*pipeline)->executor(), dev, options, scene_line).c_str());
     return EXIT_SUCCESS;
 }
 
@@ -256,7 +305,8 @@ int run_headless(const Options& options) {
     deferred::PipelineSettings settings;
     settings.allocator = options.allocator;
     settings.forward = options.forward;
-    auto pipeline = deferred::DeferredPipeline::create(dev, deferred::procedural_scene(), settings);
+    std::string scene_line;
+    auto pipeline = make_pipeline(dev, options, settings, scene_line);
     if (!pipeline) return fail(pipeline.error());
     for (uint64_t i = 0; i < options.frames; ++i) {
         if (auto rendered = (*pipeline)->render({options.common.width, options.common.height}); !rendered) {
@@ -271,7 +321,7 @@ int run_headless(const Options& options) {
     const auto plan = (*pipeline)->executor().plan();
     if (auto status = write_text(dir / "plan.json", fg::plan_to_json(*plan)); !status) return fail(status.error());
     if (auto status = write_text(dir / "plan.dot", fg::plan_to_dot(*plan)); !status) return fail(status.error());
-    const std::string text = summary(**pipeline, (*pipeline)->executor(), dev, options);
+    const std::string text = summary(**pipeline, (*pipeline)->executor(), dev, options, scene_line);
     if (auto status = write_text(dir / "summary.txt", text); !status) return fail(status.error());
     std::printf("%s", text.c_str());
     std::printf("wrote %zu pictures, plan.json, plan.dot and summary.txt to %s\n", written.size(), dir.string().c_str());

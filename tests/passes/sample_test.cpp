@@ -84,10 +84,10 @@ TEST(DeferredSample, GlAndVulkanWriteTheSamePlanAndPictures) {
     }
 }
 
-TEST(DeferredSample, RejectsGltfScenesForNowAndExplainsWhy) {
+TEST(DeferredSample, RejectsAMissingSceneFileAndBadArgumentsAndExplainsWhy) {
     std::string output;
     EXPECT_NE(run_sample("--scene model.gltf", output), 0);
-    EXPECT_NE(output.find("glTF scenes are not supported yet"), std::string::npos) << output;
+    EXPECT_NE(output.find("Io: model.gltf: file not found"), std::string::npos) << output;
     EXPECT_NE(run_sample("--pipeline sideways", output), 0);
     EXPECT_NE(output.find("--pipeline expects deferred or forward"), std::string::npos) << output;
     EXPECT_EQ(run_sample("--help", output), 0);

@@ -1,0 +1,32 @@
+#include "gltf_scene.hpp"
+
+#include "loom/scene/gltf.hpp"
+
+namespace loom::deferred {
+
+Result<std::shared_ptr<const scene_objects::PreparedScene>> load_gltf_scene(const std::filesystem::path& path) {
+    auto scene = scene::load_gltf(path);
+    if (!scene) return scene.take_error();
+    return scene_objects::prepare_scene(std::move(*scene));
+}
+
+PipelineScene gltf_pipeline_scene(const std::shared_ptr<const scene_objects::GpuScene>& gpu,
+                                  const scene_objects::SceneViewpoint& viewpoint) {
+    const scene_objects::SceneObjects objects = scene_objects::make_scene_objects(gpu);
+    PipelineScene scene;
+    scene.name = gpu->scene().source;
+    for (const auto& object : objects.opaque) {
+        // Cut-out surfaces cast cut-out shadows: through the masked shadow pass.
+        (object->alpha_mode() == scene::AlphaMode::Mask ? scene.masked_shadow_casters : scene.shadow_casters).push_back(object);
+        scene.opaque.push_back(object);
+    }
+    for (const auto& object : objects.blended) scene.blended.push_back(BlendedObject{object, object->world_bounds()});
+    scene.camera = [viewpoint](float aspect) { return viewpoint.camera(aspect); };
+    // The camera's orientation does not depend on the aspect ratio; only its distance may.
+    scene.light = scene_objects::viewer_sun(viewpoint.camera(1.0f));
+    scene.bounds = objects.bounds;
+    scene.shadow_bounds = objects.bounds;
+    return scene;
+}
+
+}  // namespace loom::deferred

@@ -1,0 +1,30 @@
+#pragma once
+// glTF files as pipeline scenes: loom::scene imports the file, loom::scene_objects turns its
+// draw items into GltfObjects ("gltf-mesh") and uploads geometry and textures once per device;
+// the camera is the file's (first, or the one asked for) or one that frames the scene, and the
+// light is a sun behind the viewer (files bring none).
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "deferred_pipeline.hpp"
+#include "loom/rhi/result.hpp"
+#include "loom/scene_objects/gpu_scene.hpp"
+#include "loom/scene_objects/scene_objects.hpp"
+
+namespace loom::deferred {
+
+/// Imports `path` (load_gltf) and prepares it for upload (prepare_scene). Errors are the
+/// importer's: one line naming the file and what is wrong.
+Result<std::shared_ptr<const scene_objects::PreparedScene>> load_gltf_scene(const std::filesystem::path& path);
+
+/// The pipeline scene of `gpu`'s scene seen from `viewpoint`: opaque and masked objects go to
+/// the geometry (or forward) pass and cast shadows (masked ones through the masked shadow pass,
+/// cut out), blended ones go to the transparent pass and cast none. The GpuScene may be shared
+/// by several pipelines on its device.
+PipelineScene gltf_pipeline_scene(const std::shared_ptr<const scene_objects::GpuScene>& gpu,
+                                  const scene_objects::SceneViewpoint& viewpoint);
+
+}  // namespace loom::deferred
