@@ -1,0 +1,36 @@
+#include "gltf_render.hpp"
+
+#include "gltf_scene.hpp"
+
+namespace loom::test {
+
+Result<GltfFrame> render_gltf(rhi::Device& device, scene::Scene scene, bool forward, uint32_t width, uint32_t height) {
+    auto prepared = scene_objects::prepare_scene(std::move(scene));
+    auto viewpoint = scene_objects::SceneViewpoint::choose(prepared->scene);
+    if (!viewpoint) return viewpoint.take_error();
+    auto gpu = scene_objects::GpuScene::create(device, prepared);
+    if (!gpu) return gpu.take_error();
+    deferred::PipelineSettings settings;
+    settings.forward = forward;
+    settings.shadow_map_size = 512;
+    auto pipeline = deferred::DeferredPipeline::create(device, deferred::gltf_pipeline_scene(*gpu, *viewpoint), settings);
+    if (!pipeline) return pipeline.take_error();
+    LOOM_TRY((*pipeline)->render({width, height}));
+    LOOM_TRY(device.wait_idle());
+    GltfFrame frame;
+    frame.plan = *(*pipeline)->executor().plan();
+    frame.stats = (*pipeline)->executor().stats();
+    for (const deferred::Intermediate& intermediate : (*pipeline)->intermediates()) {
+        auto image = device.read_texture(intermediate.texture);
+        if (!image) return image.take_error();
+        frame.images.emplace(intermediate.name, std::move(*image));
+    }
+    auto final_image = device.read_texture((*pipeline)->final_texture());
+    if (!final_image) return final_image.take_error();
+    frame.images.emplace("final", std::move(*final_image));
+    if ((*pipeline)->transparent()) frame.blend_order = (*pipeline)->transparent()->draw_order();
+    frame.view = (*pipeline)->view({width, height});
+    return frame;
+}
+
+}  // namespace loom::test
