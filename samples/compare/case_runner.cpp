@@ -1,6 +1,7 @@
 #include "case_runner.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <utility>
 
@@ -231,8 +232,10 @@ std::optional<rhi::Image> CaseRunner::compare(CaseResult& result, const std::vec
     metrics.psnr = comparison->psnr;
     const auto allowed = static_cast<uint64_t>(std::floor(options_.max_differing * static_cast<double>(metrics.pixel_count)));
     if (metrics.pixels_above_threshold > allowed) {
-        result.failures.push_back("pictures differ: " + comparison->summary() + " (allowed: " + std::to_string(allowed) +
-                                  " pixels above " + std::to_string(options_.threshold) + ")");
+        char allowance[96];
+        std::snprintf(allowance, sizeof(allowance), " (allowed: %llu pixels above %g)",
+                      static_cast<unsigned long long>(allowed), options_.threshold);
+        result.failures.push_back("pictures differ: " + comparison->summary() + allowance);
     }
     result.image = metrics;
     return std::move(comparison->heatmap);

@@ -118,7 +118,7 @@ td, th { border: 1px solid #ccc; padding: 2px 8px; text-align: left; font-size: 
 .case.failed { border-color: #b00020; background: #fff5f6; }
 .pictures { display: flex; flex-wrap: wrap; gap: 12px; }
 figure { margin: 0; }
-figure img { display: block; border: 1px solid #888; image-rendering: pixelated; }
+figure img { display: block; border: 1px solid #888; image-rendering: pixelated; max-width: 31vw; height: auto; }
 figcaption { font-size: 0.85em; color: #555; }
 ul { margin: 0.3em 0; }
 code { font-size: 0.85em; }
@@ -166,8 +166,10 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
     html << "<p>Backends: " << escape(backends) << ". Pictures " << options.width << "x" << options.height
          << (options.expect_errors ? "; every file must fail to load with a one-line error naming it"
                                    : "; a pixel differs when a channel differs by more than " +
-                                         number(options.threshold, 1) + " levels, and at most " +
-                                         number(options.max_differing * 100.0, 3) + "% of the pixels may")
+                                         number(options.threshold, 1) + " levels, and " +
+                                         (options.max_differing > 0.0
+                                              ? "at most " + number(options.max_differing * 100.0, 3) + "% of the pixels may"
+                                              : std::string("no pixel may")))
          << ". Run time " << number(run.summary.seconds, 1) << " s.</p>\n";
 
     const std::vector<const CaseResult*> order = report_order(cases);
@@ -204,13 +206,13 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
         for (const BackendRun& backend_run : c->runs) {
             if (backend_run.image_file.empty()) continue;
             const std::string_view backend = rhi::backend_name(backend_run.backend);
-            html << "<figure><img src=\"" << escape(backend_run.image_file) << "\" alt=\"" << backend
-                 << "\"><figcaption>" << backend << ", " << number(backend_run.milliseconds, 0)
-                 << " ms</figcaption></figure>\n";
+            html << "<figure><a href=\"" << escape(backend_run.image_file) << "\"><img src=\""
+                 << escape(backend_run.image_file) << "\" alt=\"" << backend << "\"></a><figcaption>" << backend << ", "
+                 << number(backend_run.milliseconds, 0) << " ms</figcaption></figure>\n";
         }
         if (c->image && !c->image->diff_file.empty()) {
-            html << "<figure><img src=\"" << escape(c->image->diff_file)
-                 << "\" alt=\"difference\"><figcaption>difference (black: equal, bright: largest)</figcaption></figure>\n";
+            html << "<figure><a href=\"" << escape(c->image->diff_file) << "\"><img src=\"" << escape(c->image->diff_file)
+                 << "\" alt=\"difference\"></a><figcaption>difference (black: equal, bright: largest)</figcaption></figure>\n";
         }
         html << "</div>\n";
         if (c->image) {
