@@ -189,7 +189,9 @@ std::string summary(const loom::deferred::DeferredPipeline& pipeline, loom::fg::
         out << "  " << loom::fg::describe_resolved(cls.spec) << ": " << textures << " texture(s) for "
             << cls.resources.size() << " output(s): " << names << "\n";
     }
-    out << "  (the paper, with a one-pass blur: 5 colour textures for 7 outputs, plus the depth map)\n";
+    if (options.scene.empty()) {
+        out << "  (the paper, with a one-pass blur: 5 colour textures for 7 outputs, plus the depth map)\n";
+    }
     const loom::fg::ExecutionStats stats = executor.stats();
     out << "created: " << stats.textures << " textures for the plan's " << stats.plan_textures << " ("
         << stats.placed_textures << " placed in " << stats.heaps << " heap(s), " << format_bytes(stats.heap_bytes)
