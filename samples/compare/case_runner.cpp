@@ -73,8 +73,11 @@ CaseResult CaseRunner::new_case(const SceneFile& file, const std::string& pipeli
 CaseResult CaseRunner::expect_error(const SceneFile& file) {
     CaseResult result = new_case(file, "load");
     LogRouter router;
-    router.route(&result.warnings);
+    std::vector<std::string> messages;
+    router.route(&messages);
     auto scene = scene::load_gltf(file.path);
+    router.route(nullptr);
+    for (const std::string& message : messages) result.failures.push_back("logged while loading: " + message);
     if (scene) {
         result.failures.push_back("loaded without an error (" + std::to_string(scene->draw_items.size()) +
                                   " draw items); an invalid file must be rejected");
@@ -96,6 +99,7 @@ std::vector<CaseResult> CaseRunner::run(const SceneFile& file) {
     std::vector<std::string> load_messages;
     router.route(&load_messages);
     auto prepared = deferred::load_gltf_scene(file.path);
+    router.route(nullptr);
     if (!prepared) {
         CaseResult result = new_case(file, "load");
         result.load_error = prepared.error().to_string();
@@ -115,6 +119,7 @@ std::vector<CaseResult> CaseRunner::run(const SceneFile& file) {
         CaseResult result = new_case(file, std::string(pipeline_name(pipeline)));
         result.warnings = scene.warnings;
         for (const auto& device : devices_) result.runs.emplace_back(device->backend());
+        for (const std::string& message : load_messages) result.failures.push_back("logged while loading: " + message);
         results.push_back(std::move(result));
     }
     // images[case][backend]
@@ -138,12 +143,7 @@ std::vector<CaseResult> CaseRunner::run(const SceneFile& file) {
             router.route(&run.messages);
             const Clock::time_point start = Clock::now();
             deferred::PipelineScene content = deferred::gltf_pipeline_scene(*gpu, *viewpoint);
-            if (b == 0) {
-                results[c].scene_info = std::to_string(content.opaque.size()) + " opaque and " +
-                                        std::to_string(content.blended.size()) + " blended draw item(s), " +
-                                        std::to_string(scene.materials.size()) + " material(s), " +
-                                        std::to_string(scene.images.size()) + " image(s); " + viewpoint->describe();
-            }
+            if (b == 0) results[c].scene_info = deferred::describe_gltf_scene(scene, content, *viewpoint);
             deferred::PipelineSettings settings;
             settings.forward = options_.pipelines[c] == PipelineKind::Forward;
             settings.capture = false;
@@ -166,8 +166,16 @@ std::vector<CaseResult> CaseRunner::run(const SceneFile& file) {
             if (!status) run.error = first_line(status.error().to_string());
             run.milliseconds += milliseconds_since(start);
         }
+        // The pipelines are gone; what the scene's buffers and textures say on their way out
+        // belongs to every case of this backend.
+        std::vector<std::string> teardown;
+        router.route(&teardown);
+        if (gpu) gpu->reset();
+        if (Status idle = device.wait_idle(); !idle) teardown.push_back(idle.error().to_string());
         router.route(nullptr);
-        // The pipelines are gone; the scene's buffers and textures go with `gpu`.
+        for (CaseResult& result : results) {
+            result.runs[b].messages.insert(result.runs[b].messages.end(), teardown.begin(), teardown.end());
+        }
     }
 
     for (std::size_t c = 0; c < results.size(); ++c) {

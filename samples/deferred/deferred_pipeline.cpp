@@ -55,7 +55,8 @@ DeferredPipeline::DeferredPipeline(rhi::Device& device, PipelineScene scene, Pip
       executor_(std::make_unique<fg::Executor>(device)) {}
 
 DeferredPipeline::~DeferredPipeline() {
-    // The executor's textures, then the passes' GPU objects (with the graph), then the meshes.
+    // The executor's textures, then the passes' GPU objects (with the graph), then the scene's
+    // objects and their meshes and textures.
     executor_.reset();
 }
 

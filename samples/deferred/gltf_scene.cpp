@@ -29,4 +29,11 @@ PipelineScene gltf_pipeline_scene(const std::shared_ptr<const scene_objects::Gpu
     return scene;
 }
 
+std::string describe_gltf_scene(const scene::Scene& scene, const PipelineScene& content,
+                                const scene_objects::SceneViewpoint& viewpoint) {
+    return std::to_string(content.opaque.size()) + " opaque and " + std::to_string(content.blended.size()) +
+           " blended draw item(s), " + std::to_string(scene.materials.size()) + " material(s), " +
+           std::to_string(scene.images.size()) + " image(s); " + viewpoint.describe();
+}
+
 }  // namespace loom::deferred

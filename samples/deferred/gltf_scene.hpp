@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "deferred_pipeline.hpp"
 #include "loom/rhi/result.hpp"
@@ -26,5 +27,10 @@ Result<std::shared_ptr<const scene_objects::PreparedScene>> load_gltf_scene(cons
 /// by several pipelines on its device.
 PipelineScene gltf_pipeline_scene(const std::shared_ptr<const scene_objects::GpuScene>& gpu,
                                   const scene_objects::SceneViewpoint& viewpoint);
+
+/// "3 opaque and 1 blended draw item(s), 2 material(s), 4 image(s); camera 0 'name'": what
+/// `content` (made from `scene`) draws and from where.
+std::string describe_gltf_scene(const scene::Scene& scene, const PipelineScene& content,
+                                const scene_objects::SceneViewpoint& viewpoint);
 
 }  // namespace loom::deferred

@@ -152,11 +152,8 @@ loom::Result<std::unique_ptr<loom::deferred::DeferredPipeline>> make_pipeline(lo
     auto gpu = scene_objects::GpuScene::create(device, *prepared);
     if (!gpu) return gpu.take_error();
     deferred::PipelineScene content = deferred::gltf_pipeline_scene(*gpu, *viewpoint);
-    scene_line = "scene: " + options.scene.string() + ": " + std::to_string(content.opaque.size()) + " opaque and " +
-                 std::to_string(content.blended.size()) + " blended draw item(s), " +
-                 std::to_string(scene.materials.size()) + " material(s), " + std::to_string(scene.images.size()) +
-                 " image(s) (" + fg::format_bytes((*gpu)->texture_bytes()) + " with mipmaps), " +
-                 viewpoint->describe();
+    scene_line = "scene: " + options.scene.string() + ": " + deferred::describe_gltf_scene(scene, content, *viewpoint) +
+                 "; textures with mipmaps: " + fg::format_bytes((*gpu)->texture_bytes());
     for (const std::string& warning : scene.warnings) scene_line += "\n  warning: " + warning;
     return deferred::DeferredPipeline::create(device, std::move(content), settings);
 }
