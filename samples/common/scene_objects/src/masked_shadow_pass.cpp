@@ -1,22 +1,16 @@
 #include "loom/scene_objects/masked_shadow_pass.hpp"
 
 #include "loom/passes/parts.hpp"
+#include "pass_uniforms.hpp"
 
 namespace loom::scene_objects {
 namespace {
 
-/// Mirrors ShadowCasterUniforms (masked_shadow_caster.vert.glsl).
-struct ShadowCasterUniforms {
-    glm::mat4 light_view_projection;
-};
-static_assert(sizeof(ShadowCasterUniforms) == 64);
-
 passes::PassPart masked_shadow_caster_part(const passes::PassConfig& config) {
-    passes::PassPart part("masked-shadow-caster", 1);
+    passes::PassPart part("masked-shadow-caster");
     // Any size: the standard shadow pass decides it.
     part.ports.inout("shadow_map", passes::depth_spec(config));
-    part.shader.stage_file(rhi::ShaderStage::Vertex, "loom/parts/masked_shadow_caster.vert.glsl")
-        .stage_file(rhi::ShaderStage::Fragment, "loom/parts/masked_shadow_caster.frag.glsl");
+    part.shader.stage_file(rhi::ShaderStage::Fragment, "loom/parts/masked_shadow_caster.frag.glsl");
     return part;
 }
 
@@ -24,6 +18,9 @@ passes::PassPart masked_shadow_caster_part(const passes::PassConfig& config) {
 
 MaskedShadowPass::MaskedShadowPass(const passes::PassConfig& config, std::string name)
     : ShaderPass(std::move(name), config.library) {
+    // The camera part, given the light's view: it places the vertices and interpolates the
+    // surface for the material.
+    add(passes::camera_part());
     add(masked_shadow_caster_part(config));
 }
 
@@ -32,8 +29,10 @@ Status MaskedShadowPass::execute(fg::PassContext& context) {
     if (!state) return state.take_error();
     state->depth = rhi::DepthState{true, true, rhi::CompareOp::Less};
     context.begin_depth_pass(fg::DepthPort("shadow_map", 1.0f));
+    // The light is a direction: no position to shade from (the material needs none).
+    const detail::CameraUniforms light{light_view_projection_, glm::vec4(0.0f)};
     Status drawn = draw_objects(context, *state, [&](passes::Bindings& set) {
-        set.uniforms("ShadowCasterUniforms", ShadowCasterUniforms{light_view_projection_});
+        set.uniforms("CameraUniforms", light);
         return set.status();
     });
     context.end_render_pass();

@@ -2,7 +2,8 @@
 // normal, tangent, uv0, uv1, colour at locations 0..5) placed in the world by the draw item's
 // model matrix. Besides the ObjectVertex it hands the fragment stage the world tangent (for
 // normal maps) and the second UV set through varyings of its own, at locations past the camera
-// part's 0..3 — only in passes whose parts interpolate the surface (LOOM_GLTF_VARYINGS).
+// part's 0..3 — only in passes with that part (elsewhere, e.g. the standard shadow map, no
+// fragment stage would read them).
 #include "loom/parts/gltf_object.glsl"
 
 layout(location = 0) in vec3 in_position;
@@ -12,7 +13,7 @@ layout(location = 3) in vec2 in_uv0;
 layout(location = 4) in vec2 in_uv1;
 layout(location = 5) in vec4 in_color;
 
-#ifdef LOOM_GLTF_VARYINGS
+#ifdef LOOM_PART_CAMERA
 layout(location = 6) out vec4 v_gltf_tangent;  // xyz: world tangent, w: world handedness
 layout(location = 7) out vec2 v_gltf_uv1;
 #endif
@@ -23,7 +24,7 @@ ObjectVertex object_vertex() {
     v.world_normal = transform_vector(mat3(gltf.normal_matrix), in_normal);
     v.uv = in_uv0;
     v.color = in_color;
-#ifdef LOOM_GLTF_VARYINGS
+#ifdef LOOM_PART_CAMERA
     // Tangents are surface directions: they follow the model matrix. A mirroring matrix turns
     // cross(normal, tangent) around, so the handedness flips with it.
     v_gltf_tangent = vec4(transform_vector(mat3(gltf.model), in_tangent.xyz), in_tangent.w * gltf.alpha.z);

@@ -21,7 +21,7 @@ layout(set = LOOM_SET, binding = LOOM_BINDING(2)) uniform sampler2D gltf_normal;
 layout(set = LOOM_SET, binding = LOOM_BINDING(3)) uniform sampler2D gltf_occlusion;
 layout(set = LOOM_SET, binding = LOOM_BINDING(4)) uniform sampler2D gltf_emissive;
 
-#ifdef LOOM_GLTF_VARYINGS
+#ifdef LOOM_PART_CAMERA
 layout(location = 6) in vec4 v_gltf_tangent;
 layout(location = 7) in vec2 v_gltf_uv1;
 #endif
@@ -29,7 +29,7 @@ layout(location = 7) in vec2 v_gltf_uv1;
 float gltf_alpha = 1.0;
 
 vec2 gltf_uv(SurfaceInput surface, int uv_set) {
-#ifdef LOOM_GLTF_VARYINGS
+#ifdef LOOM_PART_CAMERA
     if (uv_set == 1) return v_gltf_uv1;
 #endif
     return surface.uv;
@@ -41,7 +41,7 @@ bool gltf_has(int texture_bit) {
 
 // The normal map's normal in world space, from the interpolated normal and tangent frame.
 vec3 gltf_mapped_normal(vec3 n, vec3 map_value) {
-#ifdef LOOM_GLTF_VARYINGS
+#ifdef LOOM_PART_CAMERA
     vec3 t = v_gltf_tangent.xyz - n * dot(n, v_gltf_tangent.xyz);
     if (dot(t, t) < 1e-12) return n;  // no usable tangent: keep the surface normal
     t = normalize(t);

@@ -23,13 +23,6 @@ const int kGltfNormal = 4;
 const int kGltfOcclusion = 8;
 const int kGltfEmissive = 16;
 
-// The pass parts that hand the fragment stage the surface varyings (locations 0..3): with them
-// the object adds its own (tangent frame, second UV set) at locations 6 and 7. Elsewhere (the
-// shadow map) no fragment stage would read them.
-#if defined(LOOM_PART_CAMERA) || defined(LOOM_PART_MASKED_SHADOW_CASTER)
-#define LOOM_GLTF_VARYINGS 1
-#endif
-
 // alpha.x
 const float kGltfAlphaMask = 1.0;
 const float kGltfAlphaBlend = 2.0;

@@ -1,10 +1,10 @@
 #pragma once
 // The masked shadow pass: adds the shadows of cut-out surfaces (glTF alphaMode MASK) to a
 // shadow map the standard shadow-map pass drew. The standard pass uses only its objects' vertex
-// parts, so a masked surface would cast the shadow of its whole quad; this pass runs the
-// object's material in its fragment stage ("masked-shadow-caster" + the object's parts), so what
-// the material discards casts nothing. Only masked objects go here: opaque ones stay with the
-// cheaper standard pass.
+// parts, so a masked surface would cast the shadow of its whole quad; this pass is composed of
+// the "camera" part, looking from the light, and "masked-shadow-caster", whose fragment stage
+// runs the object's material, so what the material discards casts nothing. Only masked objects
+// go here: opaque ones stay with the cheaper standard pass.
 //
 //   in/out shadow_map (the standard pass's output, drawn into in place)
 
