@@ -141,7 +141,8 @@ loom::Result<rhi::CommandList*> VulkanDevice::begin_external_frame(VkCommandBuff
         }
         context_->set_name(VK_OBJECT_TYPE_SEMAPHORE, reinterpret_cast<uint64_t>(frame_timeline_), "loom frames");
     }
-    recycle_current_slot();
+    // A frame two frames ago that the application never submitted is an error, not a hang.
+    LOOM_TRY(recycle_current_slot());
     external_frame_ = true;
     frame_recording_ = true;
     FrameSlot& slot = current_frame();

@@ -34,10 +34,10 @@ loom::Status VulkanDevice::begin_frame_commands() {
     return {};
 }
 
-void VulkanDevice::recycle_current_slot() {
+loom::Status VulkanDevice::recycle_current_slot() {
     FrameSlot& slot = current_frame();
     // The frame that used this slot kFramesInFlight frames ago must be done.
-    if (auto status = submissions_->wait(slot.serial); !status.ok()) loom::log_error("vulkan", status.error().to_string());
+    Status done = submissions_->wait(slot.serial);
     collect_timers(slot);
     slot.descriptors->reset();
     slot.uniform_ring_offset = 0;
@@ -46,6 +46,7 @@ void VulkanDevice::recycle_current_slot() {
     slot.used_command_buffers = 0;
     staging_->release(submissions_->completed_serial());
     recycle_setup_buffers();
+    return done;
 }
 
 rhi::CommandList& VulkanDevice::begin_frame() {
@@ -53,7 +54,7 @@ rhi::CommandList& VulkanDevice::begin_frame() {
         command_list_->record_error(ErrorCode::InvalidState, "begin_frame: the previous frame was not ended; continuing it");
         return *command_list_;
     }
-    recycle_current_slot();
+    if (auto status = recycle_current_slot(); !status.ok()) loom::log_error("vulkan", status.error().to_string());
     external_frame_ = false;
     frame_recording_ = true;
     if (swapchain_) {

@@ -163,8 +163,9 @@ private:
 
     // frames (device_frames.cpp)
     loom::Status begin_frame_commands();
-    /// Waits for the frame that used the current slot and makes the slot ready to record.
-    void recycle_current_slot();
+    /// Waits for the frame that used the current slot and makes the slot ready to record; an
+    /// error when that frame never finished (an application frame never submitted).
+    loom::Status recycle_current_slot();
     /// end_frame of a frame recorded into an application command buffer (device_embed.cpp).
     loom::Status end_external_frame();
     void collect_timers(FrameSlot& slot);
