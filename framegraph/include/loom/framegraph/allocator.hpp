@@ -34,6 +34,7 @@ struct AllocationResource {
     uint64_t alignment = 1;
 };
 
+/// What an allocator is given: the passes in order and the resources with their classes, lifetimes, sizes and alignments.
 struct AllocationProblem {
     std::vector<AllocationPass> passes;          ///< in execution order
     std::vector<AllocationResource> resources;
@@ -42,6 +43,7 @@ struct AllocationProblem {
     uint64_t max_heap_bytes = 0;                 ///< heaps: 0 means one heap as large as needed
 };
 
+/// What an allocator decides: a texture for every resource, and where placed, heaps and offsets.
 struct Allocation {
     std::vector<uint32_t> texture_of_resource;  ///< per resource, a texture index < texture_count
     uint32_t texture_count = 0;
@@ -49,9 +51,12 @@ struct Allocation {
     std::vector<uint64_t> heap_sizes;
 };
 
+/// Assigns physical textures (or heap offsets) to the resources of a plan; implementations are chosen by name (make_allocator).
 class Allocator {
 public:
+    /// Allocators are used through this interface.
     virtual ~Allocator() = default;
+    /// The name it is chosen by ("paper", "interval", "heap").
     [[nodiscard]] virtual std::string_view name() const = 0;
     /// Assigns textures (and placements) to the problem's resources. Two resources whose
     /// lifetimes overlap never share a texture, nor overlapping heap bytes.

@@ -36,6 +36,7 @@ namespace loom::fg {
 
 /// Where the texture behind a port comes from.
 struct TextureSlot {
+    /// Where the texture behind a port comes from.
     enum class Kind : uint8_t {
         None,     ///< no texture (an unconnected optional port)
         Plan,     ///< Plan::textures[index]
@@ -45,6 +46,7 @@ struct TextureSlot {
     Kind kind = Kind::None;
     uint32_t index = 0;
 
+    /// True when the port has no texture.
     [[nodiscard]] bool empty() const { return kind == Kind::None; }
     friend bool operator==(const TextureSlot&, const TextureSlot&) = default;
 };
@@ -122,6 +124,7 @@ struct HistoryTexture {
     friend bool operator==(const HistoryTexture&, const HistoryTexture&) = default;
 };
 
+/// Everything decided around the passes of a plan, once per plan and binding set: texture slots, load/store actions, transitions, history copies.
 struct ExecutionSchedule {
     std::vector<PassSchedule> passes;           ///< one per Plan::order entry
     std::vector<bool> texture_needed;           ///< per Plan::textures: false when imports replace all its resources

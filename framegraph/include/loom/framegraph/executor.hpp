@@ -54,7 +54,9 @@ namespace loom::fg {
 /// heap allocator's sizes, alignments and offsets are the device's.
 class DeviceMemoryModel final : public MemoryModel {
 public:
+    /// A model asking `device` (which must outlive it).
     explicit DeviceMemoryModel(rhi::Device& device) : device_(&device) {}
+    /// The device's size and alignment for `desc` (Device::texture_memory_requirements).
     Result<rhi::MemoryRequirements> requirements(const rhi::TextureDesc& desc) override;
 
 private:
@@ -103,12 +105,14 @@ std::string describe_timings(const std::vector<PassTiming>& timings);
 /// it before the device: it destroys what it created.
 class Executor {
 public:
+    /// An executor creating its resources on `device`, which must outlive it.
     explicit Executor(rhi::Device& device);
     /// Releases every resource the executor created (textures before their heaps).
     ~Executor();
     Executor(const Executor&) = delete;
     Executor& operator=(const Executor&) = delete;
 
+    /// The device the executor runs on.
     [[nodiscard]] rhi::Device& device() const;
 
     /// The device-backed memory model. execute() uses it by itself for the "heap" allocator on
@@ -156,6 +160,7 @@ public:
 
     /// Per-pass timings of the latest frame, in Plan::order.
     [[nodiscard]] std::vector<PassTiming> timings() const;
+    /// The plan's figures next to what the executor created (see ExecutionStats).
     [[nodiscard]] ExecutionStats stats() const;
     /// Frames executed so far.
     [[nodiscard]] uint64_t frame_index() const;

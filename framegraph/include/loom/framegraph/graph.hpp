@@ -41,6 +41,7 @@ struct PortRef {
 
 /// The port `name` of `pass` (the paper's `(port pass 'name)`).
 inline PortRef port(const Pass& pass, std::string_view name) { return {pass.name(), std::string(name)}; }
+/// A reference to port `name` of pass `pass`, e.g. port("blur", "out").
 inline PortRef port(std::string_view pass, std::string_view name) { return {std::string(pass), std::string(name)}; }
 
 /// "pass.port" split at the last dot; nullopt when there is no dot or a side is empty.
@@ -67,6 +68,7 @@ struct Connection {
     friend bool operator==(const Connection&, const Connection&) = default;
 };
 
+/// Passes and their connections, with the graph outputs: what is planned (plan()) and executed (Executor).
 class FrameGraph {
 public:
     FrameGraph();
@@ -79,6 +81,7 @@ public:
     /// Adds a pass; its ports are fixed from now on. Errors: the pass's own declaration error
     /// (Pass::status), an empty name, or a name already used (ErrorCode::Graph).
     Result<PassId> add_pass(std::unique_ptr<Pass> pass);
+    /// Adds a pass given by value (a Pass or a class derived from it).
     template <std::derived_from<Pass> P>
     Result<PassId> add_pass(P pass) {
         return add_pass(std::make_unique<P>(std::move(pass)));
@@ -98,14 +101,20 @@ public:
     /// Marks a pass as having side effects (never culled), or clears the mark.
     Status set_side_effect(std::string_view pass, bool side_effect = true);
 
+    /// Number of passes added.
     [[nodiscard]] uint32_t pass_count() const { return static_cast<uint32_t>(passes_.size()); }
+    /// The pass with id `id`.
     [[nodiscard]] const Pass& pass(PassId id) const { return *passes_[id.index]; }
     /// Runs the execute step of a pass (the executor calls it; ports stay fixed, which is why
     /// the graph hands out no mutable Pass).
     Status execute_pass(PassId id, PassContext& context) { return passes_[id.index]->execute(context); }
+    /// The id of the pass called `name`, if any.
     [[nodiscard]] std::optional<PassId> find_pass(std::string_view name) const;
+    /// Every connection, in the order made.
     [[nodiscard]] const std::vector<Connection>& connections() const { return connections_; }
+    /// The ports marked as graph outputs.
     [[nodiscard]] const std::vector<PortAddress>& outputs() const { return outputs_; }
+    /// The port at `address`.
     [[nodiscard]] const Port& port_at(PortAddress address) const;
     /// The port feeding `address` (an input or inout), if connected.
     [[nodiscard]] std::optional<PortAddress> source(PortAddress address) const;

@@ -10,8 +10,10 @@
 
 namespace loom::fg {
 
+/// Byte sizes and alignments of textures in heaps, for planning.
 class MemoryModel {
 public:
+    /// Models are used through this interface.
     virtual ~MemoryModel() = default;
     /// Size and alignment of a texture described by `desc` inside a heap.
     virtual Result<rhi::MemoryRequirements> requirements(const rhi::TextureDesc& desc) = 0;
@@ -23,8 +25,10 @@ class DefaultMemoryModel final : public MemoryModel {
 public:
     static constexpr uint64_t kDefaultAlignment = 64 * 1024;
 
+    /// A model rounding every texture up to `alignment`.
     explicit DefaultMemoryModel(uint64_t alignment = kDefaultAlignment) : alignment_(alignment) {}
 
+    /// Size (rounded up to the alignment) and alignment of `desc`.
     Result<rhi::MemoryRequirements> requirements(const rhi::TextureDesc& desc) override;
 
     /// The unaligned byte count of a texture.

@@ -23,6 +23,7 @@ namespace loom::fg {
 
 class PassContext;
 
+/// How a port uses its texture: reads it, produces it, or modifies it in place.
 enum class PortKind : uint8_t {
     Input,   ///< reads the texture produced by the port connected to it
     Output,  ///< produces a new texture
@@ -55,20 +56,27 @@ struct Port {
 /// A named set of port declarations that passes are composed from.
 class Part {
 public:
+    /// An empty part called `name` (named in errors about its ports).
     explicit Part(std::string name) : name_(std::move(name)) {}
 
     /// Records a port declaration; Pass::add merges repeated names.
     Part& declare(std::string port, PortKind kind, TextureSpec spec = {}, bool optional = false);
+    /// Declares an input port.
     Part& input(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Input, std::move(spec)); }
+    /// Declares an output port.
     Part& output(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Output, std::move(spec)); }
+    /// Declares an inout port (modifies its source's texture in place).
     Part& inout(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::InOut, std::move(spec)); }
+    /// Declares an input that may stay unconnected.
     Part& optional_input(std::string port, TextureSpec spec = {}) {
         return declare(std::move(port), PortKind::Input, std::move(spec), true);
     }
+    /// Declares an output that gets no texture when nothing reads it.
     Part& optional_output(std::string port, TextureSpec spec = {}) {
         return declare(std::move(port), PortKind::Output, std::move(spec), true);
     }
 
+    /// The part's name.
     [[nodiscard]] const std::string& name() const { return name_; }
     /// Declarations in the order they were made (not merged).
     [[nodiscard]] const std::vector<Port>& declarations() const { return declarations_; }
@@ -88,7 +96,9 @@ private:
 /// error is kept and reported by status() and by FrameGraph::add_pass.
 class Pass {
 public:
+    /// A pass called `name` (unique in its graph) without ports.
     explicit Pass(std::string name);
+    /// Passes may be subclassed (execute()).
     virtual ~Pass();
     Pass(const Pass&) = default;
     Pass& operator=(const Pass&) = default;
@@ -100,12 +110,17 @@ public:
 
     // Declarations on the pass's own part.
     Pass& declare(std::string port, PortKind kind, TextureSpec spec = {}, bool optional = false);
+    /// Declares an input port on the pass's own part.
     Pass& input(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Input, std::move(spec)); }
+    /// Declares an output port on the pass's own part.
     Pass& output(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Output, std::move(spec)); }
+    /// Declares an inout port (modifies its source's texture in place).
     Pass& inout(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::InOut, std::move(spec)); }
+    /// Declares an input that may stay unconnected.
     Pass& optional_input(std::string port, TextureSpec spec = {}) {
         return declare(std::move(port), PortKind::Input, std::move(spec), true);
     }
+    /// Declares an output that gets no texture when nothing reads it.
     Pass& optional_output(std::string port, TextureSpec spec = {}) {
         return declare(std::move(port), PortKind::Output, std::move(spec), true);
     }
@@ -116,6 +131,7 @@ public:
         side_effect_ = side_effect;
         return *this;
     }
+    /// True when the pass is never culled.
     [[nodiscard]] bool side_effect() const { return side_effect_; }
 
     /// The work the pass records every frame (see PassContext). Runs the callback set with
@@ -132,6 +148,7 @@ public:
     /// True when a callback was set with on_execute().
     [[nodiscard]] bool has_execute_function() const { return static_cast<bool>(execute_function_); }
 
+    /// The pass's name.
     [[nodiscard]] const std::string& name() const { return name_; }
     /// Merged ports, in the order their names were first declared.
     [[nodiscard]] const std::vector<Port>& ports() const { return ports_; }

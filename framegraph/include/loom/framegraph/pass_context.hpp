@@ -77,14 +77,18 @@ public:
     PassContext(const PassContext&) = delete;
     PassContext& operator=(const PassContext&) = delete;
 
+    /// The device the frame runs on.
     [[nodiscard]] rhi::Device& device() const;
     /// Where the pass records. Inside the executor it forwards to the frame's command list and
     /// checks that the pass leaves it balanced (render passes ended, debug groups popped).
     [[nodiscard]] rhi::CommandList& commands() const;
+    /// The name of the pass.
     [[nodiscard]] const std::string& pass_name() const;
     /// Position of the pass in Plan::order.
     [[nodiscard]] uint32_t position() const { return position_; }
+    /// The plan being executed.
     [[nodiscard]] const Plan& plan() const;
+    /// This pass in the plan (its ports and their resources).
     [[nodiscard]] const PlanPass& plan_pass() const;
     /// Frames the executor has run before this one (0 for the first).
     [[nodiscard]] uint64_t frame_index() const;
@@ -107,6 +111,7 @@ public:
 
     /// The attachment for `port` with the plan's load and store actions.
     [[nodiscard]] rhi::ColorAttachment color_attachment(const ColorPort& port);
+    /// The depth attachment for `port` with the plan's load and store actions.
     [[nodiscard]] rhi::DepthAttachment depth_attachment(const DepthPort& port);
     /// A render pass over named attachment ports (labelled with the pass name), for passes that
     /// want to adjust it before commands().begin_render_pass(desc).
@@ -114,11 +119,13 @@ public:
                                                   const std::optional<DepthPort>& depth = std::nullopt);
     /// Begins a render pass over named attachment ports with the plan's load/store actions.
     void begin_render_pass(std::span<const ColorPort> colors, const std::optional<DepthPort>& depth = std::nullopt);
+    /// Begins a render pass over named attachment ports (see above).
     void begin_render_pass(std::initializer_list<ColorPort> colors, const std::optional<DepthPort>& depth = std::nullopt) {
         begin_render_pass(std::span<const ColorPort>(colors.begin(), colors.size()), depth);
     }
     /// A render pass with depth only (e.g. a shadow map).
     void begin_depth_pass(const DepthPort& depth) { begin_render_pass(std::span<const ColorPort>{}, depth); }
+    /// Ends the render pass begun through this context.
     void end_render_pass();
 
     /// Records an error for this pass (it fails the frame; the message gets the pass name).

@@ -23,6 +23,7 @@ enum class SpecSharing : uint8_t {
     Joinable,  ///< also resources whose specs join (§6.2 allows it); the texture gets the join
 };
 
+/// "equal" or "joinable".
 std::string_view spec_sharing_name(SpecSharing sharing);
 
 /// An inclusive range of positions in Plan::order during which a resource must exist.
@@ -30,6 +31,7 @@ struct Lifetime {
     uint32_t first = 0;
     uint32_t last = 0;
 
+    /// True when the two ranges share a position.
     [[nodiscard]] bool overlaps(const Lifetime& other) const { return first <= other.last && other.first <= last; }
     friend bool operator==(const Lifetime&, const Lifetime&) = default;
 };
@@ -128,6 +130,7 @@ struct PlanSummary {
     friend bool operator==(const PlanSummary&, const PlanSummary&) = default;
 };
 
+/// A compiled frame graph, as plain data: order, culled passes, resources, textures, heaps and their summary.
 struct Plan {
     std::string allocator;            ///< name of the allocator that made it
     Extent2D frame{};

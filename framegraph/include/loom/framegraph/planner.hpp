@@ -14,6 +14,7 @@ namespace loom::fg {
 
 class FrameGraph;
 
+/// How to plan: the frame size, the allocator, which specs may share, the memory model, the heap cap.
 struct PlanOptions {
     Extent2D frame{1920, 1080};      ///< the size relative sizes scale
     std::string allocator = "interval";  ///< see allocator_names()

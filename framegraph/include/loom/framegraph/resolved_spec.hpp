@@ -25,6 +25,7 @@ enum class FormatMatch : uint8_t {
     Covering,  ///< no enum value has the joined features; the smallest covering format was taken
 };
 
+/// "exact", "covering" or "default".
 std::string_view format_match_name(FormatMatch match);
 
 /// A format picked for a feature set, and how.

@@ -22,6 +22,7 @@ struct Extent2D {
 
 /// Size constraint: an absolute extent, or a scale of the frame size.
 struct SizeSpec {
+    /// Texels, or a scale of the frame size.
     enum class Kind : uint8_t { Absolute, Relative };
 
     Kind kind = Kind::Relative;
@@ -29,8 +30,11 @@ struct SizeSpec {
     float scale_x = 1.0f; ///< Relative: width = round(frame.width × scale_x), at least 1
     float scale_y = 1.0f; ///< Relative: height = round(frame.height × scale_y), at least 1
 
+    /// A size in texels.
     static SizeSpec absolute(uint32_t width, uint32_t height);
+    /// A size of `scale` times the frame size.
     static SizeSpec relative(float scale) { return relative(scale, scale); }
+    /// A size of (scale_x, scale_y) times the frame size.
     static SizeSpec relative(float scale_x, float scale_y);
 
     /// The size in texels for a frame of size `frame`.
@@ -65,13 +69,21 @@ struct TextureSpec {
     // Copies of this spec with one more constraint, for chaining:
     // TextureSpec::of(Format::RGBA16Float).with_scale(0.5f).with_samples(4).
     [[nodiscard]] TextureSpec with_format(rhi::Format f) const;
+    /// This spec with the format constrained to `features` (possibly partial).
     [[nodiscard]] TextureSpec with_features(const rhi::FormatFeatures& features) const;
+    /// This spec with an absolute size.
     [[nodiscard]] TextureSpec with_size(uint32_t width, uint32_t height) const;
+    /// This spec with a size relative to the frame.
     [[nodiscard]] TextureSpec with_scale(float scale) const { return with_scale(scale, scale); }
+    /// This spec with a size relative to the frame, per axis.
     [[nodiscard]] TextureSpec with_scale(float scale_x, float scale_y) const;
+    /// This spec with a sample count.
     [[nodiscard]] TextureSpec with_samples(uint32_t count) const;
+    /// This spec with a mip level count.
     [[nodiscard]] TextureSpec with_mips(uint32_t count) const;
+    /// This spec with an array layer count.
     [[nodiscard]] TextureSpec with_layers(uint32_t count) const;
+    /// This spec asking for extra usage (e.g. Storage).
     [[nodiscard]] TextureSpec with_usage(rhi::TextureUsage extra) const;
 
     /// True when no property is constrained.

@@ -18,22 +18,27 @@ namespace loom::rhi {
 
 // ---- bit flags -------------------------------------------------------------------------------
 
+/// Opt-in for the bit operators below: specialise to std::true_type for a flag enum.
 template <class E>
 struct EnableBitFlags : std::false_type {};
 
+/// An enum that opted in to the bit operators.
 template <class E>
 concept BitFlags = EnableBitFlags<E>::value;
 
+/// The union of two flag sets.
 template <BitFlags E>
 constexpr E operator|(E a, E b) {
     using U = std::underlying_type_t<E>;
     return static_cast<E>(static_cast<U>(a) | static_cast<U>(b));
 }
+/// The intersection of two flag sets.
 template <BitFlags E>
 constexpr E operator&(E a, E b) {
     using U = std::underlying_type_t<E>;
     return static_cast<E>(static_cast<U>(a) & static_cast<U>(b));
 }
+/// Adds the flags of `b` to `a`.
 template <BitFlags E>
 constexpr E& operator|=(E& a, E b) { return a = a | b; }
 /// True when every flag of `wanted` is set in `flags`.
@@ -45,8 +50,10 @@ constexpr bool has_any(E flags, E wanted) { return static_cast<std::underlying_t
 
 // ---- textures --------------------------------------------------------------------------------
 
+/// The shape of a texture: 2D, an array of 2D layers, a 3D volume, or a cube (6 layers).
 enum class TextureDimension : uint8_t { Tex2D, Tex2DArray, Tex3D, Cube };
 
+/// How a texture is used besides upload and readback (which are always allowed); flags.
 enum class TextureUsage : uint32_t {
     None = 0,
     Sampled = 1u << 0,                 ///< read in shaders through a sampler
@@ -56,6 +63,7 @@ enum class TextureUsage : uint32_t {
     CopySrc = 1u << 4,                 ///< source of copies and readback
     CopyDst = 1u << 5,                 ///< destination of copies and uploads
 };
+/// TextureUsage values combine with | and &.
 template <>
 struct EnableBitFlags<TextureUsage> : std::true_type {};
 
@@ -66,6 +74,7 @@ struct TexturePlacement {
     uint64_t offset = 0;
 };
 
+/// Everything a texture is created with (Device::create_texture).
 struct TextureDesc {
     std::string name;  ///< shown in errors, debuggers and plans
     TextureDimension dimension = TextureDimension::Tex2D;
@@ -87,6 +96,7 @@ struct MemoryRequirements {
     uint64_t alignment = 1;
 };
 
+/// A block of memory for placed textures (Device::create_heap).
 struct HeapDesc {
     std::string name;
     uint64_t size = 0;
@@ -94,6 +104,7 @@ struct HeapDesc {
 
 // ---- buffers ---------------------------------------------------------------------------------
 
+/// How a buffer is used besides upload and readback (always allowed); flags.
 enum class BufferUsage : uint32_t {
     None = 0,
     Vertex = 1u << 0,
@@ -104,9 +115,11 @@ enum class BufferUsage : uint32_t {
     CopySrc = 1u << 5,
     CopyDst = 1u << 6,
 };
+/// BufferUsage values combine with | and &.
 template <>
 struct EnableBitFlags<BufferUsage> : std::true_type {};
 
+/// Everything a buffer is created with (Device::create_buffer).
 struct BufferDesc {
     std::string name;
     uint64_t size = 0;
@@ -114,6 +127,7 @@ struct BufferDesc {
     BufferUsage usage = BufferUsage::Vertex;
 };
 
+/// The type of the indices in an index buffer.
 enum class IndexType : uint8_t { Uint16, Uint32 };
 
 /// The arguments of one indexed draw as indirect draws read them from a buffer
@@ -130,11 +144,16 @@ static_assert(sizeof(DrawIndexedIndirectCommand) == 20, "indirect commands are r
 
 // ---- samplers --------------------------------------------------------------------------------
 
+/// Texel filtering: the nearest texel, or a linear blend of the neighbours.
 enum class Filter : uint8_t { Nearest, Linear };
+/// What a sampler reads outside [0, 1].
 enum class AddressMode : uint8_t { Repeat, MirroredRepeat, ClampToEdge, ClampToBorder };
+/// A comparison, for depth tests and depth-comparison samplers.
 enum class CompareOp : uint8_t { Never, Less, Equal, LessEqual, Greater, NotEqual, GreaterEqual, Always };
+/// The colour AddressMode::ClampToBorder reads outside the texture.
 enum class BorderColor : uint8_t { TransparentBlack, OpaqueBlack, OpaqueWhite };
 
+/// Everything a sampler is created with (Device::create_sampler).
 struct SamplerDesc {
     std::string name;
     Filter min_filter = Filter::Linear;
@@ -153,6 +172,7 @@ struct SamplerDesc {
 
 // ---- pipelines -------------------------------------------------------------------------------
 
+/// The type of one vertex attribute in a vertex buffer.
 enum class VertexFormat : uint8_t {
     Float, Float2, Float3, Float4,
     Int, Int2, Int3, Int4,
@@ -160,8 +180,10 @@ enum class VertexFormat : uint8_t {
     UByte4Norm, Byte4Norm, UShort2Norm, Short2Norm, UShort4Norm, Short4Norm,
 };
 
+/// Whether a vertex buffer advances per vertex or per instance.
 enum class VertexStepMode : uint8_t { PerVertex, PerInstance };
 
+/// One attribute read from a vertex buffer slot.
 struct VertexAttribute {
     uint32_t location = 0;  ///< matches `layout(location = N) in` in the vertex shader
     VertexFormat format = VertexFormat::Float3;
@@ -175,12 +197,16 @@ struct VertexBufferLayout {
     std::vector<VertexAttribute> attributes;
 };
 
+/// How vertices form primitives.
 enum class PrimitiveTopology : uint8_t { TriangleList, TriangleStrip, LineList, LineStrip, PointList };
+/// Which faces are culled.
 enum class CullMode : uint8_t { None, Front, Back };
 /// Which winding, as seen in normalised device coordinates (y up), is the front face.
 enum class FrontFace : uint8_t { CounterClockwise, Clockwise };
+/// Filled triangles, or their edges (Line needs fillModeNonSolid on Vulkan).
 enum class PolygonMode : uint8_t { Fill, Line };
 
+/// Rasteriser state of a graphics pipeline: culling, facing, polygon mode, depth clamp and bias.
 struct RasterState {
     CullMode cull = CullMode::None;
     FrontFace front_face = FrontFace::CounterClockwise;
@@ -190,22 +216,28 @@ struct RasterState {
     float depth_bias_slope = 0.0f;
 };
 
+/// Depth test and depth writes of a graphics pipeline.
 struct DepthState {
     bool test = false;
     bool write = false;
     CompareOp compare = CompareOp::Less;
 };
 
+/// A factor of the blend equation.
 enum class BlendFactor : uint8_t {
     Zero, One, SrcColor, OneMinusSrcColor, DstColor, OneMinusDstColor,
     SrcAlpha, OneMinusSrcAlpha, DstAlpha, OneMinusDstAlpha, ConstantColor, OneMinusConstantColor,
 };
+/// How the weighted source and destination are combined.
 enum class BlendOp : uint8_t { Add, Subtract, ReverseSubtract, Min, Max };
 
+/// Which colour channels are written; flags.
 enum class ColorMask : uint8_t { None = 0, R = 1, G = 2, B = 4, A = 8, All = 15 };
+/// ColorMask values combine with | and &.
 template <>
 struct EnableBitFlags<ColorMask> : std::true_type {};
 
+/// Blending and write mask of one colour attachment.
 struct BlendState {
     bool enabled = false;
     BlendFactor src_color = BlendFactor::One;
@@ -217,6 +249,7 @@ struct BlendState {
     ColorMask write_mask = ColorMask::All;
 };
 
+/// Everything a graphics pipeline is created with: shaders, vertex layout, fixed-function state and the formats it renders to.
 struct GraphicsPipelineDesc {
     std::string name;
     ShaderHandle vertex;
@@ -231,6 +264,7 @@ struct GraphicsPipelineDesc {
     uint32_t samples = 1;
 };
 
+/// A compute pipeline: one compute shader.
 struct ComputePipelineDesc {
     std::string name;
     ShaderHandle compute;
@@ -238,9 +272,12 @@ struct ComputePipelineDesc {
 
 // ---- render passes ---------------------------------------------------------------------------
 
+/// What an attachment holds when a render pass begins: its contents, a clear value, or anything.
 enum class LoadOp : uint8_t { Load, Clear, DontCare };
+/// Whether an attachment's contents are kept after a render pass.
 enum class StoreOp : uint8_t { Store, DontCare };
 
+/// One colour attachment of a render pass: the texture (mip, layer) and its load/store actions.
 struct ColorAttachment {
     TextureHandle texture;
     uint32_t mip = 0;
@@ -252,6 +289,7 @@ struct ColorAttachment {
     std::array<double, 4> clear{0.0, 0.0, 0.0, 0.0};
 };
 
+/// The depth/stencil attachment of a render pass and its load/store actions.
 struct DepthAttachment {
     TextureHandle texture;
     uint32_t mip = 0;
@@ -324,18 +362,22 @@ struct BindingEntry {
 struct BindGroup {
     std::vector<BindingEntry> entries;
 
+    /// Binds a uniform or storage buffer range (size 0: to the end) at `binding`.
     BindGroup& buffer(uint32_t binding, BufferHandle buf, uint64_t offset = 0, uint64_t size = 0) {
         entries.push_back({binding, BufferBinding{buf, offset, size}});
         return *this;
     }
+    /// Binds a buffer range, e.g. one from CommandList::transient_uniforms, at `binding`.
     BindGroup& buffer(uint32_t binding, const BufferBinding& range) {
         entries.push_back({binding, range});
         return *this;
     }
+    /// Binds a texture with a sampler (`sampler2D`) at `binding`.
     BindGroup& texture(uint32_t binding, TextureHandle tex, SamplerHandle sampler) {
         entries.push_back({binding, TextureBinding{tex, sampler}});
         return *this;
     }
+    /// Binds one mip level of a texture as a storage image at `binding`.
     BindGroup& storage_texture(uint32_t binding, TextureHandle tex, uint32_t mip = 0) {
         entries.push_back({binding, StorageTextureBinding{tex, mip}});
         return *this;
@@ -361,9 +403,11 @@ enum class ResourceState : uint8_t {
     IndirectArgument,
 };
 
+/// A texel position (x, y, and z for 3D textures).
 struct Origin3D {
     uint32_t x = 0, y = 0, z = 0;
 };
+/// A size in texels (width, height, depth).
 struct Extent3D {
     uint32_t width = 1, height = 1, depth = 1;
 };
@@ -377,6 +421,7 @@ struct TextureRegion {
     Extent3D extent{0, 0, 0};
 };
 
+/// A copy between two textures (CommandList::copy_texture).
 struct TextureCopy {
     TextureHandle src;
     TextureRegion src_region;

@@ -25,6 +25,7 @@
 
 namespace loom::rhi {
 
+/// The graphics APIs loom has a backend for.
 enum class Backend : uint8_t { OpenGL, Vulkan };
 
 /// "gl" or "vulkan".
@@ -32,6 +33,7 @@ std::string_view backend_name(Backend backend);
 /// Accepts "gl", "opengl", "vulkan", "vk".
 std::optional<Backend> parse_backend(std::string_view name);
 
+/// The window of a windowed device.
 struct WindowDesc {
     std::string title = "loom";
     uint32_t width = 1280;
@@ -40,6 +42,7 @@ struct WindowDesc {
     bool resizable = true;
 };
 
+/// How to create a device (rhi::create_device).
 struct DeviceDesc {
     Backend backend = Backend::OpenGL;
     /// Headless devices render offscreen only; windowed ones open a GLFW window with a
@@ -61,6 +64,7 @@ struct FormatCapabilities {
     bool storage = false;
 };
 
+/// What a device can do: per-format capabilities, limits and features. Plans may depend on them.
 struct Capabilities {
     Backend backend = Backend::OpenGL;
     std::string device_name;   ///< e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
@@ -77,6 +81,7 @@ struct Capabilities {
     uint64_t uniform_buffer_offset_alignment = 256;
     uint64_t storage_buffer_offset_alignment = 256;
 
+    /// The capabilities of one format.
     [[nodiscard]] const FormatCapabilities& format(Format f) const { return formats[static_cast<std::size_t>(f)]; }
 };
 
@@ -92,6 +97,7 @@ struct ResourceStats {
     uint64_t texture_bytes = 0;
     uint64_t buffer_bytes = 0;
     uint64_t heap_bytes = 0;
+    /// Texture, buffer and heap bytes together.
     [[nodiscard]] uint64_t total_bytes() const { return texture_bytes + buffer_bytes + heap_bytes; }
 };
 
@@ -118,11 +124,15 @@ struct TimerResult {
 /// returned by end_frame() as an Error; the offending command is skipped.
 class CommandList {
 public:
+    /// Command lists are owned by their device.
     virtual ~CommandList() = default;
 
+    /// Begins rendering into the attachments of `desc` (moved to the attachment states), with their load actions.
     virtual void begin_render_pass(const RenderPassDesc& desc) = 0;
+    /// Ends the render pass, applying the store actions.
     virtual void end_render_pass() = 0;
 
+    /// Uses `pipeline` for the following draws or dispatches; a graphics pipeline must match the pass's formats.
     virtual void set_pipeline(PipelineHandle pipeline) = 0;
     /// Defaults to the full attachment size at begin_render_pass.
     virtual void set_viewport(const Viewport& viewport) = 0;
@@ -132,7 +142,9 @@ public:
     virtual void set_bind_group(uint32_t set, const BindGroup& group) = 0;
     /// Vulkan push constants (emulated with a uniform buffer on GL).
     virtual void push_constants(std::span<const std::byte> data, uint32_t offset = 0) = 0;
+    /// Binds `buffer` (from `offset`) to vertex buffer slot `slot` of the pipeline's layout.
     virtual void set_vertex_buffer(uint32_t slot, BufferHandle buffer, uint64_t offset = 0) = 0;
+    /// Binds the index buffer for draw_indexed.
     virtual void set_index_buffer(BufferHandle buffer, IndexType type, uint64_t offset = 0) = 0;
 
     /// Copies `data` into per-frame uniform memory and returns a binding for it, valid until
@@ -143,6 +155,7 @@ public:
                       uint32_t first_instance = 0) = 0;
     virtual void draw_indexed(uint32_t index_count, uint32_t instance_count = 1, uint32_t first_index = 0,
                               int32_t base_vertex = 0, uint32_t first_instance = 0) = 0;
+    /// Runs the compute pipeline over groups_x * groups_y * groups_z work groups (outside render passes).
     virtual void dispatch(uint32_t groups_x, uint32_t groups_y = 1, uint32_t groups_z = 1) = 0;
     /// `draw_count` indexed draws with the bound state, their arguments read by the GPU from
     /// `buffer` (BufferUsage::Indirect) at `offset` + i * `stride` (DrawIndexedIndirectCommand;
@@ -158,19 +171,23 @@ public:
 
     virtual void copy_buffer(BufferHandle src, uint64_t src_offset, BufferHandle dst, uint64_t dst_offset,
                              uint64_t size) = 0;
+    /// Copies a region between textures of copy-compatible formats (outside render passes).
     virtual void copy_texture(const TextureCopy& copy) = 0;
 
     /// Moves a resource into `state` (from the state the backend tracked for it). Needed before
     /// sampling a texture that was rendered to, before storage access, and after it.
     virtual void transition(TextureHandle texture, ResourceState state) = 0;
+    /// Moves a buffer into `state` (e.g. after storage writes, before it is read as a uniform or vertex buffer).
     virtual void transition(BufferHandle buffer, ResourceState state) = 0;
 
     /// GPU timing of the commands between begin_timer and end_timer (not nested).
     virtual void begin_timer(std::string_view label) = 0;
+    /// Ends the range begun by begin_timer.
     virtual void end_timer() = 0;
 
     /// Debug markers shown in API debuggers (RenderDoc, apitrace).
     virtual void push_debug_group(std::string_view label) = 0;
+    /// Ends the debug group begun last.
     virtual void pop_debug_group() = 0;
 
     /// Convenience: push constants from a trivially copyable value.
@@ -178,25 +195,35 @@ public:
     void push_constants_of(const T& value, uint32_t offset = 0) {
         push_constants(std::as_bytes(std::span<const T, 1>(&value, 1)), offset);
     }
+    /// Convenience: transient uniforms from a trivially copyable value.
     template <class T>
     BufferBinding transient_uniforms_of(const T& value) {
         return transient_uniforms(std::as_bytes(std::span<const T, 1>(&value, 1)));
     }
 };
 
+/// One GPU device of one backend: creates and destroys resources, transfers data, records frames. Not thread-safe; use it from one thread.
 class Device {
 public:
+    /// Waits for the GPU and destroys every object still alive.
     virtual ~Device() = default;
 
+    /// Which API the device runs on.
     [[nodiscard]] virtual Backend backend() const = 0;
+    /// What the device can do (see Capabilities).
     [[nodiscard]] virtual const Capabilities& capabilities() const = 0;
 
     // -- resources ------------------------------------------------------------------------
     virtual Result<TextureHandle> create_texture(const TextureDesc& desc) = 0;
+    /// Creates a buffer; InvalidArgument for a size of 0.
     virtual Result<BufferHandle> create_buffer(const BufferDesc& desc) = 0;
+    /// Creates a sampler; InvalidArgument for inconsistent LODs or anisotropy.
     virtual Result<SamplerHandle> create_sampler(const SamplerDesc& desc) = 0;
+    /// Creates a shader from a compiled module (SPIR-V for Vulkan, its GL source for GL).
     virtual Result<ShaderHandle> create_shader(const ShaderModule& module) = 0;
+    /// Creates a graphics pipeline; errors name the pipeline and the field at fault.
     virtual Result<PipelineHandle> create_graphics_pipeline(const GraphicsPipelineDesc& desc) = 0;
+    /// Creates a compute pipeline from one compute shader.
     virtual Result<PipelineHandle> create_compute_pipeline(const ComputePipelineDesc& desc) = 0;
     /// A block of memory for placed textures (Capabilities::placed_resources only).
     virtual Result<HeapHandle> create_heap(const HeapDesc& desc) = 0;
@@ -206,9 +233,13 @@ public:
     /// Destroying is deferred until the GPU no longer uses the object. Stale or foreign
     /// handles give an InvalidHandle error.
     virtual Status destroy(TextureHandle texture) = 0;
+    /// Destroys a buffer once the GPU no longer uses it.
     virtual Status destroy(BufferHandle buffer) = 0;
+    /// Destroys a sampler once the GPU no longer uses it.
     virtual Status destroy(SamplerHandle sampler) = 0;
+    /// Destroys a shader (pipelines made from it keep working).
     virtual Status destroy(ShaderHandle shader) = 0;
+    /// Destroys a pipeline once the GPU no longer uses it.
     virtual Status destroy(PipelineHandle pipeline) = 0;
     /// Textures placed in the heap must have been destroyed first.
     virtual Status destroy(HeapHandle heap) = 0;
@@ -223,6 +254,7 @@ public:
                                  std::span<const std::byte> data) = 0;
     /// Reads one mip level / layer back (waits for the GPU). Rows top-first.
     virtual Result<Image> read_texture(TextureHandle texture, uint32_t mip = 0, uint32_t layer = 0) = 0;
+    /// Reads `size` bytes of a buffer from `offset` (waits for the GPU).
     virtual Result<std::vector<std::byte>> read_buffer(BufferHandle buffer, uint64_t offset, uint64_t size) = 0;
 
     // -- frames ---------------------------------------------------------------------------
@@ -238,7 +270,9 @@ public:
     /// two; after wait_idle() they are those of the last frame).
     virtual std::vector<TimerResult> timer_results() = 0;
 
+    /// Objects alive on the device and the memory they hold (see ResourceStats).
     [[nodiscard]] virtual ResourceStats resource_stats() const = 0;
+    /// The work of the last finished frame (see FrameStats).
     [[nodiscard]] virtual FrameStats last_frame_stats() const = 0;
 
     // -- window (windowed devices; headless ones return defaults) ---------------------------

@@ -11,6 +11,7 @@
 
 namespace loom::rhi {
 
+/// Every texture format loom knows; format_info() destructures each into its features.
 enum class Format : uint8_t {
     Undefined = 0,
     // 8 bits per channel
@@ -42,6 +43,7 @@ struct Channel {
     uint8_t bits = 0;
     ChannelKind kind = ChannelKind::None;
 
+    /// True when the channel exists.
     [[nodiscard]] bool present() const { return bits != 0; }
     friend bool operator==(const Channel&, const Channel&) = default;
 };
@@ -67,9 +69,13 @@ struct FormatInfo {
     FormatFeatures features;
     uint32_t bytes_per_texel = 0;   ///< as stored for upload/readback
 
+    /// True for formats with a depth channel.
     [[nodiscard]] bool has_depth() const { return features.depth.present(); }
+    /// True for formats with stencil bits.
     [[nodiscard]] bool has_stencil() const { return features.stencil_bits != 0; }
+    /// True for depth, stencil and depth/stencil formats.
     [[nodiscard]] bool is_depth_stencil() const { return has_depth() || has_stencil(); }
+    /// True for colour formats.
     [[nodiscard]] bool is_color() const { return format != Format::Undefined && !is_depth_stencil(); }
     [[nodiscard]] uint32_t channel_count() const;  ///< colour channels present (0 for depth/stencil)
     /// Kind shared by all colour channels (None for depth/stencil or Undefined).
@@ -93,6 +99,7 @@ std::string_view format_name(Format format);
 /// Inverse of format_name; case-sensitive. nullopt for unknown names.
 std::optional<Format> parse_format(std::string_view name);
 
+/// "unorm", "float", ... for messages.
 std::string_view channel_kind_name(ChannelKind kind);
 
 }  // namespace loom::rhi

@@ -16,13 +16,16 @@ namespace loom::rhi {
 /// Returns a fresh id for a new Device (never 0), so that handles remember their device.
 uint16_t next_device_id();
 
+/// Objects of one kind stored by slot, addressed by typed handles (stale and foreign handles are detected).
 template <class Tag, class T>
 class HandlePool {
 public:
     using HandleType = Handle<Tag>;
 
+    /// An empty pool whose handles carry `device_id`.
     explicit HandlePool(uint16_t device_id) : device_id_(device_id) {}
 
+    /// Stores `value` and returns its handle (reusing a free slot with a new generation).
     HandleType insert(T value) {
         uint32_t index;
         if (!free_.empty()) {
@@ -50,6 +53,7 @@ public:
         Slot& slot = slots_[handle.index];
         return slot.generation == handle.generation && slot.value ? &*slot.value : nullptr;
     }
+    /// Like find(), for const pools.
     const T* find(HandleType handle) const { return const_cast<HandlePool*>(this)->find(handle); }
 
     /// Removes and returns the object; the handle (and copies of it) become stale.
@@ -65,8 +69,10 @@ public:
         return value;
     }
 
+    /// Objects alive in the pool.
     [[nodiscard]] std::size_t size() const { return live_; }
 
+    /// Calls f(handle, value) for every object alive, in slot order.
     template <class F>
     void for_each(F&& f) {
         for (uint32_t i = 0; i < slots_.size(); ++i) {

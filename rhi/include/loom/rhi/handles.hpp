@@ -10,22 +10,31 @@
 
 namespace loom::rhi {
 
+/// A typed handle to a GPU object: slot, generation (0 only for null) and the id of its device.
 template <class Tag>
 struct Handle {
     uint32_t index = 0;
     uint16_t generation = 0;  ///< 0 only for the null handle
     uint16_t device = 0;      ///< id of the owning Device
 
+    /// True for the default-constructed (null) handle.
     [[nodiscard]] bool is_null() const { return generation == 0; }
+    /// True for a non-null handle (which may still be stale).
     explicit operator bool() const { return !is_null(); }
     friend auto operator<=>(const Handle&, const Handle&) = default;
 };
 
+/// Tag of texture handles (kName names them in errors).
 struct TextureTag { static constexpr const char* kName = "texture"; };
+/// Tag of buffer handles.
 struct BufferTag { static constexpr const char* kName = "buffer"; };
+/// Tag of sampler handles.
 struct SamplerTag { static constexpr const char* kName = "sampler"; };
+/// Tag of shader handles.
 struct ShaderTag { static constexpr const char* kName = "shader"; };
+/// Tag of pipeline handles.
 struct PipelineTag { static constexpr const char* kName = "pipeline"; };
+/// Tag of heap handles.
 struct HeapTag { static constexpr const char* kName = "heap"; };
 
 using TextureHandle = Handle<TextureTag>;
@@ -38,6 +47,7 @@ using HeapHandle = Handle<HeapTag>;
 
 }  // namespace loom::rhi
 
+/// Handles hash over index, generation and device, for unordered containers.
 template <class Tag>
 struct std::hash<loom::rhi::Handle<Tag>> {
     std::size_t operator()(const loom::rhi::Handle<Tag>& h) const noexcept {

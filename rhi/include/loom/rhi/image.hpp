@@ -27,10 +27,15 @@ struct Image {
     Image() = default;
     Image(uint32_t w, uint32_t h, Format f);  ///< zero-filled
 
+    /// True when the image has no texels.
     [[nodiscard]] bool empty() const { return width == 0 || height == 0; }
+    /// Bytes of one texel.
     [[nodiscard]] std::size_t texel_bytes() const { return format_info(format).bytes_per_texel; }
+    /// Bytes of one row (rows are tightly packed).
     [[nodiscard]] std::size_t row_bytes() const { return std::size_t{width} * texel_bytes(); }
+    /// The bytes of texel (x, y), row 0 on top.
     [[nodiscard]] std::span<std::byte> texel(uint32_t x, uint32_t y);
+    /// The bytes of texel (x, y), row 0 on top.
     [[nodiscard]] std::span<const std::byte> texel(uint32_t x, uint32_t y) const;
 
     /// The texel decoded to four doubles in its natural units: normalised formats in [0,1]
@@ -61,6 +66,7 @@ Status write_png(const Image& image, const std::filesystem::path& path, const Di
 /// Reads a PNG into an RGBA8Unorm image.
 Result<Image> read_png(const std::filesystem::path& path);
 
+/// How compare_images compares.
 struct ImageCompareOptions {
     /// A pixel counts as different when any channel differs by more than this, in the
     /// channel's natural units (levels 0..255 for 8-bit unorm, values for float formats).
@@ -70,6 +76,7 @@ struct ImageCompareOptions {
     bool heatmap = true;
 };
 
+/// What compare_images found.
 struct ImageComparison {
     /// Largest per-channel difference over all pixels, in natural units (see threshold).
     double max_channel_diff = 0.0;

@@ -29,6 +29,7 @@ enum class ErrorCode {
     DeviceLost,       ///< the GPU device was lost
 };
 
+/// The name of an error code ("ShaderCompile").
 std::string_view error_code_name(ErrorCode code);
 
 /// An error a caller can act on: a code and a message naming the object at fault.
@@ -40,6 +41,7 @@ struct Error {
     [[nodiscard]] std::string to_string() const;
 };
 
+/// An Error from a code and a message.
 inline Error make_error(ErrorCode code, std::string message) { return Error{code, std::move(message)}; }
 
 /// Either a value or an Error (a small std::expected for C++20).
@@ -49,9 +51,11 @@ public:
     Result(T value) : state_(std::in_place_index<0>, std::move(value)) {}  // NOLINT(implicit)
     Result(Error error) : state_(std::in_place_index<1>, std::move(error)) {}  // NOLINT(implicit)
 
+    /// True when the result holds a value.
     [[nodiscard]] bool ok() const { return state_.index() == 0; }
     explicit operator bool() const { return ok(); }
 
+    /// The value (the result must be ok()).
     T& value() & { assert(ok()); return std::get<0>(state_); }
     const T& value() const& { assert(ok()); return std::get<0>(state_); }
     T&& value() && { assert(ok()); return std::get<0>(std::move(state_)); }
@@ -61,9 +65,12 @@ public:
     T* operator->() { return &value(); }
     const T* operator->() const { return &value(); }
 
+    /// The error (the result must not be ok()).
     const Error& error() const { assert(!ok()); return std::get<1>(state_); }
+    /// Moves the error out, e.g. to return it from the caller.
     Error&& take_error() { assert(!ok()); return std::get<1>(std::move(state_)); }
 
+    /// The value, or `fallback` when there is an error.
     template <class U>
     T value_or(U&& fallback) const& { return ok() ? value() : static_cast<T>(std::forward<U>(fallback)); }
 
@@ -78,9 +85,12 @@ public:
     Result() = default;
     Result(Error error) : error_(std::move(error)) {}  // NOLINT(implicit)
 
+    /// True on success.
     [[nodiscard]] bool ok() const { return !error_.has_value(); }
     explicit operator bool() const { return ok(); }
+    /// The error (the status must not be ok()).
     const Error& error() const { assert(!ok()); return *error_; }
+    /// Moves the error out, e.g. to return it from the caller.
     Error&& take_error() { assert(!ok()); return std::move(*error_); }
 
 private:

@@ -8,8 +8,10 @@
 
 namespace loom::rhi {
 
+/// The pipeline stage a shader runs in.
 enum class ShaderStage : uint8_t { Vertex, Fragment, Compute };
 
+/// "vertex", "fragment" or "compute".
 std::string_view shader_stage_name(ShaderStage stage);
 
 /// Scalar type of a reflected variable.
@@ -36,6 +38,7 @@ struct BlockMember {
     friend bool operator==(const BlockMember&, const BlockMember&) = default;
 };
 
+/// A reflected uniform block (`layout(set, binding) uniform Name { ... }`).
 struct UniformBlock {
     std::string name;  ///< block (type) name
     uint32_t set = 0;
@@ -45,6 +48,7 @@ struct UniformBlock {
     friend bool operator==(const UniformBlock&, const UniformBlock&) = default;
 };
 
+/// A reflected storage buffer (`layout(set, binding) buffer Name { ... }`).
 struct StorageBuffer {
     std::string name;
     uint32_t set = 0;
@@ -55,6 +59,7 @@ struct StorageBuffer {
     friend bool operator==(const StorageBuffer&, const StorageBuffer&) = default;
 };
 
+/// The dimension a shader samples or writes a texture as.
 enum class TextureKind : uint8_t { Tex2D, Tex2DArray, Tex3D, Cube };
 
 /// A combined image sampler (`sampler2D`, `sampler2DShadow`, ...).
@@ -89,6 +94,7 @@ struct StageVariable {
     friend bool operator==(const StageVariable&, const StageVariable&) = default;
 };
 
+/// The reflected push-constant block (a uniform buffer at kGlPushConstantBinding on GL).
 struct PushConstantBlock {
     std::string name;
     uint32_t size = 0;
@@ -96,6 +102,7 @@ struct PushConstantBlock {
     friend bool operator==(const PushConstantBlock&, const PushConstantBlock&) = default;
 };
 
+/// Everything a shader declares: resources by (set, binding), stage inputs/outputs, push constants, work group size.
 struct ShaderReflection {
     std::vector<UniformBlock> uniform_blocks;
     std::vector<StorageBuffer> storage_buffers;

@@ -18,6 +18,7 @@
 
 namespace loom::rhi {
 
+/// One stage of GLSL source to compile, with its name and defines.
 struct ShaderSource {
     std::string name;  ///< file name or composed name; compile errors say "name:line: ..."
     ShaderStage stage = ShaderStage::Vertex;
@@ -29,6 +30,7 @@ struct ShaderSource {
 using IncludeResolver = std::function<std::optional<std::string>(const std::string& requested,
                                                                  const std::string& includer)>;
 
+/// Where a ShaderCompiler finds includes, and how it compiles.
 struct ShaderCompilerOptions {
     /// Directories searched for #include, in order (after `virtual_files`).
     std::vector<std::filesystem::path> include_dirs;
@@ -44,6 +46,7 @@ struct ShaderCompilerOptions {
 /// Compiles GLSL to a ShaderModule. Thread-compatible: one compiler per thread, or guard it.
 class ShaderCompiler {
 public:
+    /// A compiler with these include paths and in-memory files.
     explicit ShaderCompiler(ShaderCompilerOptions options = {});
     ~ShaderCompiler();
     ShaderCompiler(const ShaderCompiler&) = delete;

@@ -28,9 +28,11 @@ struct MemoryAllocation {
     bool dedicated = false;        ///< owns `memory` alone
     uint32_t block = UINT32_MAX;   ///< allocator-internal block id (UINT32_MAX if dedicated)
 
+    /// True for a real allocation.
     explicit operator bool() const { return memory != VK_NULL_HANDLE; }
 };
 
+/// What to allocate: requirements, memory properties, kind and whether dedicated.
 struct AllocationRequest {
     VkMemoryRequirements requirements{};
     VkMemoryPropertyFlags required = 0;    ///< properties the memory type must have
@@ -43,6 +45,7 @@ struct AllocationRequest {
     VkBuffer dedicated_buffer = VK_NULL_HANDLE;
 };
 
+/// Block size and the size from which allocations are dedicated.
 struct AllocatorOptions {
     VkDeviceSize block_size = VkDeviceSize{32} << 20;
     /// Requests at least this big get a dedicated allocation.
@@ -59,6 +62,7 @@ struct AllocatorStats {
     uint64_t sub_allocated_bytes = 0;
 };
 
+/// Sub-allocates VkDeviceMemory blocks per memory type (see the top of this file).
 class MemoryAllocator {
 public:
     MemoryAllocator(VkPhysicalDevice physical_device, VkDevice device, AllocatorOptions options = {});
@@ -75,9 +79,13 @@ public:
     /// The best memory type among `type_bits` with all `required` flags, preferring `preferred`.
     [[nodiscard]] loom::Result<uint32_t> find_memory_type(uint32_t type_bits, VkMemoryPropertyFlags required,
                                                           VkMemoryPropertyFlags preferred) const;
+    /// What the allocator holds and hands out now.
     [[nodiscard]] AllocatorStats stats() const;
+    /// The options it was made with.
     [[nodiscard]] const AllocatorOptions& options() const { return options_; }
+    /// The device's bufferImageGranularity.
     [[nodiscard]] VkDeviceSize buffer_image_granularity() const { return granularity_; }
+    /// The memory types and heaps allocated from.
     [[nodiscard]] const VkPhysicalDeviceMemoryProperties& memory_properties() const { return memory_properties_; }
 
 private:

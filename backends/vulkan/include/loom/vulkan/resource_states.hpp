@@ -65,9 +65,13 @@ public:
     /// Transfer writes are visible to the host (readbacks, before the fence wait).
     void transfer_to_host();
 
+    /// True when nothing was collected.
     [[nodiscard]] bool empty() const { return images_.empty() && buffers_.empty() && memory_.empty(); }
+    /// Barriers collected.
     [[nodiscard]] std::size_t size() const { return images_.size() + buffers_.size() + memory_.size(); }
+    /// The image barriers collected (for tests).
     [[nodiscard]] const std::vector<VkImageMemoryBarrier2>& image_barriers() const { return images_; }
+    /// The buffer barriers collected (for tests).
     [[nodiscard]] const std::vector<VkBufferMemoryBarrier2>& buffer_barriers() const { return buffers_; }
 
     /// Records everything collected (if anything) and empties the batch. Returns the number
