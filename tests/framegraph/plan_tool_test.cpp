@@ -27,7 +27,9 @@ std::string read_file(const std::filesystem::path& path) {
 }
 
 ToolRun run_tool(const std::string& arguments) {
-    const std::filesystem::path dir = loom::test::output_dir() / "loom_plan";
+    // One directory per test: ctest runs the tests of this file in parallel.
+    const std::filesystem::path dir =
+        loom::test::output_dir() / "loom_plan" / ::testing::UnitTest::GetInstance()->current_test_info()->name();
     std::filesystem::create_directories(dir);
     const auto out = dir / "stdout.txt";
     const auto err = dir / "stderr.txt";
