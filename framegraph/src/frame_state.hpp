@@ -52,6 +52,9 @@ public:
             inner_->draw_indexed(index_count, instance_count, first_index, base_vertex, first_instance);
         }
     }
+    void draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t offset, uint32_t draw_count, uint32_t stride) override {
+        if (require_render_pass("draw_indexed_indirect", true)) inner_->draw_indexed_indirect(buffer, offset, draw_count, stride);
+    }
     void dispatch(uint32_t x, uint32_t y, uint32_t z) override {
         if (require_render_pass("dispatch", false)) inner_->dispatch(x, y, z);
     }

@@ -111,6 +111,7 @@ void GlAppState::save_fixed() {
     f.storage_buffer = get_int(GL_SHADER_STORAGE_BUFFER_BINDING);
     f.pixel_pack_buffer = get_int(GL_PIXEL_PACK_BUFFER_BINDING);
     f.pixel_unpack_buffer = get_int(GL_PIXEL_UNPACK_BUFFER_BINDING);
+    f.draw_indirect_buffer = get_int(GL_DRAW_INDIRECT_BUFFER_BINDING);
     for (std::size_t i = 0; i < f.pack.size(); ++i) {
         f.pack[i] = get_int(kPack[i]);
         f.unpack[i] = get_int(kUnpack[i]);
@@ -180,6 +181,7 @@ void GlAppState::restore_fixed() {
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(f.storage_buffer));
     glBindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(f.pixel_pack_buffer));
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(f.pixel_unpack_buffer));
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, static_cast<GLuint>(f.draw_indirect_buffer));
     for (std::size_t i = 0; i < f.pack.size(); ++i) {
         glPixelStorei(kPack[i], f.pack[i]);
         glPixelStorei(kUnpack[i], f.unpack[i]);

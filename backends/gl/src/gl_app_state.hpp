@@ -65,6 +65,7 @@ private:
     struct Fixed {
         GLint program = 0, vertex_array = 0, draw_framebuffer = 0, read_framebuffer = 0, active_texture = GL_TEXTURE0;
         GLint uniform_buffer = 0, storage_buffer = 0, pixel_pack_buffer = 0, pixel_unpack_buffer = 0;
+        GLint draw_indirect_buffer = 0;  ///< bound by draw_indexed_indirect
         std::array<GLint, 8> pack{};    ///< per name in kPixelStore, GL_PACK_*
         std::array<GLint, 8> unpack{};  ///< the same, GL_UNPACK_*
         GLint clip_origin = GL_LOWER_LEFT, clip_depth_mode = GL_NEGATIVE_ONE_TO_ONE;

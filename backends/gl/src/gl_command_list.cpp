@@ -567,16 +567,58 @@ void GlCommandList::apply_bindings(GlStateCache& cache, const std::vector<Resolv
     }
 }
 
+void GlCommandList::draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t offset, uint32_t draw_count,
+                                          uint32_t stride) {
+    const char* command = "draw_indexed_indirect";
+    auto found = device_->buffers().get(buffer);
+    if (!found.ok()) {
+        fail(ErrorCode::InvalidHandle, where(command) + "argument buffer: " + found.error().message);
+        return;
+    }
+    const GlBuffer& b = **found;
+    constexpr uint64_t kCommandBytes = sizeof(rhi::DrawIndexedIndirectCommand);
+    if (!rhi::has_all(b.desc.usage, rhi::BufferUsage::Indirect)) {
+        fail(ErrorCode::InvalidArgument, where(command) + "buffer " + quote_name(b.desc.name) + " lacks Indirect usage");
+        return;
+    }
+    if (offset % 4 != 0 || stride % 4 != 0 || stride < kCommandBytes) {
+        fail(ErrorCode::InvalidArgument, where(command) + "offset " + std::to_string(offset) + " and stride " +
+                                             std::to_string(stride) + " must be multiples of 4, the stride at least " +
+                                             std::to_string(kCommandBytes));
+        return;
+    }
+    if (draw_count > 0 && offset + uint64_t{draw_count - 1} * stride + kCommandBytes > b.desc.size) {
+        fail(ErrorCode::InvalidArgument, where(command) + std::to_string(draw_count) + " commands from offset " +
+                                             std::to_string(offset) + " run past the end of buffer " + quote_name(b.desc.name));
+        return;
+    }
+    if (index_buffer_.offset != 0) {
+        // GL's indirect draws count first_index from the start of the element buffer.
+        fail(ErrorCode::InvalidArgument, where(command) + "the index buffer must be bound at offset 0");
+        return;
+    }
+    draw_common(true, 0, 0, 0, 0, 0,
+                IndirectDraw{b.name, static_cast<uintptr_t>(offset), static_cast<GLsizei>(draw_count), static_cast<GLsizei>(stride)});
+}
+
 void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
-                                uint32_t first_instance) {
-    const char* command = indexed ? "draw_indexed" : "draw";
+                                uint32_t first_instance, const std::optional<IndirectDraw>& indirect) {
+    const char* command = indirect ? "draw_indexed_indirect" : indexed ? "draw_indexed" : "draw";
     if (!pass_) {
         fail(ErrorCode::InvalidState, std::string(command) + ": not inside a render pass");
         return;
     }
     GlPipeline* p = current_pipeline(command, false);
     if (!p) return;
-    if (count == 0 || instance_count == 0) return;
+    if (indirect && p->base_instance_location >= 0) {
+        // GL offsets gl_InstanceIndex by a uniform set per draw: one call cannot give each
+        // command its own first instance (per-instance attributes are offset by GL itself).
+        fail(ErrorCode::Unsupported, where(command) + "pipeline " + quote_name(p->name) +
+                                         " reads gl_InstanceIndex, which GL's indirect draws cannot offset by each "
+                                         "command's first instance; use a per-instance vertex attribute");
+        return;
+    }
+    if (indirect ? indirect->count == 0 : (count == 0 || instance_count == 0)) return;
     std::vector<ResolvedBinding> bindings;
     if (!resolve_bindings(*p, command, bindings)) return;
 
@@ -610,7 +652,8 @@ void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_
         index_buffer = (*buffer)->name;
         index_type = u16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
         index_offset = static_cast<uintptr_t>(index_buffer_.offset + uint64_t{first} * (u16 ? 2 : 4));
-        if (index_offset + uint64_t{count} * (u16 ? 2 : 4) > (*buffer)->desc.size) {
+        // Indirect draws' index ranges are in GPU memory: the GPU checks them.
+        if (!indirect && index_offset + uint64_t{count} * (u16 ? 2 : 4) > (*buffer)->desc.size) {
             fail(ErrorCode::InvalidArgument, where(command) + std::to_string(count) + " indices from index " +
                                                  std::to_string(first) + " run past the end of index buffer " +
                                                  quote_name((*buffer)->desc.name));
@@ -632,6 +675,16 @@ void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_
         if (indexed) cache.element_buffer(vao, index_buffer);
         apply_bindings(cache, bindings);
         if (base_instance_location >= 0) cache.base_instance(program, base_instance_location, static_cast<GLint>(first_instance));
+        if (indirect) {
+            // The argument buffer binding is not shadowed by the cache; it is bound for each
+            // multi-draw (one call for many draws).
+            glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect->buffer);
+            glMultiDrawElementsIndirect(topology, index_type, reinterpret_cast<const void*>(indirect->offset),
+                                        indirect->count, indirect->stride);
+            cache.count_call(2);
+            cache.count_draw();
+            return;
+        }
         if (indexed) {
             glDrawElementsInstancedBaseVertexBaseInstance(topology, static_cast<GLsizei>(count), index_type,
                                                           reinterpret_cast<const void*>(index_offset),

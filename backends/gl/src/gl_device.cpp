@@ -92,6 +92,7 @@ void GlDevice::init_capabilities() {
     caps_.api_version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
     caps_.formats = query_format_capabilities();
     caps_.placed_resources = false;
+    caps_.draw_indirect = true;  // glMultiDrawElementsIndirect: core since GL 4.3
     GLint timer_bits = 0;
     glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &timer_bits);
     caps_.timestamps = timer_bits > 0;

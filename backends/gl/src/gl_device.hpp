@@ -54,6 +54,7 @@ public:
     void draw_indexed(uint32_t index_count, uint32_t instance_count, uint32_t first_index, int32_t base_vertex,
                       uint32_t first_instance) override;
     void dispatch(uint32_t groups_x, uint32_t groups_y, uint32_t groups_z) override;
+    void draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t offset, uint32_t draw_count, uint32_t stride) override;
     void copy_buffer(rhi::BufferHandle src, uint64_t src_offset, rhi::BufferHandle dst, uint64_t dst_offset,
                      uint64_t size) override;
     void copy_texture(const rhi::TextureCopy& copy) override;
@@ -117,8 +118,16 @@ private:
     /// false (with an error recorded) when something is missing or in the wrong state.
     bool resolve_bindings(const GlPipeline& pipeline, std::string_view command, std::vector<ResolvedBinding>& out);
     GlPipeline* current_pipeline(std::string_view command, bool compute);
+    /// An indirect draw's arguments: glMultiDrawElementsIndirect from `buffer`.
+    struct IndirectDraw {
+        GLuint buffer = 0;
+        uintptr_t offset = 0;
+        GLsizei count = 0;
+        GLsizei stride = 0;
+    };
     void draw_common(bool indexed, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
-                     uint32_t first_instance);
+                     uint32_t first_instance,
+                     const std::optional<IndirectDraw>& indirect = std::nullopt);
     static void apply_bindings(GlStateCache& cache, const std::vector<ResolvedBinding>& bindings);
 
     GlDevice* device_;

@@ -635,6 +635,39 @@ void VulkanCommandList::draw_indexed(uint32_t index_count, uint32_t instance_cou
     ++stats_.api_calls;
 }
 
+void VulkanCommandList::draw_indexed_indirect(rhi::BufferHandle handle, uint64_t offset, uint32_t draw_count,
+                                              uint32_t stride) {
+    const char* what = "draw_indexed_indirect";
+    auto buffer = device_.buffers().get(handle);
+    if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, std::string(what) + ": argument buffer: " + buffer.error().message);
+    const Buffer& b = **buffer;
+    constexpr uint64_t kCommandBytes = sizeof(rhi::DrawIndexedIndirectCommand);
+    if (!rhi::has_all(b.desc.usage, rhi::BufferUsage::Indirect)) {
+        return fail(ErrorCode::InvalidArgument, std::string(what) + ": buffer " + in_quotes(b.desc.name) + " lacks Indirect usage");
+    }
+    if (offset % 4 != 0 || stride % 4 != 0 || stride < kCommandBytes) {
+        return fail(ErrorCode::InvalidArgument, std::string(what) + ": offset " + std::to_string(offset) + " and stride " +
+                                                    std::to_string(stride) + " must be multiples of 4, the stride at least " +
+                                                    std::to_string(kCommandBytes));
+    }
+    if (draw_count > 0 && offset + uint64_t{draw_count - 1} * stride + kCommandBytes > b.desc.size) {
+        return fail(ErrorCode::InvalidArgument, std::string(what) + ": " + std::to_string(draw_count) + " commands from offset " +
+                                                    std::to_string(offset) + " run past the end of buffer " + in_quotes(b.desc.name));
+    }
+    if (!prepare_draw(what)) return;
+    if (!device_.buffers().find(index_buffer_)) return fail(ErrorCode::InvalidState, std::string(what) + " without a (live) index buffer");
+    if (draw_count == 0) return;
+    if (device_.context().multi_draw_indirect()) {
+        vkCmdDrawIndexedIndirect(cmd_, b.buffer, offset, draw_count, stride);
+        ++stats_.api_calls;
+    } else {
+        // Without the multiDrawIndirect feature a command reads one draw.
+        for (uint32_t i = 0; i < draw_count; ++i) vkCmdDrawIndexedIndirect(cmd_, b.buffer, offset + uint64_t{i} * stride, 1, stride);
+        stats_.api_calls += draw_count;
+    }
+    ++stats_.draw_calls;
+}
+
 void VulkanCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
     if (!require_outside_pass("dispatch")) return;
     if (!pipeline_ || !device_.pipelines().find(pipeline_handle_) || pipeline_->bind_point != VK_PIPELINE_BIND_POINT_COMPUTE) {

@@ -55,6 +55,8 @@ public:
     void draw_indexed(uint32_t index_count, uint32_t instance_count = 1, uint32_t first_index = 0,
                       int32_t base_vertex = 0, uint32_t first_instance = 0) override;
     void dispatch(uint32_t groups_x, uint32_t groups_y = 1, uint32_t groups_z = 1) override;
+    void draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t offset, uint32_t draw_count,
+                               uint32_t stride = sizeof(rhi::DrawIndexedIndirectCommand)) override;
     void copy_buffer(rhi::BufferHandle src, uint64_t src_offset, rhi::BufferHandle dst, uint64_t dst_offset,
                      uint64_t size) override;
     void copy_texture(const rhi::TextureCopy& copy) override;

@@ -276,6 +276,8 @@ loom::Status VulkanContext::init(const ContextOptions& options) {
     depth_clamp_ = supported.depthClamp;
     sampler_anisotropy_ = supported.samplerAnisotropy;
     independent_blend_ = supported.independentBlend;
+    multi_draw_indirect_ = supported.multiDrawIndirect;
+    draw_indirect_first_instance_ = supported.drawIndirectFirstInstance;
     enable.features.fillModeNonSolid = supported.fillModeNonSolid;
     enable.features.depthClamp = supported.depthClamp;
     enable.features.samplerAnisotropy = supported.samplerAnisotropy;
@@ -286,6 +288,8 @@ loom::Status VulkanContext::init(const ContextOptions& options) {
     enable.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
     enable.features.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
     enable.features.imageCubeArray = supported.imageCubeArray;
+    enable.features.multiDrawIndirect = supported.multiDrawIndirect;
+    enable.features.drawIndirectFirstInstance = supported.drawIndirectFirstInstance;
 
     const float priority = 1.0f;
     auto queue_info = vk_init<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
@@ -341,6 +345,8 @@ loom::Result<std::unique_ptr<VulkanContext>> VulkanContext::adopt(const External
     context->depth_clamp_ = desc.enabled_features.depthClamp;
     context->sampler_anisotropy_ = desc.enabled_features.samplerAnisotropy;
     context->independent_blend_ = desc.enabled_features.independentBlend;
+    context->multi_draw_indirect_ = desc.enabled_features.multiDrawIndirect;
+    context->draw_indirect_first_instance_ = desc.enabled_features.drawIndirectFirstInstance;
     if (desc.debug_utils) context->load_debug_utils();
     return context;
 }

@@ -74,6 +74,8 @@ loom::Status VulkanDevice::init_device(const rhi::DeviceDesc& desc) {
                         std::to_string(VK_API_VERSION_PATCH(props.apiVersion));
     query_format_capabilities(context_->physical_device(), caps_);
     caps_.placed_resources = true;
+    // Indirect draws whose instances start past 0 need drawIndirectFirstInstance.
+    caps_.draw_indirect = context_->draw_indirect_first_instance();
     caps_.timestamps = context_->timestamp_valid_bits() > 0 && props.limits.timestampPeriod > 0.0f;
     caps_.max_texture_size = props.limits.maxImageDimension2D;
     caps_.max_color_attachments = props.limits.maxColorAttachments;

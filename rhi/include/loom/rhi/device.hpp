@@ -161,9 +161,10 @@ public:
     /// `buffer` (BufferUsage::Indirect) at `offset` + i * `stride` (DrawIndexedIndirectCommand;
     /// offset and stride multiples of 4): one command for many draws that share a pipeline,
     /// bindings and vertex/index buffers (a multi-draw). The instance index of draw i starts at
-    /// its first_instance, so per-instance vertex attributes can select per-draw data; GL's
-    /// emulation of gl_InstanceIndex (SPIRV-Cross's base-instance uniform) is not updated per
-    /// draw, so shaders drawn this way should not use gl_InstanceIndex. Only where
+    /// its first_instance, so per-instance vertex attributes can select per-draw data, and so
+    /// does gl_InstanceIndex where GL has ARB_shader_draw_parameters (gl_BaseInstanceARB);
+    /// without it, GL emulates the base instance with a uniform set per draw call and refuses
+    /// indirect draws of pipelines that read gl_InstanceIndex (Unsupported). Only where
     /// Capabilities::draw_indirect; the default implementation, for backends without it, logs
     /// an error and draws nothing.
     virtual void draw_indexed_indirect(BufferHandle buffer, uint64_t offset, uint32_t draw_count,

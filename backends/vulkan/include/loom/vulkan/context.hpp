@@ -18,6 +18,7 @@ namespace loom::vulkan {
 
 struct ExternalDeviceDesc;
 
+/// How VulkanContext::create makes the instance and device.
 struct ContextOptions {
     /// Enable VK_LAYER_KHRONOS_validation and route its messages to loom::log.
     bool validation = true;
@@ -45,31 +46,51 @@ public:
     VulkanContext(const VulkanContext&) = delete;
     VulkanContext& operator=(const VulkanContext&) = delete;
 
+    /// The instance.
     [[nodiscard]] VkInstance instance() const { return instance_; }
+    /// The physical device chosen (or given).
     [[nodiscard]] VkPhysicalDevice physical_device() const { return physical_device_; }
+    /// The logical device.
     [[nodiscard]] VkDevice device() const { return device_; }
+    /// The queue loom submits to.
     [[nodiscard]] VkQueue queue() const { return queue_; }
+    /// The family of queue().
     [[nodiscard]] uint32_t queue_family() const { return queue_family_; }
+    /// The window surface (null headless).
     [[nodiscard]] VkSurfaceKHR surface() const { return surface_; }
+    /// Properties and limits of the physical device.
     [[nodiscard]] const VkPhysicalDeviceProperties& properties() const { return properties_; }
+    /// Memory types and heaps of the physical device.
     [[nodiscard]] const VkPhysicalDeviceMemoryProperties& memory_properties() const { return memory_properties_; }
+    /// Valid bits of timestamps on queue() (0: no timestamps).
     [[nodiscard]] uint32_t timestamp_valid_bits() const { return timestamp_valid_bits_; }
+    /// True when loom enabled the validation layer.
     [[nodiscard]] bool validation_enabled() const { return validation_enabled_; }
+    /// True when loom enabled synchronisation validation.
     [[nodiscard]] bool synchronization_validation_enabled() const { return sync_validation_enabled_; }
+    /// True when VK_EXT_debug_utils is available for names and labels.
     [[nodiscard]] bool debug_utils() const { return set_object_name_ != nullptr; }
     /// True for the application's objects (adopt): validation and debug output are the
     /// application's, and nothing is destroyed with the context.
     [[nodiscard]] bool adopted() const { return adopted_; }
     /// Optional device features that were available and enabled.
     [[nodiscard]] bool fill_mode_non_solid() const { return fill_mode_non_solid_; }
+    /// The depthClamp feature is enabled.
     [[nodiscard]] bool depth_clamp() const { return depth_clamp_; }
+    /// The samplerAnisotropy feature is enabled.
     [[nodiscard]] bool sampler_anisotropy() const { return sampler_anisotropy_; }
+    /// The independentBlend feature is enabled.
     [[nodiscard]] bool independent_blend() const { return independent_blend_; }
+    /// Indirect draws of more than one command in one call (draw_indexed_indirect).
+    [[nodiscard]] bool multi_draw_indirect() const { return multi_draw_indirect_; }
+    /// Indirect draws may start at a first instance other than 0 (drawIndirectFirstInstance).
+    [[nodiscard]] bool draw_indirect_first_instance() const { return draw_indirect_first_instance_; }
 
     /// Names an object for validation messages and debuggers (no-op without debug utils).
     void set_name(VkObjectType type, uint64_t handle, std::string_view name) const;
     /// Debug labels in a command buffer (no-op without debug utils).
     void begin_label(VkCommandBuffer cmd, std::string_view label) const;
+    /// Ends the label begun last in `cmd`.
     void end_label(VkCommandBuffer cmd) const;
 
 private:
@@ -96,6 +117,8 @@ private:
     bool depth_clamp_ = false;
     bool sampler_anisotropy_ = false;
     bool independent_blend_ = false;
+    bool multi_draw_indirect_ = false;
+    bool draw_indirect_first_instance_ = false;
     bool adopted_ = false;
     PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
     PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label_ = nullptr;
