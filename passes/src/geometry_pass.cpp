@@ -20,9 +20,9 @@ Status GeometryPass::execute(fg::PassContext& context) {
                                {"normal", {0.0, 0.0, 0.0, 0.0}},
                                {"albedo", {0.0, 0.0, 0.0, 0.0}}},
                               fg::DepthPort("depth", 1.0f));
+    // The camera is a per-pass set: uploaded only in frames where it moved.
     Status drawn = draw_objects(context, *state, [&](Bindings& set) {
-        set.uniforms("CameraUniforms", detail::camera_uniforms(camera_));
-        return set.status();
+        return pass_uniforms(set, "CameraUniforms", detail::camera_uniforms(camera_));
     });
     context.end_render_pass();
     LOOM_TRY(drawn);

@@ -7,6 +7,9 @@ std::optional<ResourceSlot> find_in(const rhi::ShaderReflection& reflection, std
     for (const rhi::UniformBlock& block : reflection.uniform_blocks) {
         if (block.name == name) return ResourceSlot{block.set, block.binding, block.size};
     }
+    for (const rhi::StorageBuffer& buffer : reflection.storage_buffers) {
+        if (buffer.name == name) return ResourceSlot{buffer.set, buffer.binding, buffer.size, true};
+    }
     for (const rhi::SampledTexture& texture : reflection.textures) {
         if (texture.name == name) return ResourceSlot{texture.set, texture.binding, 0};
     }

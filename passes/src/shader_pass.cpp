@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "loom/framegraph/resolved_spec.hpp"
+#include "loom/passes/retained_scene.hpp"
 
 namespace loom::passes {
 namespace {
@@ -91,6 +92,20 @@ Bindings& Bindings::uniform_bytes(std::string_view block, std::span<const std::b
     return *this;
 }
 
+Bindings& Bindings::buffer(std::string_view name, const rhi::BufferBinding& range) {
+    if (error_) return *this;
+    auto slot = find(name);
+    if (slot && !slot->storage_buffer && range.size != 0 && slot->size != range.size) {
+        slot = program_.uniform_slot(name, static_cast<uint32_t>(range.size));
+    }
+    if (!slot) {
+        error_ = slot.take_error();
+        return *this;
+    }
+    group_.buffer(slot->binding, range);
+    return *this;
+}
+
 Bindings& Bindings::texture(std::string_view name, rhi::TextureHandle texture, rhi::SamplerHandle sampler) {
     if (error_) return *this;
     auto slot = find(name);
@@ -127,7 +142,10 @@ fg::TextureSpec color_spec(const PassConfig& config) {
 ShaderPass::ShaderPass(std::string name, std::shared_ptr<ShaderLibrary> library)
     : fg::Pass(std::move(name)), library_(library ? std::move(library) : std::make_shared<ShaderLibrary>()) {}
 
-ShaderPass::~ShaderPass() { release_gpu(); }
+ShaderPass::~ShaderPass() {
+    if (scene_) scene_->detach(*this);
+    release_gpu();
+}
 
 ShaderPass& ShaderPass::add(const PassPart& part) {
     fg::Pass::add(part.ports);
@@ -152,6 +170,16 @@ Status ShaderPass::register_object(std::shared_ptr<const Object> object) {
         return make_error(ErrorCode::InvalidArgument,
                           "pass '" + name() + "': object '" + object->name() + "' has no (named) kind");
     }
+    auto program = prepare_kind(kind);
+    if (!program) return program.take_error();
+    objects_.push_back(std::move(object));
+    return {};
+}
+
+Result<const Program*> ShaderPass::prepare_kind(const std::shared_ptr<const ObjectKind>& kind) {
+    if (!kind || kind->name().empty()) {
+        return make_error(ErrorCode::InvalidArgument, "pass '" + name() + "': an object kind needs a name");
+    }
     if (auto it = programs_.find(kind->name()); it != programs_.end()) {
         if (!same_kind(*it->second.first, *kind)) {
             return make_error(ErrorCode::InvalidArgument,
@@ -159,13 +187,18 @@ Status ShaderPass::register_object(std::shared_ptr<const Object> object) {
                                   "' was registered before with other shader parts or vertex buffers; kinds "
                                   "are told apart by name");
         }
-    } else {
-        auto program = make_program(kind.get());
-        if (!program) return program.take_error();
-        programs_.emplace(kind->name(), std::make_pair(kind, std::move(*program)));
+        return it->second.second.get();
     }
-    objects_.push_back(std::move(object));
-    return {};
+    auto program = make_program(kind.get());
+    if (!program) return program.take_error();
+    const Program* raw = program->get();
+    programs_.emplace(kind->name(), std::make_pair(kind, std::move(*program)));
+    return raw;
+}
+
+const Program* ShaderPass::program_for_kind(const ObjectKind& kind) const {
+    auto it = programs_.find(kind.name());
+    return it == programs_.end() ? nullptr : it->second.second.get();
 }
 
 const Program* ShaderPass::program_for(const Object& object) const {
@@ -228,6 +261,7 @@ void ShaderPass::release_gpu() {
     }
     for (SamplerEntry& entry : samplers_) (void)device_->destroy(entry.handle);
     for (CaptureEntry& entry : captures_) (void)device_->destroy(entry.texture);
+    for (auto& [block, pool] : pass_sets_) pool->release_gpu();
     pipelines_.clear();
     shaders_.clear();
     samplers_.clear();
@@ -339,6 +373,7 @@ Status ShaderPass::draw_objects(fg::PassContext& context, const PipelineState& s
         DrawContext draw{commands, *program};
         LOOM_TRY(render_with(draw, *object));
     }
+    if (scene_) LOOM_TRY(scene_->draw(*this, context, state, bind_pass));
     return {};
 }
 
@@ -376,6 +411,33 @@ Result<PipelineState> ShaderPass::attachment_state(fg::PassContext& context, std
         state.depth_format = spec->format;
     }
     return state;
+}
+
+Status ShaderPass::bind_pass_uniforms(Bindings& set, std::string_view block, std::span<const std::byte> bytes) {
+    if (!device_) {
+        return make_error(ErrorCode::InvalidState,
+                          "pass '" + name() + "': pass uniforms '" + std::string(block) + "' bound before the pass has a device");
+    }
+    auto it = pass_sets_.find(block);
+    if (it == pass_sets_.end()) {
+        auto pool = std::make_unique<UniformSetPool>(name() + "." + std::string(block), rhi::BufferUsage::Uniform,
+                                                     static_cast<uint32_t>(bytes.size()),
+                                                     UniformSetPool::Layout::Bindable, 1);
+        // The slot starts as zeros, so the first write always differs unless the value is zero:
+        // upload() writes a new buffer whole in any case.
+        (void)pool->allocate();
+        it = pass_sets_.emplace(std::string(block), std::move(pool)).first;
+    }
+    UniformSetPool& pool = *it->second;
+    if (pool.set_size() != bytes.size()) {
+        return make_error(ErrorCode::InvalidArgument, "pass '" + name() + "': pass uniforms '" + std::string(block) +
+                                                          "' changed size from " + std::to_string(pool.set_size()) +
+                                                          " to " + std::to_string(bytes.size()) + " bytes");
+    }
+    (void)pool.write(0, bytes);
+    LOOM_TRY(pool.upload(*device_, pass_uniform_stats_));
+    set.buffer(block, pool.binding(0));
+    return set.status();
 }
 
 Status ShaderPass::record_capture(fg::PassContext& context) {

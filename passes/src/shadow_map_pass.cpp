@@ -17,9 +17,9 @@ Status ShadowMapPass::execute(fg::PassContext& context) {
     if (!state) return state.take_error();
     state->depth = rhi::DepthState{true, true, rhi::CompareOp::Less};
     context.begin_depth_pass(fg::DepthPort("shadow_map", 1.0f));
+    // The light's view is a per-pass set: uploaded only in frames where it changed.
     Status drawn = draw_objects(context, *state, [&](Bindings& set) {
-        set.uniforms("ShadowCasterUniforms", detail::ShadowCasterUniforms{light_view_projection_});
-        return set.status();
+        return pass_uniforms(set, "ShadowCasterUniforms", detail::ShadowCasterUniforms{light_view_projection_});
     });
     context.end_render_pass();
     LOOM_TRY(drawn);

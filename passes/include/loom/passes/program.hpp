@@ -16,8 +16,11 @@ namespace loom::passes {
 struct ResourceSlot {
     uint32_t set = 0;
     uint32_t binding = 0;
-    /// Declared size in bytes of a uniform block (0 for textures).
+    /// Declared size in bytes of a uniform block or storage buffer (without a trailing array;
+    /// 0 for textures).
     uint32_t size = 0;
+    /// A storage buffer (its size is a minimum, not the exact size).
+    bool storage_buffer = false;
 
     friend bool operator==(const ResourceSlot&, const ResourceSlot&) = default;
 };
@@ -34,8 +37,8 @@ public:
     [[nodiscard]] const rhi::ShaderModule& vertex() const { return vertex_; }
     [[nodiscard]] const rhi::ShaderModule& fragment() const { return fragment_; }
 
-    /// The slot of a uniform block (by block type name, e.g. "CameraUniforms") or of a sampled
-    /// texture (by variable name) in either stage; nullopt when the program has none of that
+    /// The slot of a uniform block or storage buffer (by block type name, e.g.
+    /// "CameraUniforms") or of a sampled texture (by variable name) in either stage; nullopt when the program has none of that
     /// name (a part that was left out, or a resource the compiler found unused).
     [[nodiscard]] std::optional<ResourceSlot> find(std::string_view name) const;
     /// find(), or an InvalidArgument error naming the program and the resource.

@@ -37,11 +37,14 @@
 #include "loom/passes/object.hpp"
 #include "loom/passes/program.hpp"
 #include "loom/passes/shader_part.hpp"
+#include "loom/passes/uniform_set.hpp"
 #include "loom/rhi/descriptions.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/result.hpp"
 
 namespace loom::passes {
+
+class RetainedScene;
 
 /// The fixed-function state of a pipeline a pass builds for one of its programs.
 struct PipelineState {
@@ -68,6 +71,10 @@ public:
         return uniform_bytes(block, std::as_bytes(std::span<const T, 1>(&value, 1)));
     }
     Bindings& uniform_bytes(std::string_view block, std::span<const std::byte> data);
+    /// Binds a range of a buffer the caller keeps (a uniform set in its pool, a storage buffer
+    /// of per-object records) to the uniform block or storage buffer `name`. A uniform block's
+    /// declared size must equal the range's size (when the range has one).
+    Bindings& buffer(std::string_view name, const rhi::BufferBinding& range);
     /// Binds a texture and sampler to the sampler variable `name`.
     Bindings& texture(std::string_view name, rhi::TextureHandle texture, rhi::SamplerHandle sampler);
 
@@ -142,6 +149,12 @@ public:
     virtual Status register_object(std::shared_ptr<const Object> object);
     /// The program used for `object`; nullptr when its kind was never registered.
     [[nodiscard]] const Program* program_for(const Object& object) const;
+    /// The program for objects of `kind`, composed and compiled the first time the kind is seen
+    /// (register_object's first half; the retained scene calls it when a shape is submitted).
+    /// Errors: as register_object.
+    Result<const Program*> prepare_kind(const std::shared_ptr<const ObjectKind>& kind);
+    /// The program prepared for `kind`; nullptr when its kind was never prepared.
+    [[nodiscard]] const Program* program_for_kind(const ObjectKind& kind) const;
     /// Composes and compiles the program for `kind` (null: the pass's own program).
     virtual Result<std::shared_ptr<const Program>> make_program(const ObjectKind* kind);
     /// The composed source of one stage for `kind` (null: the pass's own).
@@ -156,6 +169,9 @@ public:
     void clear_objects() { objects_.clear(); }
     /// Programs composed so far, one per object kind (plus the pass's own, once made).
     [[nodiscard]] std::size_t program_count() const { return programs_.size(); }
+    /// The retained scene this pass draws the submitted shapes of (RetainedScene::attach), or
+    /// null. draw_objects() draws them after the registered objects.
+    [[nodiscard]] RetainedScene* retained_scene() const { return scene_; }
     /// The pass's own program (no object), composed on first use.
     Result<const Program*> own_program();
 
@@ -172,6 +188,8 @@ public:
 
     /// Destroys the GPU objects (they are made again on the next execute(), e.g. on another device).
     void release_gpu();
+    /// Bytes uploaded for the pass's own uniform sets (pass_uniforms) since the pass was made.
+    [[nodiscard]] uint64_t pass_uniform_bytes() const { return pass_uniform_stats_.bytes; }
 
 protected:
     /// Whether the object's parts are composed into `stage` (default: yes, in every stage).
@@ -187,7 +205,9 @@ protected:
 
     /// Draws every registered object inside the current render pass: grouped by program, each
     /// group with its pipeline (`state` with the object's raster state) and `bind_pass` called to
-    /// bind the pass's resources (set 0) for the program; then render_with() per object.
+    /// bind the pass's resources (set 0) for the program; then render_with() per object. Then,
+    /// when the pass is attached to a RetainedScene, the scene's render queue for this pass
+    /// (RetainedScene::draw).
     using PassBinder = std::function<Status(Bindings& pass_set)>;
     Status draw_objects(fg::PassContext& context, const PipelineState& state, const PassBinder& bind_pass);
 
@@ -201,7 +221,19 @@ protected:
     /// Copies the outputs when capture() is on (standard passes call it at the end of execute()).
     Status record_capture(fg::PassContext& context);
 
+    /// Binds the pass's uniform block `block` from a buffer the pass keeps (a per-pass uniform
+    /// set), writing `bytes` into it only when they differ from the bytes it holds: a camera
+    /// that did not move costs no upload. Call it from a PassBinder (the pass's device is known
+    /// there).
+    Status bind_pass_uniforms(Bindings& set, std::string_view block, std::span<const std::byte> bytes);
+    template <class T>
+    Status pass_uniforms(Bindings& set, std::string_view block, const T& value) {
+        return bind_pass_uniforms(set, block, std::as_bytes(std::span<const T, 1>(&value, 1)));
+    }
+
 private:
+    friend class RetainedScene;
+
     Status use_device(rhi::Device& device);
     Result<std::pair<rhi::ShaderHandle, rhi::ShaderHandle>> shaders_of(const Program& program);
 
@@ -234,6 +266,10 @@ private:
     std::vector<SamplerEntry> samplers_;
     std::vector<CaptureEntry> captures_;
     bool capture_ = false;
+    /// The pass's own uniform sets (bind_pass_uniforms), one pool of one slot per block.
+    std::map<std::string, std::unique_ptr<UniformSetPool>, std::less<>> pass_sets_;
+    UploadStats pass_uniform_stats_;
+    RetainedScene* scene_ = nullptr;
 };
 
 // The protocol as free functions, as the paper names it.

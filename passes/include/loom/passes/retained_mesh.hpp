@@ -1,0 +1,70 @@
+#pragma once
+// The retained mesh kinds: the standard mesh objects (MeshVertex geometry, metallic-roughness
+// materials) as a RetainedScene draws them. Their part "retained-mesh" reads the object's
+// ObjectRecord from the scene's record buffer through a per-instance object index and the
+// material's MaterialUniforms from the scene's material buffer (shaders/include/loom/passes/
+// retained_object.glsl); their material parts are those of "pbr-mesh" and "checker-mesh", so a
+// retained object looks exactly like the MeshObject it replaces.
+//
+// Any kind can be drawn by a RetainedScene when it follows the same convention: its last vertex
+// buffer slot is per-instance with one Uint attribute at kObjectIndexLocation (object_index_layout()),
+// the object records are the storage buffer "ObjectRecords" and the material's set is the
+// uniform block "MaterialUniforms" (both optional: a pass may leave them out, as the shadow map
+// leaves out the material).
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "loom/passes/mesh_object.hpp"
+#include "loom/passes/object.hpp"
+#include "loom/passes/param.hpp"
+#include "loom/passes/shape.hpp"
+
+namespace loom::passes {
+
+/// Vertex input location of the per-instance object index.
+inline constexpr uint32_t kObjectIndexLocation = 15;
+
+/// The per-object uniform set of retained objects (std430 in the record buffer).
+struct ObjectRecord {
+    glm::mat4 model{1.0f};
+    glm::mat4 normal_matrix{1.0f};
+};
+static_assert(sizeof(ObjectRecord) == 128);
+
+/// The per-material set of the retained mesh kinds (std140), the members of ObjectUniforms'
+/// material half.
+struct MeshMaterialUniforms {
+    glm::vec4 base_color;
+    glm::vec4 secondary_color;
+    glm::vec4 emissive;
+    glm::vec4 material;  ///< metallic, roughness, pattern scale
+};
+static_assert(sizeof(MeshMaterialUniforms) == 64);
+
+/// The record of a model matrix: the matrix and its normal matrix (inverse transpose of its
+/// upper 3x3), computed as MeshObject computes them.
+ObjectRecord object_record(const glm::mat4& model);
+/// MeshMaterialUniforms of a MeshMaterial, as MeshObject packs them.
+MeshMaterialUniforms mesh_material_uniforms(const MeshMaterial& material);
+
+/// The per-instance vertex buffer slot carrying the object index (stride 4, one Uint at
+/// kObjectIndexLocation).
+rhi::VertexBufferLayout object_index_layout();
+
+/// The kind "retained-pbr-mesh": parts "retained-mesh" and "pbr-material".
+std::shared_ptr<const ObjectKind> retained_pbr_mesh_kind();
+/// The kind "retained-checker-mesh": parts "retained-mesh" and "checker-material".
+std::shared_ptr<const ObjectKind> retained_checker_mesh_kind();
+
+/// A material for the retained mesh kinds whose values follow `params` (set it to change
+/// them: only this material's set is uploaded again). Double-sided materials draw without
+/// culling (fixed at creation, from the value `params` has now).
+std::shared_ptr<Material> make_mesh_material(std::string name, std::shared_ptr<Param<MeshMaterial>> params);
+/// make_mesh_material of a fixed value.
+std::shared_ptr<Material> make_mesh_material(std::string name, const MeshMaterial& value);
+
+}  // namespace loom::passes

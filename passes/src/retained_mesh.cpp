@@ -1,0 +1,67 @@
+#include "loom/passes/retained_mesh.hpp"
+
+#include <cstring>
+
+namespace loom::passes {
+namespace {
+
+ShaderPart retained_mesh_part() {
+    return ShaderPart("retained-mesh", 2)
+        .stage_file(rhi::ShaderStage::Vertex, "loom/parts/retained_mesh.vert.glsl")
+        .stage_file(rhi::ShaderStage::Fragment, "loom/parts/retained_mesh.frag.glsl");
+}
+
+std::shared_ptr<const ObjectKind> retained_kind(std::string name, ShaderPart material) {
+    return std::make_shared<const ObjectKind>(
+        std::move(name), std::vector<ShaderPart>{retained_mesh_part(), std::move(material)},
+        std::vector<rhi::VertexBufferLayout>{mesh_vertex_layout(), object_index_layout()});
+}
+
+}  // namespace
+
+ObjectRecord object_record(const glm::mat4& model) {
+    // The same expressions as MeshObject::render, so both paths upload the same bits.
+    return ObjectRecord{model, glm::mat4(glm::transpose(glm::inverse(glm::mat3(model))))};
+}
+
+MeshMaterialUniforms mesh_material_uniforms(const MeshMaterial& material) {
+    return MeshMaterialUniforms{material.base_color, material.secondary_color, glm::vec4(material.emissive, 0.0f),
+                                glm::vec4(material.metallic, material.roughness, material.pattern_scale, 0.0f)};
+}
+
+rhi::VertexBufferLayout object_index_layout() {
+    rhi::VertexBufferLayout layout;
+    layout.stride = sizeof(uint32_t);
+    layout.step = rhi::VertexStepMode::PerInstance;
+    layout.attributes = {{kObjectIndexLocation, rhi::VertexFormat::Uint, 0}};
+    return layout;
+}
+
+std::shared_ptr<const ObjectKind> retained_pbr_mesh_kind() {
+    return retained_kind("retained-pbr-mesh",
+                         ShaderPart("pbr-material").stage_file(rhi::ShaderStage::Fragment, "loom/parts/pbr_material.frag.glsl"));
+}
+
+std::shared_ptr<const ObjectKind> retained_checker_mesh_kind() {
+    return retained_kind("retained-checker-mesh", ShaderPart("checker-material")
+                                                      .stage_file(rhi::ShaderStage::Fragment,
+                                                                  "loom/parts/checker_material.frag.glsl"));
+}
+
+std::shared_ptr<Material> make_mesh_material(std::string name, std::shared_ptr<Param<MeshMaterial>> params) {
+    const rhi::CullMode cull = params->value().double_sided ? rhi::CullMode::None : rhi::CullMode::Back;
+    auto uniforms = std::make_shared<UniformSet>(
+        "MaterialUniforms", UpdateFrequency::PerMaterial, static_cast<uint32_t>(sizeof(MeshMaterialUniforms)),
+        [params](std::span<std::byte> block) {
+            const MeshMaterialUniforms u = mesh_material_uniforms(params->value());
+            std::memcpy(block.data(), &u, sizeof(u));
+        },
+        std::vector<std::shared_ptr<ParamNode>>{params});
+    return std::make_shared<Material>(std::move(name), std::move(uniforms), std::vector<MaterialTexture>{}, cull);
+}
+
+std::shared_ptr<Material> make_mesh_material(std::string name, const MeshMaterial& value) {
+    return make_mesh_material(std::move(name), std::make_shared<InputParam<MeshMaterial>>(value));
+}
+
+}  // namespace loom::passes
