@@ -1,8 +1,8 @@
 // The retained object layer on both backends: submitted shapes render exactly like the naive
 // MeshObjects they replace; sorted queues bind every state key once and batch bundles into
-// indirect commands; only changed uniform sets are uploaded; lazy transforms follow their
-// parents; retracting releases what only that shape used; separate vertex streams work; errors
-// name the shape.
+// indirect commands (or one draw per command without indirect draws); only changed uniform
+// sets are uploaded; lazy transforms follow their parents; retracting releases what only that
+// shape used; separate vertex streams work; errors name the shape.
 #include <algorithm>
 #include <cstring>
 #include <memory>
@@ -215,6 +215,31 @@ TEST_P(RetainedSceneTest, SortedQueueBindsEveryStateKeyOnceAndBatchesByMesh) {
     std::set<uint32_t> slots(instances.begin(), instances.end());
     EXPECT_EQ(slots.size(), scene.objects.size());
     for (const auto& shape : objects->shapes) EXPECT_TRUE(slots.count(*retained.object_slot(*shape)));
+}
+
+TEST_P(RetainedSceneTest, WithoutIndirectDrawsEveryCommandIsOneDrawOfTheSamePicture) {
+    // RetainedConfig::indirect = false: what a device without indirect draws gets.
+    const ObjectScene scene = make_object_scene(small_spec());
+    std::vector<rhi::Image> naive;
+    render_naive(scene, 48, naive);
+    auto objects = make_retained_objects(scene);
+    ASSERT_TRUE(objects.ok());
+    passes::RetainedConfig config;
+    config.indirect = false;
+    RetainedScene retained(config);
+    GBufferGraph graph(device(), 48, scene.camera);
+    ASSERT_TRUE(retained.attach(graph.pass()).ok());
+    for (const auto& shape : objects->shapes) ASSERT_TRUE(retained.submit(shape).ok());
+    ASSERT_TRUE(graph.frame().ok());
+    const uint64_t keys = distinct_state_keys(scene);
+    const uint64_t pairs = distinct_key_mesh_pairs(scene);
+    ASSERT_GT(pairs, keys) << "the scene must tell one draw per batch from one per command";
+    EXPECT_EQ(retained.stats().state_changes, keys);
+    EXPECT_EQ(retained.stats().draw_calls, pairs);
+    EXPECT_EQ(device().last_frame_stats().draw_calls, pairs);
+    std::vector<rhi::Image> maps;
+    read_maps(graph, maps);
+    expect_same_maps(naive, maps, "retained_direct");
 }
 
 TEST_P(RetainedSceneTest, SubmissionOrderQueueBindsAgainWheneverTheKeyChanges) {
