@@ -3,28 +3,14 @@
 #include <algorithm>
 
 #include "loom/framegraph/resolved_spec.hpp"
+#include "loom/passes/geometry_buffers.hpp"
 #include "loom/passes/retained_scene.hpp"
 
 namespace loom::passes {
 namespace {
 
-bool same_layouts(const std::vector<rhi::VertexBufferLayout>& a, const std::vector<rhi::VertexBufferLayout>& b) {
-    if (a.size() != b.size()) return false;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        if (a[i].stride != b[i].stride || a[i].step != b[i].step || a[i].attributes.size() != b[i].attributes.size()) {
-            return false;
-        }
-        for (std::size_t j = 0; j < a[i].attributes.size(); ++j) {
-            const rhi::VertexAttribute& x = a[i].attributes[j];
-            const rhi::VertexAttribute& y = b[i].attributes[j];
-            if (x.location != y.location || x.format != y.format || x.offset != y.offset) return false;
-        }
-    }
-    return true;
-}
-
 bool same_kind(const ObjectKind& a, const ObjectKind& b) {
-    return &a == &b || (a.name() == b.name() && a.parts() == b.parts() && same_layouts(a.vertex_buffers(), b.vertex_buffers()));
+    return &a == &b || (a.name() == b.name() && a.parts() == b.parts() && same_vertex_layouts(a.vertex_buffers(), b.vertex_buffers()));
 }
 
 bool same_sampler(const rhi::SamplerDesc& a, const rhi::SamplerDesc& b) {
