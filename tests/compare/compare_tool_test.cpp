@@ -64,7 +64,9 @@ TEST(CompareOptions, MistakesAreOneLineErrorsNamingTheArgument) {
 class SceneFilesTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        root_ = output_dir() / "compare" / "scene_files" / "models";
+        // One tree per test: ctest runs this fixture's tests in parallel, and each rebuilds it.
+        root_ = output_dir() / "compare" / "scene_files" /
+                ::testing::UnitTest::GetInstance()->current_test_info()->name() / "models";
         std::filesystem::remove_all(root_);
         for (const char* file : {"b/model.gltf", "a/model.GLB", "a/notes.txt", "a/data.bin", "invalid/broken.gltf",
                                  "c/invalid/deeper.glb"}) {

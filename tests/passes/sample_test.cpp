@@ -28,7 +28,9 @@ std::string read_file(const std::filesystem::path& path) {
 
 /// Runs loom-deferred with `arguments`; returns its exit status and what it printed.
 int run_sample(const std::string& arguments, std::string& output) {
-    const std::filesystem::path log = output_dir() / "passes" / "sample_run.log";
+    // One log per test: ctest runs this file's tests in parallel.
+    const std::filesystem::path log =
+        output_dir() / "passes" / (std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + ".log");
     std::filesystem::create_directories(log.parent_path());
     const std::string command = std::string("\"") + LOOM_DEFERRED_EXE + "\" " + arguments + " > \"" + log.string() + "\" 2>&1";
     const int status = std::system(command.c_str());
