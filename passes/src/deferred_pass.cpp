@@ -25,7 +25,7 @@ Status DeferredPass::execute(fg::PassContext& context) {
     if (!nearest) return nearest.take_error();
     rhi::SamplerHandle comparison;
     if (parts_.shadows) {
-        auto made = sampler(device, detail::shadow_comparison_sampler_desc());
+        auto made = sampler(device, shadow_comparison_sampler_desc());
         if (!made) return made.take_error();
         comparison = *made;
     }
@@ -38,7 +38,7 @@ Status DeferredPass::execute(fg::PassContext& context) {
     }
     context.begin_render_pass(ports);
     Status drawn = draw_fullscreen(context, *state, [&](Bindings& set) -> Status {
-        set.uniforms("LightingUniforms", detail::lighting_uniforms(view_))
+        set.uniforms("LightingUniforms", lighting_uniforms(view_))
             .texture("gbuffer_position", context.texture("position"), *nearest)
             .texture("gbuffer_normal", context.texture("normal"), *nearest)
             .texture("gbuffer_albedo", context.texture("albedo"), *nearest);
@@ -46,7 +46,7 @@ Status DeferredPass::execute(fg::PassContext& context) {
             LOOM_TRY(detail::bind_shadow_receiver(set, view_.shadow, context.texture("shadow_map"),
                                                   context.extent("shadow_map").width, comparison));
         }
-        if (parts_.high_pass) set.uniforms("HighPassUniforms", detail::HighPassUniforms{glm::vec4(threshold_, 0, 0, 0)});
+        if (parts_.high_pass) set.uniforms("HighPassUniforms", HighPassUniforms{glm::vec4(threshold_, 0, 0, 0)});
         return set.status();
     });
     context.end_render_pass();

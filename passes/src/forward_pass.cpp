@@ -23,7 +23,7 @@ Status ForwardPass::execute(fg::PassContext& context) {
     state->depth = rhi::DepthState{true, true, rhi::CompareOp::Less};
     rhi::SamplerHandle comparison;
     if (parts_.shadows) {
-        auto made = sampler(context.device(), detail::shadow_comparison_sampler_desc());
+        auto made = sampler(context.device(), shadow_comparison_sampler_desc());
         if (!made) return made.take_error();
         comparison = *made;
     }
@@ -34,13 +34,13 @@ Status ForwardPass::execute(fg::PassContext& context) {
     if (parts_.high_pass) ports.emplace_back("high_pass", std::array<double, 4>{0.0, 0.0, 0.0, 1.0});
     context.begin_render_pass(ports, fg::DepthPort("depth", 1.0f));
     Status drawn = draw_objects(context, *state, [&](Bindings& set) -> Status {
-        set.uniforms("CameraUniforms", detail::camera_uniforms(view_.camera))
-            .uniforms("LightingUniforms", detail::lighting_uniforms(view_));
+        set.uniforms("CameraUniforms", camera_uniforms(view_.camera))
+            .uniforms("LightingUniforms", lighting_uniforms(view_));
         if (parts_.shadows) {
             LOOM_TRY(detail::bind_shadow_receiver(set, view_.shadow, context.texture("shadow_map"),
                                                   context.extent("shadow_map").width, comparison));
         }
-        if (parts_.high_pass) set.uniforms("HighPassUniforms", detail::HighPassUniforms{glm::vec4(threshold_, 0, 0, 0)});
+        if (parts_.high_pass) set.uniforms("HighPassUniforms", HighPassUniforms{glm::vec4(threshold_, 0, 0, 0)});
         return set.status();
     });
     context.end_render_pass();

@@ -22,7 +22,7 @@ Status GeometryPass::execute(fg::PassContext& context) {
                               fg::DepthPort("depth", 1.0f));
     // The camera is a per-pass set: uploaded only in frames where it moved.
     Status drawn = draw_objects(context, *state, [&](Bindings& set) {
-        return pass_uniforms(set, "CameraUniforms", detail::camera_uniforms(camera_));
+        return pass_uniforms(set, "CameraUniforms", camera_uniforms(camera_));
     });
     context.end_render_pass();
     LOOM_TRY(drawn);

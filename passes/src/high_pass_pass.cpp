@@ -25,7 +25,7 @@ Status HighPassPass::execute(fg::PassContext& context) {
     context.begin_render_pass({port});
     Status drawn = draw_fullscreen(context, *state, [&](Bindings& set) {
         set.texture("source", context.texture("source"), *nearest)
-            .uniforms("HighPassUniforms", detail::HighPassUniforms{glm::vec4(threshold_, 0.0f, 0.0f, 0.0f)});
+            .uniforms("HighPassUniforms", HighPassUniforms{glm::vec4(threshold_, 0.0f, 0.0f, 0.0f)});
         return set.status();
     });
     context.end_render_pass();

@@ -19,7 +19,7 @@ Status ShadowMapPass::execute(fg::PassContext& context) {
     context.begin_depth_pass(fg::DepthPort("shadow_map", 1.0f));
     // The light's view is a per-pass set: uploaded only in frames where it changed.
     Status drawn = draw_objects(context, *state, [&](Bindings& set) {
-        return pass_uniforms(set, "ShadowCasterUniforms", detail::ShadowCasterUniforms{light_view_projection_});
+        return pass_uniforms(set, "ShadowCasterUniforms", ShadowCasterUniforms{light_view_projection_});
     });
     context.end_render_pass();
     LOOM_TRY(drawn);

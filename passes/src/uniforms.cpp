@@ -1,6 +1,6 @@
 #include "uniforms.hpp"
 
-namespace loom::passes::detail {
+namespace loom::passes {
 
 CameraUniforms camera_uniforms(const Camera& camera) {
     return CameraUniforms{camera.view_projection(), glm::vec4(camera.position, 1.0f)};
@@ -19,14 +19,10 @@ LightingUniforms lighting_uniforms(const SceneView& view) {
     return u;
 }
 
-Status bind_shadow_receiver(Bindings& set, const ShadowSettings& settings, rhi::TextureHandle shadow_map,
-                            uint32_t map_size, rhi::SamplerHandle comparison_sampler) {
-    ShadowUniforms u;
-    u.light_view_projection = settings.light_view_projection;
-    u.params = glm::vec4(1.0f / static_cast<float>(map_size == 0 ? 1 : map_size), settings.normal_offset,
-                         settings.depth_bias, static_cast<float>(settings.pcf_radius));
-    set.uniforms("ShadowUniforms", u).texture("shadow_map", shadow_map, comparison_sampler);
-    return set.status();
+ShadowUniforms shadow_uniforms(const ShadowSettings& settings, uint32_t map_size) {
+    return ShadowUniforms{settings.light_view_projection,
+                          glm::vec4(1.0f / static_cast<float>(map_size == 0 ? 1 : map_size), settings.normal_offset,
+                                    settings.depth_bias, static_cast<float>(settings.pcf_radius))};
 }
 
 rhi::SamplerDesc shadow_comparison_sampler_desc() {
@@ -39,4 +35,13 @@ rhi::SamplerDesc shadow_comparison_sampler_desc() {
     return desc;
 }
 
-}  // namespace loom::passes::detail
+namespace detail {
+
+Status bind_shadow_receiver(Bindings& set, const ShadowSettings& settings, rhi::TextureHandle shadow_map,
+                            uint32_t map_size, rhi::SamplerHandle comparison_sampler) {
+    set.uniforms("ShadowUniforms", shadow_uniforms(settings, map_size)).texture("shadow_map", shadow_map, comparison_sampler);
+    return set.status();
+}
+
+}  // namespace detail
+}  // namespace loom::passes

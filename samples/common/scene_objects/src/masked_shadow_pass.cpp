@@ -1,7 +1,7 @@
 #include "loom/scene_objects/masked_shadow_pass.hpp"
 
+#include "loom/passes/part_uniforms.hpp"
 #include "loom/passes/parts.hpp"
-#include "pass_uniforms.hpp"
 
 namespace loom::scene_objects {
 namespace {
@@ -30,7 +30,7 @@ Status MaskedShadowPass::execute(fg::PassContext& context) {
     state->depth = rhi::DepthState{true, true, rhi::CompareOp::Less};
     context.begin_depth_pass(fg::DepthPort("shadow_map", 1.0f));
     // The light is a direction: no position to shade from (the material needs none).
-    const detail::CameraUniforms light{light_view_projection_, glm::vec4(0.0f)};
+    const passes::CameraUniforms light{light_view_projection_, glm::vec4(0.0f)};
     Status drawn = draw_objects(context, *state, [&](passes::Bindings& set) {
         set.uniforms("CameraUniforms", light);
         return set.status();

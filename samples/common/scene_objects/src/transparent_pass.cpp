@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "loom/passes/part_uniforms.hpp"
 #include "loom/passes/parts.hpp"
-#include "pass_uniforms.hpp"
 
 namespace loom::scene_objects {
 namespace {
@@ -47,16 +47,6 @@ rhi::BlendState over_blend() {
     blend.src_alpha = rhi::BlendFactor::One;
     blend.dst_alpha = rhi::BlendFactor::OneMinusSrcAlpha;
     return blend;
-}
-
-rhi::SamplerDesc shadow_comparison_sampler_desc() {
-    rhi::SamplerDesc desc;
-    desc.name = "shadow comparison";
-    desc.min_filter = rhi::Filter::Linear;
-    desc.mag_filter = rhi::Filter::Linear;
-    desc.max_lod = 0.0f;
-    desc.compare = rhi::CompareOp::LessEqual;
-    return desc;
 }
 
 }  // namespace
@@ -118,18 +108,18 @@ Status TransparentPass::execute(fg::PassContext& context) {
     state->blend.assign(colors.size(), over_blend());
     rhi::SamplerHandle comparison;
     if (parts_.shadows) {
-        auto made = sampler(context.device(), shadow_comparison_sampler_desc());
+        auto made = sampler(context.device(), passes::shadow_comparison_sampler_desc());
         if (!made) return made.take_error();
         comparison = *made;
     }
     auto bind_pass = [&](passes::Bindings& set) -> Status {
-        set.uniforms("CameraUniforms", detail::camera_uniforms(view_.camera))
-            .uniforms("LightingUniforms", detail::lighting_uniforms(view_));
+        set.uniforms("CameraUniforms", passes::camera_uniforms(view_.camera))
+            .uniforms("LightingUniforms", passes::lighting_uniforms(view_));
         if (parts_.shadows) {
-            set.uniforms("ShadowUniforms", detail::shadow_uniforms(view_.shadow, context.extent("shadow_map").width))
+            set.uniforms("ShadowUniforms", passes::shadow_uniforms(view_.shadow, context.extent("shadow_map").width))
                 .texture("shadow_map", context.texture("shadow_map"), comparison);
         }
-        if (parts_.high_pass) set.uniforms("HighPassUniforms", detail::HighPassUniforms{glm::vec4(threshold_, 0, 0, 0)});
+        if (parts_.high_pass) set.uniforms("HighPassUniforms", passes::HighPassUniforms{glm::vec4(threshold_, 0, 0, 0)});
         return set.status();
     };
 
