@@ -6,34 +6,6 @@
 #include "loom_test/test_support.hpp"
 
 namespace loom::test {
-namespace {
-
-constexpr const char* kFullscreenVert = R"(#version 450
-void main() {
-    vec2 p = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
-    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
-
-constexpr const char* kPatternFrag = R"(#version 450
-layout(location = 0) out vec4 color;
-void main() {
-    ivec2 p = ivec2(gl_FragCoord.xy);
-    color = vec4(float(p.x % 16) / 15.0, float(p.y % 16) / 15.0, float((p.x / 16 + p.y / 16) % 2), 1.0);
-}
-)";
-
-constexpr const char* kOverlayFrag = R"(#version 450
-layout(set = 0, binding = 0) uniform sampler2D pattern;
-layout(location = 0) out vec4 color;
-void main() {
-    color = texelFetch(pattern, ivec2(gl_FragCoord.xy), 0);
-}
-)";
-
-const fg::TextureSpec kRgba8 = fg::TextureSpec::of(rhi::Format::RGBA8Unorm);
-
-}  // namespace
 
 Rgba8 expected_pattern(uint32_t x, uint32_t y) {
     return {static_cast<uint8_t>(17 * (x % 16)), static_cast<uint8_t>(17 * (y % 16)),
@@ -79,78 +51,6 @@ Result<rhi::ShaderHandle> compile_shader(rhi::Device& device, rhi::ShaderStage s
     auto module = compiler.compile({name, stage, source, {}});
     if (!module.ok()) return module.take_error();
     return device.create_shader(*module);
-}
-
-OverlayGraph::OverlayGraph(rhi::Device& device) : device_(device) {
-    auto make = [&]() -> Status {
-        auto vs = compile_shader(device_, rhi::ShaderStage::Vertex, "fullscreen.vert", kFullscreenVert);
-        if (!vs.ok()) return vs.take_error();
-        vertex_ = *vs;
-        auto pattern_fs = compile_shader(device_, rhi::ShaderStage::Fragment, "pattern.frag", kPatternFrag);
-        if (!pattern_fs.ok()) return pattern_fs.take_error();
-        pattern_fragment_ = *pattern_fs;
-        auto overlay_fs = compile_shader(device_, rhi::ShaderStage::Fragment, "overlay.frag", kOverlayFrag);
-        if (!overlay_fs.ok()) return overlay_fs.take_error();
-        overlay_fragment_ = *overlay_fs;
-        rhi::GraphicsPipelineDesc desc;
-        desc.name = "pattern";
-        desc.vertex = vertex_;
-        desc.fragment = pattern_fragment_;
-        desc.color_formats = {rhi::Format::RGBA8Unorm};
-        auto pattern = device_.create_graphics_pipeline(desc);
-        if (!pattern.ok()) return pattern.take_error();
-        pattern_ = *pattern;
-        desc.name = "overlay";
-        desc.fragment = overlay_fragment_;
-        auto overlay = device_.create_graphics_pipeline(desc);
-        if (!overlay.ok()) return overlay.take_error();
-        overlay_ = *overlay;
-
-        rhi::SamplerDesc sampler_desc;
-        sampler_desc.name = "nearest";
-        sampler_desc.min_filter = sampler_desc.mag_filter = rhi::Filter::Nearest;
-        auto sampler = device_.create_sampler(sampler_desc);
-        if (!sampler.ok()) return sampler.take_error();
-        sampler_ = *sampler;
-
-        const rhi::PipelineHandle pattern_pipeline = pattern_, overlay_pipeline = overlay_;
-        const rhi::SamplerHandle nearest = sampler_;
-        LOOM_TRY(graph_.add_pass(fg::Pass("pattern").output("color", kRgba8).on_execute([pattern_pipeline](fg::PassContext& ctx) {
-            ctx.begin_render_pass({{"color"}});
-            ctx.commands().set_pipeline(pattern_pipeline);
-            ctx.commands().draw(3);
-            ctx.end_render_pass();
-            return Status{};
-        })));
-        fg::Pass overlay_pass("overlay");
-        overlay_pass.input("pattern", kRgba8).declare("target", fg::PortKind::InOut, kRgba8, /*optional=*/true);
-        overlay_pass.on_execute([overlay_pipeline, nearest](fg::PassContext& ctx) {
-            const fg::Extent2D size = ctx.extent("target");
-            ctx.begin_render_pass({{"target"}});
-            ctx.commands().set_pipeline(overlay_pipeline);
-            const rhi::Viewport quadrant{0.0f, 0.0f, static_cast<float>(size.width / 2), static_cast<float>(size.height / 2)};
-            ctx.commands().set_viewport(quadrant);
-            ctx.commands().set_scissor({0, 0, size.width / 2, size.height / 2});
-            ctx.commands().set_bind_group(0, rhi::BindGroup{}.texture(0, ctx.texture("pattern"), nearest));
-            ctx.commands().draw(3);
-            ctx.end_render_pass();
-            return Status{};
-        });
-        LOOM_TRY(graph_.add_pass(std::move(overlay_pass)));
-        LOOM_TRY(graph_.connect(fg::port("pattern", "color"), fg::port("overlay", "pattern")));
-        LOOM_TRY(graph_.mark_output(target_port()));
-        return {};
-    };
-    status_ = make();
-}
-
-OverlayGraph::~OverlayGraph() {
-    if (sampler_) (void)device_.destroy(sampler_);
-    if (overlay_) (void)device_.destroy(overlay_);
-    if (pattern_) (void)device_.destroy(pattern_);
-    for (rhi::ShaderHandle s : {overlay_fragment_, pattern_fragment_, vertex_}) {
-        if (s) (void)device_.destroy(s);
-    }
 }
 
 }  // namespace loom::test

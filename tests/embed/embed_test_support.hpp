@@ -1,6 +1,6 @@
 #pragma once
-// Shared by the embedding tests: the small "overlay" frame graph an engine embeds (the same
-// one samples/embed_gl and samples/embed_vulkan draw), with the exact picture it must give.
+// Shared by the embedding tests: the exact picture of the small "overlay" frame graph an engine
+// embeds (samples/embed_gl/overlay_graph.hpp, the one samples/embed_gl and samples/embed_vulkan draw).
 //
 //   pattern (output "color", RGBA8Unorm, frame-sized): texel (x, y) =
 //       (x % 16 / 15, y % 16 / 15, (x / 16 + y / 16) % 2, 1)        (exact in 8-bit unorm)
@@ -18,6 +18,7 @@
 #include "loom/framegraph/framegraph.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/image.hpp"
+#include "overlay_graph.hpp"
 
 /// Assigns the value of a Result expression to `lhs`, or fails the test with its error.
 #define LOOM_EMBED_CONCAT_INNER(a, b) a##b
@@ -53,29 +54,9 @@ Rgba8 expected_overlay(uint32_t x, uint32_t y, uint32_t width, uint32_t height);
 /// output_dir()/embed/<name>.png.
 ::testing::AssertionResult matches_overlay(const rhi::Image& image, const std::string& name);
 
-/// The overlay graph's pipelines on one device, and the graph itself.
-class OverlayGraph {
-public:
-    /// Creates the pipelines; check status() afterwards.
-    explicit OverlayGraph(rhi::Device& device);
-    ~OverlayGraph();
-    OverlayGraph(const OverlayGraph&) = delete;
-    OverlayGraph& operator=(const OverlayGraph&) = delete;
-
-    [[nodiscard]] const Status& status() const { return status_; }
-    /// pattern -> overlay, with overlay.target marked as the graph output.
-    fg::FrameGraph& graph() { return graph_; }
-    /// The port the application's target is imported to.
-    static fg::PortRef target_port() { return fg::port("overlay", "target"); }
-
-private:
-    rhi::Device& device_;
-    Status status_;
-    rhi::ShaderHandle vertex_, pattern_fragment_, overlay_fragment_;
-    rhi::PipelineHandle pattern_, overlay_;
-    rhi::SamplerHandle sampler_;
-    fg::FrameGraph graph_;
-};
+/// The overlay graph both embedding samples run (samples/embed_gl/overlay_graph.hpp, compiled
+/// into the tests too, so they run without the samples).
+using samples::OverlayGraph;
 
 /// Compiles GLSL 450 for `device` (runtime compiler).
 Result<rhi::ShaderHandle> compile_shader(rhi::Device& device, rhi::ShaderStage stage, const std::string& name,

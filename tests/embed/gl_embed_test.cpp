@@ -199,8 +199,8 @@ TEST_F(GlEmbed, LoomRendersRightAndRestoresTheApplicationsState) {
 
     LOOM_EMBED_ASSIGN(const rhi::TextureHandle imported, gl::import_gl_texture(*device_, target, target_desc()));
     {
-        OverlayGraph overlay(*device_);
-        LOOM_EMBED_OK(overlay.status());
+        LOOM_EMBED_ASSIGN(auto overlay_graph, OverlayGraph::create(*device_, rhi::Format::RGBA8Unorm));
+        OverlayGraph& overlay = *overlay_graph;
         fg::Executor executor(*device_);
         executor.import_texture(OverlayGraph::target_port(), imported, rhi::ResourceState::ShaderRead);
         fg::PlanOptions options;
@@ -337,8 +337,8 @@ TEST_F(GlEmbed, ImportedTextureIsTheGraphOutput) {
     EXPECT_EQ(name, target);
     const rhi::ResourceStats stats_before = device_->resource_stats();
     {
-        OverlayGraph overlay(*device_);
-        LOOM_EMBED_OK(overlay.status());
+        LOOM_EMBED_ASSIGN(auto overlay_graph, OverlayGraph::create(*device_, rhi::Format::RGBA8Unorm));
+        OverlayGraph& overlay = *overlay_graph;
         fg::Executor executor(*device_);
         executor.import_texture(OverlayGraph::target_port(), imported, rhi::ResourceState::ShaderRead);
         fg::PlanOptions options;
@@ -365,8 +365,8 @@ TEST_F(GlEmbed, BlitToApplicationFramebufferKeepsTopRowOnTop) {
     const GLuint target = app_target();
     LOOM_EMBED_ASSIGN(const rhi::TextureHandle imported, gl::import_gl_texture(*device_, target, target_desc()));
     {
-        OverlayGraph overlay(*device_);
-        LOOM_EMBED_OK(overlay.status());
+        LOOM_EMBED_ASSIGN(auto overlay_graph, OverlayGraph::create(*device_, rhi::Format::RGBA8Unorm));
+        OverlayGraph& overlay = *overlay_graph;
         fg::Executor executor(*device_);
         executor.import_texture(OverlayGraph::target_port(), imported, rhi::ResourceState::ShaderRead);
         fg::PlanOptions options;

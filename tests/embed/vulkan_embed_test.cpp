@@ -99,8 +99,8 @@ TEST_F(VulkanEmbed, FramesInApplicationCommandBuffers) {
     const auto& image = app_image();
     LOOM_EMBED_ASSIGN(const rhi::TextureHandle texture,
                       vulkan::import_vulkan_image(*device_, AppVulkanDevice::external(image, "engine target", VK_IMAGE_LAYOUT_UNDEFINED)));
-    OverlayGraph overlay(*device_);
-    LOOM_EMBED_OK(overlay.status());
+    LOOM_EMBED_ASSIGN(auto overlay_graph, OverlayGraph::create(*device_, rhi::Format::RGBA8Unorm));
+    OverlayGraph& overlay = *overlay_graph;
     fg::Executor executor(*device_);
     uint64_t last_signal = 0;
     for (int frame = 0; frame < 5; ++frame) {
@@ -120,8 +120,8 @@ TEST_F(VulkanEmbed, ImagesAreHandedBackInTheLayoutAsked) {
     const auto& image = app_image(kTargetUsage | VK_IMAGE_USAGE_STORAGE_BIT);
     LOOM_EMBED_ASSIGN(const rhi::TextureHandle texture,
                       vulkan::import_vulkan_image(*device_, AppVulkanDevice::external(image, "engine target", VK_IMAGE_LAYOUT_UNDEFINED)));
-    OverlayGraph overlay(*device_);
-    LOOM_EMBED_OK(overlay.status());
+    LOOM_EMBED_ASSIGN(auto overlay_graph, OverlayGraph::create(*device_, rhi::Format::RGBA8Unorm));
+    OverlayGraph& overlay = *overlay_graph;
     fg::Executor executor(*device_);
     for (rhi::ResourceState state : {rhi::ResourceState::ShaderRead, rhi::ResourceState::RenderTarget,
                                      rhi::ResourceState::Storage, rhi::ResourceState::CopySrc, rhi::ResourceState::CopyDst}) {
@@ -177,8 +177,8 @@ TEST_F(VulkanEmbed, LoomsOwnFramesRunOnTheApplicationsQueue) {
     app_->submit_and_wait(cmd);
     LOOM_EMBED_OK(vulkan::set_image_layout(*device_, texture, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL));
     {
-        OverlayGraph overlay(*device_);
-        LOOM_EMBED_OK(overlay.status());
+        LOOM_EMBED_ASSIGN(auto overlay_graph, OverlayGraph::create(*device_, rhi::Format::RGBA8Unorm));
+        OverlayGraph& overlay = *overlay_graph;
         fg::Executor executor(*device_);
         executor.import_texture(OverlayGraph::target_port(), texture, rhi::ResourceState::ShaderRead);
         fg::PlanOptions options;
