@@ -1,6 +1,8 @@
 // docs/framegraph.md: the guide's examples, compiled; plan_framegraph_examples() and
 // execute_framegraph_example() run them (snippets_test.cpp).
 #include <array>
+#include <string>
+#include <vector>
 
 #include "snippets.hpp"
 
@@ -103,8 +105,13 @@ Status plan_framegraph_examples() {
         // plan->get()->texture_of("light", "hdr") == plan->get()->texture_of("ui", "hdr")
         // [/docs:plan]
         if (!plan) return plan.take_error();
-        LOOM_TRY(fail_unless(plan->get()->texture_of("light", "hdr") == plan->get()->texture_of("ui", "hdr"),
+        const fg::Plan& p = **plan;
+        LOOM_TRY(fail_unless(p.texture_of("light", "hdr") == p.texture_of("ui", "hdr"),
                              "the inout shares the texture of its source"));
+        LOOM_TRY(fail_unless(p.order.size() == 3, "three passes are scheduled"));
+        LOOM_TRY(fail_unless(p.summary.naive_textures == 3, "three outputs, naively three textures"));
+        // albedo and normal end at light, which starts hdr: no sharing possible in a chain of three.
+        LOOM_TRY(fail_unless(p.summary.textures == 3, "three textures"));
     }
     {
         fg::FrameGraph graph;
@@ -112,7 +119,11 @@ Status plan_framegraph_examples() {
         auto id = graph.add_pass(DeferredShadowPass{});  // ports: position, normal, albedo, color, shadow_map, high_pass
         // [/docs:add-parts]
         if (!id) return id.take_error();
-        LOOM_TRY(fail_unless(graph.pass(*id).ports().size() == 6, "the composed pass has six ports"));
+        std::vector<std::string> names;
+        for (const fg::Port& port : graph.pass(*id).ports()) names.push_back(port.name);
+        LOOM_TRY(fail_unless(names == std::vector<std::string>{"position", "normal", "albedo", "color", "shadow_map",
+                                                               "high_pass"},
+                             "the composed pass has the parts' ports in order"));
     }
     return {};
 }
