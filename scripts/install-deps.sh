@@ -1,13 +1,34 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages loom needs to build, test and run, and only those that
 # are missing. Does nothing (and needs no root) when everything is present.
+#
+#   scripts/install-deps.sh           install what is missing
+#   scripts/install-deps.sh --list    print every package with "installed" or "missing"; install nothing
+#   scripts/install-deps.sh --fuzz    also the fuzzing toolchain (clang with libFuzzer; make fuzz)
+#
+# Packages are installed with --no-install-recommends, so every package whose files loom's
+# build touches must be named here, even when another package's config file refers to it.
 set -euo pipefail
+
+mode=install
+with_fuzz=0
+for arg in "$@"; do
+  case $arg in
+    --list) mode=list ;;
+    --fuzz) with_fuzz=1 ;;
+    *) echo "install-deps: unknown option '$arg' (expected --list or --fuzz)" >&2; exit 2 ;;
+  esac
+done
 
 packages=(
   # toolchain
   build-essential cmake ninja-build pkg-config
   # shader toolchain: glslang (GLSL -> SPIR-V) and SPIRV-Cross (SPIR-V -> GL GLSL, reflection)
   glslang-dev spirv-tools libspirv-cross-c-shared-dev
+  # glslang-dev's CMake package (glslang-targets-none.cmake) imports /usr/bin/glslangValidator
+  # and find_package(glslang) fails when that file is missing; it ships in glslang-tools, which
+  # glslang-dev does not depend on. Without it a fresh machine stops at CMake configure.
+  glslang-tools
   # OpenGL: EGL (headless), libepoxy (function loading), GLFW (windows)
   libegl-dev libgl-dev libepoxy-dev libglfw3-dev
   # Vulkan: loader, headers, validation layer
@@ -24,11 +45,24 @@ packages=(
   graphviz
 )
 
+# make fuzz: libFuzzer and the sanitizer runtimes come with Debian 12's clang 14.
+(( with_fuzz )) && packages+=(clang-14 libclang-rt-14-dev)
+
 missing=()
 for p in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
-  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+  if [[ "$status" == "install ok installed" ]]; then
+    [[ $mode == list ]] && printf '  %-32s installed\n' "$p"
+  else
+    missing+=("$p")
+    [[ $mode == list ]] && printf '  %-32s missing\n' "$p"
+  fi
 done
+
+if [[ $mode == list ]]; then
+  echo "install-deps: ${#packages[@]} packages, ${#missing[@]} missing${missing:+: ${missing[*]}}"
+  exit 0
+fi
 
 if [[ ${#missing[@]} -eq 0 ]]; then
   exit 0
