@@ -4,7 +4,7 @@ PRESET ?= release
 JOBS ?= $(shell nproc)
 OUT ?= out
 
-.PHONY: demo test deps configure build asan clean
+.PHONY: demo test deps configure build asan asan-gpu-free clean
 
 deps:
 	./scripts/install-deps.sh
@@ -26,6 +26,11 @@ test: build
 # The same tests under AddressSanitizer + UndefinedBehaviorSanitizer.
 asan:
 	$(MAKE) test PRESET=asan
+
+# The GPU-free tests (frame graph, graph JSON, glTF import, rhi utilities) under ASan + UBSan,
+# building only what they need; .ci/run runs it after `make test`.
+asan-gpu-free:
+	$(MAKE) test PRESET=asan-gpu-free
 
 clean:
 	rm -rf build $(OUT)
