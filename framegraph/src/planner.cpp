@@ -375,12 +375,13 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
         const PlanResource& resource = plan.resources[r];
         problem.passes[resource.lifetime.first].begins.push_back(r);
         problem.resources.push_back(
-            AllocationResource{resource.spec_class, resource.lifetime, resource.bytes, resource.alignment});
+            AllocationResource{resource.spec_class, resource.lifetime, resource.bytes, resource.alignment, resource.name});
     }
+    std::vector<bool> listed_output(plan.resources.size(), false);
     for (const PortAddress& out : graph.outputs()) {
         const uint32_t r = resource_of_port[ports.flat(out)];
-        if (r != kNone && std::find(problem.graph_outputs.begin(), problem.graph_outputs.end(), r) ==
-                              problem.graph_outputs.end()) {
+        if (r != kNone && !listed_output[r]) {
+            listed_output[r] = true;
             problem.graph_outputs.push_back(r);
         }
     }
