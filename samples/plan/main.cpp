@@ -126,13 +126,14 @@ int main(int argc, char** argv) {
 
     if (!args.dot.empty()) {
         std::ofstream dot(args.dot, std::ios::binary);
-        dot << loom::fg::plan_to_dot(*plan);
+        loom::fg::write_plan_dot(dot, *plan);
         if (!dot) return fail(1, "Io: cannot write " + args.dot);
     }
     if (args.json) {
-        std::cout << loom::fg::plan_to_json(*plan) << "\n";
+        loom::fg::write_plan_json(std::cout, *plan);
+        std::cout << "\n";
     } else {
-        std::cout << loom::fg::plan_to_table(*plan);
+        loom::fg::write_plan_table(std::cout, *plan);
     }
     return std::cout.good() ? 0 : 1;
 }
