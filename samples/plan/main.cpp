@@ -106,6 +106,8 @@ std::optional<std::string> parse_arguments(int argc, char** argv, Arguments& arg
 }  // namespace
 
 int main(int argc, char** argv) {
+    // The plan is streamed in many small pieces; iostreams need not keep stdio's order.
+    std::ios::sync_with_stdio(false);
     Arguments args;
     if (auto problem = parse_arguments(argc, argv, args)) return fail(2, *problem);
     if (args.help) {
