@@ -53,6 +53,26 @@ TEST(Scale, PassWithTenThousandPortsMergesAndPlansEveryPort) {
     EXPECT_EQ(plan->order.at(0).ports.at(9999).resource, 9999u);
 }
 
+TEST(Scale, FiveThousandResourcesOfFiftyShapesFormFiftyClasses) {
+    constexpr uint32_t kPorts = 5000;
+    Pass wide("wide");
+    for (uint32_t i = 0; i < kPorts; ++i) {
+        wide.output(numbered("o", i), TextureSpec::of(Format::RGBA8Unorm).with_size(1 + i % 50, 1));
+    }
+    FrameGraph graph;
+    ASSERT_TRUE(graph.add_pass(std::move(wide)).ok());
+    for (uint32_t i = 0; i < kPorts; ++i) ASSERT_TRUE(graph.mark_output(port("wide", numbered("o", i))).ok());
+    auto plan = build_plan(graph, options_for("interval"));
+    ASSERT_TRUE(plan.ok()) << plan.error().to_string();
+    ASSERT_EQ(plan->spec_classes.size(), 50u);
+    EXPECT_EQ(plan->resources[1234].spec_class, 34u);
+    EXPECT_EQ(plan->spec_classes[34].spec.extent.width, 35u);
+    EXPECT_EQ(plan->spec_classes[34].resources.size(), 100u);
+    EXPECT_EQ(plan->spec_classes[34].resources[1], 84u);
+    EXPECT_EQ(plan->spec_classes[34].peak_live, 100u);
+    EXPECT_EQ(plan->summary.textures, kPorts);
+}
+
 TEST(Scale, TenThousandOutputsFeedTenThousandInputs) {
     constexpr uint32_t kPorts = 10000;
     Pass producer("producer");
