@@ -166,6 +166,26 @@ TEST(Scale, TwoThousandLiveResourcesFillHeapsOfFour) {
     EXPECT_EQ(plan->summary.bytes, 2001 * bytes);
 }
 
+TEST(Scale, TenThousandPassCycleIsNamedEdgeByEdge) {
+    constexpr uint32_t kPasses = 10000;
+    FrameGraph graph;
+    for (uint32_t i = 0; i < kPasses; ++i) {
+        ASSERT_TRUE(graph.add_pass(Pass(numbered("p", i)).input("in").output("out", small_texture())).ok());
+    }
+    for (uint32_t i = 0; i < kPasses; ++i) {
+        ASSERT_TRUE(graph.connect(port(numbered("p", i), "out"), port(numbered("p", (i + 1) % kPasses), "in")).ok());
+    }
+    ASSERT_TRUE(graph.mark_output(port("p0", "out")).ok());
+    auto plan = build_plan(graph, options_for("interval"));
+    ASSERT_FALSE(plan.ok());
+    const std::string& message = plan.error().message;
+    EXPECT_EQ(message.rfind("cycle: p0 -> p1 -> p2 -> ", 0), 0u) << message.substr(0, 200);
+    EXPECT_NE(message.find(" -> p9999 -> p0 (p0.out feeds p1.in; p1.out feeds p2.in; "), std::string::npos);
+    const std::string ending = "; p9999.out feeds p0.in)";
+    ASSERT_GE(message.size(), ending.size());
+    EXPECT_EQ(message.substr(message.size() - ending.size()), ending);
+}
+
 TEST(Scale, TenThousandPassChainStreamsTheSameJson) {
     constexpr uint32_t kPasses = 10000;
     FrameGraph graph;
