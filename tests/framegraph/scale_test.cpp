@@ -186,6 +186,31 @@ TEST(Scale, TenThousandPassCycleIsNamedEdgeByEdge) {
     EXPECT_EQ(message.substr(message.size() - ending.size()), ending);
 }
 
+// Every texture as large as half the 64-bit address space and a bit.
+class HugeMemoryModel final : public MemoryModel {
+public:
+    Result<rhi::MemoryRequirements> requirements(const rhi::TextureDesc&) override {
+        rhi::MemoryRequirements out;
+        out.size = (uint64_t{1} << 63) + 4096;
+        out.alignment = 4096;
+        return out;
+    }
+};
+
+TEST(Scale, HeapOffsetsThatOverflowAreAnErrorNotAWrap) {
+    FrameGraph graph;
+    ASSERT_TRUE(graph.add_pass(Pass("a").output("x", small_texture()).output("y", small_texture())).ok());
+    ASSERT_TRUE(graph.mark_output(port("a", "x")).ok());
+    ASSERT_TRUE(graph.mark_output(port("a", "y")).ok());
+    PlanOptions options = options_for("heap");
+    options.memory_model = std::make_shared<HugeMemoryModel>();
+    auto plan = build_plan(graph, options);
+    // a.y cannot follow a.x in one heap (the offset would pass 2^64), so it gets a second
+    // heap; the two heaps together do not fit in 64 bits.
+    ASSERT_FALSE(plan.ok());
+    EXPECT_EQ(plan.error().message, "heap allocator: the heaps together exceed 2^64 bytes");
+}
+
 TEST(Scale, TenThousandPassChainStreamsTheSameJson) {
     constexpr uint32_t kPasses = 10000;
     FrameGraph graph;
