@@ -1,5 +1,9 @@
 #include <array>
+#include <ostream>
+#include <sstream>
+#include <string>
 #include <string_view>
+#include <unordered_set>
 
 #include "loom/framegraph/export.hpp"
 #include "text.hpp"
@@ -38,15 +42,15 @@ std::string pass_node(uint32_t position) { return numbered("p", position); }
 
 }  // namespace
 
-std::string plan_to_dot(const Plan& plan) {
-    std::string out = "digraph plan {\n";
-    out += "  rankdir=LR;\n";
-    out += "  node [shape=record, fontname=\"Helvetica\", fontsize=10];\n";
-    out += "  edge [fontname=\"Helvetica\", fontsize=9];\n";
-    out += "  label=" + quoted(plan.allocator + " allocator: " + std::to_string(plan.summary.textures) +
+void write_plan_dot(std::ostream& out, const Plan& plan) {
+    out << "digraph plan {\n";
+    out << "  rankdir=LR;\n";
+    out << "  node [shape=record, fontname=\"Helvetica\", fontsize=10];\n";
+    out << "  edge [fontname=\"Helvetica\", fontsize=9];\n";
+    out << "  label=" << quoted(plan.allocator + " allocator: " + std::to_string(plan.summary.textures) +
                               " textures, " + format_bytes(plan.summary.bytes) + " (naive " +
                               std::to_string(plan.summary.naive_textures) + ", " +
-                              format_bytes(plan.summary.naive_bytes) + ")") + ";\n";
+                              format_bytes(plan.summary.naive_bytes) + ")") << ";\n";
 
     for (uint32_t at = 0; at < plan.order.size(); ++at) {
         const PlanPass& pass = plan.order[at];
@@ -66,37 +70,41 @@ std::string plan_to_dot(const Plan& plan) {
         if (pass.side_effect) label += " (side effect)";
         if (!outputs.empty()) label += "|{" + outputs + "}";
         label += "}";
-        out += "  " + pass_node(at) + " [label=\"" + label + "\"];\n";
+        out << "  " << pass_node(at) << " [label=\"" << label << "\"];\n";
     }
     for (std::size_t i = 0; i < plan.culled.size(); ++i) {
-        out += numbered("  c", i) + " [label=" + quoted(plan.culled[i] + " (culled)") +
-               ", style=dashed, color=gray, fontcolor=gray];\n";
+        out << numbered("  c", i) << " [label=" << quoted(plan.culled[i] + " (culled)")
+            << ", style=dashed, color=gray, fontcolor=gray];\n";
     }
     for (const PlanEdge& e : plan.edges) {
         const PlanResource& resource = plan.resources[e.resource];
         const std::string colour(kPalette[resource.texture % kPalette.size()]);
-        out += "  " + pass_node(e.from_pass) + numbered(":f", e.from_port) + ":e -> " + pass_node(e.to_pass) +
-               numbered(":f", e.to_port) + ":w [color=" + quoted(colour) + ", fontcolor=" + quoted(colour) +
-               ", label=" + quoted(numbered("t", resource.texture)) + "];\n";
+        out << "  " << pass_node(e.from_pass) << numbered(":f", e.from_port) << ":e -> " << pass_node(e.to_pass)
+            << numbered(":f", e.to_port) << ":w [color=" << quoted(colour) << ", fontcolor=" << quoted(colour)
+            << ", label=" << quoted(numbered("t", resource.texture)) << "];\n";
     }
     if (!plan.graph_outputs.empty()) {
-        out += "  output [shape=doublecircle, label=\"output\"];\n";
+        out << "  output [shape=doublecircle, label=\"output\"];\n";
+        const std::unordered_set<std::string> marked_outputs(plan.graph_outputs.begin(), plan.graph_outputs.end());
         for (uint32_t at = 0; at < plan.order.size(); ++at) {
             const PlanPass& pass = plan.order[at];
             for (uint32_t i = 0; i < pass.ports.size(); ++i) {
                 const std::string name = pass.name + "." + pass.ports[i].name;
-                bool marked = false;
-                for (const std::string& output : plan.graph_outputs) marked = marked || output == name;
-                if (!marked || !pass.ports[i].resource) continue;
+                if (!marked_outputs.contains(name) || !pass.ports[i].resource) continue;
                 const uint32_t texture = plan.resources[*pass.ports[i].resource].texture;
                 const std::string colour(kPalette[texture % kPalette.size()]);
-                out += "  " + pass_node(at) + numbered(":f", i) + ":e -> output [color=" + quoted(colour) +
-                       ", label=" + quoted(numbered("t", texture)) + "];\n";
+                out << "  " << pass_node(at) << numbered(":f", i) << ":e -> output [color=" << quoted(colour)
+                    << ", label=" << quoted(numbered("t", texture)) << "];\n";
             }
         }
     }
-    out += "}\n";
-    return out;
+    out << "}\n";
+}
+
+std::string plan_to_dot(const Plan& plan) {
+    std::ostringstream out;
+    write_plan_dot(out, plan);
+    return std::move(out).str();
 }
 
 }  // namespace loom::fg

@@ -1,4 +1,11 @@
+#include <charconv>
+#include <concepts>
 #include <cstdio>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -7,126 +14,316 @@
 namespace loom::fg {
 namespace {
 
-using nlohmann::json;
+// Writes JSON text straight to a stream, value by value, so a large plan is never held as one
+// document (nor as one string): memory stays that of a small buffer. The text is exactly what
+// nlohmann::json::dump(indent) prints for the same document: the same separators and
+// indentation, its string escaping, and keys in its (sorted) order, which is why every object
+// below lists its members alphabetically. Export.StreamedJsonIsWhatTheWholeDocumentDumps...
+// checks that.
+class JsonWriter {
+public:
+    JsonWriter(std::ostream& out, int indent) : out_(out), indent_(indent) {}
+    JsonWriter(const JsonWriter&) = delete;
+    JsonWriter& operator=(const JsonWriter&) = delete;
+    ~JsonWriter() { flush(); }
 
-json usage_json(rhi::TextureUsage usage) {
-    json flags = json::array();
+    void begin_object() { open('{'); }
+    void end_object() { close('}'); }
+    void begin_array() { open('['); }
+    void end_array() { close(']'); }
+
+    /// The key of the next member of the current object.
+    void key(std::string_view name) {
+        separate();
+        write_string(name);
+        buffer_ += indent_ >= 0 ? ": " : ":";
+        after_key_ = true;
+    }
+
+    void value(std::string_view text) {
+        separate();
+        write_string(text);
+    }
+    void value(const char* text) { value(std::string_view(text)); }
+    void value(const std::string& text) { value(std::string_view(text)); }
+    void value(bool flag) {
+        separate();
+        buffer_ += flag ? "true" : "false";
+    }
+    void value(std::nullptr_t) {
+        separate();
+        buffer_ += "null";
+    }
+    template <std::unsigned_integral T>
+    void value(T number) {
+        separate();
+        char digits[24];
+        const auto end = std::to_chars(digits, digits + sizeof digits, number).ptr;
+        buffer_.append(digits, end);
+    }
+
+    template <class T>
+    void member(std::string_view name, const T& item) {
+        key(name);
+        value(item);
+    }
+
+    /// An array member of plain values.
+    template <class Range>
+    void array_member(std::string_view name, const Range& items) {
+        key(name);
+        begin_array();
+        for (const auto& item : items) value(item);
+        end_array();
+    }
+
+    void flush() {
+        out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+        buffer_.clear();
+    }
+
+private:
+    struct Level {
+        std::size_t count = 0;
+    };
+
+    // Before a value or key: the comma after the previous one and the new line.
+    void separate() {
+        if (after_key_) {  // the value of a member follows its key on the same line
+            after_key_ = false;
+            return;
+        }
+        if (levels_.empty()) return;
+        if (levels_.back().count++ > 0) buffer_ += ',';
+        newline(levels_.size());
+        if (buffer_.size() >= kFlushAt) flush();
+    }
+
+    void open(char bracket) {
+        separate();
+        buffer_ += bracket;
+        levels_.push_back({});
+    }
+
+    void close(char bracket) {
+        const bool empty = levels_.back().count == 0;
+        levels_.pop_back();
+        if (!empty) newline(levels_.size());
+        buffer_ += bracket;
+    }
+
+    void newline(std::size_t depth) {
+        if (indent_ < 0) return;
+        buffer_ += '\n';
+        buffer_.append(depth * static_cast<std::size_t>(indent_), ' ');
+    }
+
+    void write_string(std::string_view text) {
+        bool plain = true;
+        for (char c : text) {
+            const auto byte = static_cast<unsigned char>(c);
+            plain = plain && byte >= 0x20 && byte < 0x80 && c != '"' && c != '\\';
+        }
+        if (plain) {
+            buffer_ += '"';
+            buffer_ += text;
+            buffer_ += '"';
+            return;
+        }
+        // Escapes and UTF-8 as json prints them; text that is not UTF-8 gets U+FFFD instead
+        // of an exception.
+        buffer_ += nlohmann::json(text).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    }
+
+    static constexpr std::size_t kFlushAt = 1 << 16;
+
+    std::ostream& out_;
+    int indent_;
+    std::string buffer_;
+    std::vector<Level> levels_;
+    bool after_key_ = false;
+};
+
+void write_usage(JsonWriter& out, rhi::TextureUsage usage) {
+    out.begin_array();
     for (auto flag : {rhi::TextureUsage::Sampled, rhi::TextureUsage::ColorAttachment,
                       rhi::TextureUsage::DepthStencilAttachment, rhi::TextureUsage::Storage,
                       rhi::TextureUsage::CopySrc, rhi::TextureUsage::CopyDst}) {
-        if (rhi::has_all(usage, flag)) flags.push_back(describe_usage(flag));
+        if (rhi::has_all(usage, flag)) out.value(describe_usage(flag));
     }
-    return flags;
+    out.end_array();
 }
 
-json spec_json(const ResolvedSpec& spec) {
-    return json{{"format", rhi::format_name(spec.format)},
-                {"format_match", format_match_name(spec.format_match)},
-                {"width", spec.extent.width},
-                {"height", spec.extent.height},
-                {"samples", spec.samples},
-                {"mips", spec.mips},
-                {"layers", spec.layers},
-                {"usage", usage_json(spec.usage)}};
+// The members of a resolved spec, each written by the caller at its place in key order.
+void write_format(JsonWriter& out, const ResolvedSpec& spec) {
+    out.member("format", rhi::format_name(spec.format));
+    out.member("format_match", format_match_name(spec.format_match));
+}
+
+void write_port(JsonWriter& out, const Plan& plan, const PlanPort& port) {
+    out.begin_object();
+    out.member("kind", port_kind_name(port.kind));
+    out.member("name", port.name);
+    out.member("optional", port.optional);
+    if (port.resource) {
+        out.member("resource", *port.resource);
+        out.member("texture", plan.resources[*port.resource].texture);
+        out.key("usage");
+        write_usage(out, port.usage);
+    } else {
+        out.member("resource", nullptr);
+        out.member("texture", nullptr);
+    }
+    out.end_object();
+}
+
+void write_pass(JsonWriter& out, const Plan& plan, const PlanPass& pass) {
+    out.begin_object();
+    out.member("declaration_index", pass.declaration_index);
+    out.member("name", pass.name);
+    out.key("ports");
+    out.begin_array();
+    for (const PlanPort& port : pass.ports) write_port(out, plan, port);
+    out.end_array();
+    out.member("side_effect", pass.side_effect);
+    out.end_object();
+}
+
+void write_edge(JsonWriter& out, const Plan& plan, const PlanEdge& e) {
+    const PlanPass& from = plan.order[e.from_pass];
+    const PlanPass& to = plan.order[e.to_pass];
+    out.begin_object();
+    out.member("from", from.name + "." + from.ports[e.from_port].name);
+    out.member("resource", e.resource);
+    out.member("texture", plan.resources[e.resource].texture);
+    out.member("to", to.name + "." + to.ports[e.to_port].name);
+    out.end_object();
+}
+
+void write_resource(JsonWriter& out, const PlanResource& r) {
+    out.begin_object();
+    out.member("alignment", r.alignment);
+    out.member("bytes", r.bytes);
+    write_format(out, r.spec);
+    out.member("graph_output", r.graph_output);
+    out.member("height", r.spec.extent.height);
+    out.member("layers", r.spec.layers);
+    out.key("lifetime");
+    out.begin_array();
+    out.value(r.lifetime.first);
+    out.value(r.lifetime.last);
+    out.end_array();
+    out.member("mips", r.spec.mips);
+    out.member("name", r.name);
+    out.array_member("ports", r.ports);
+    if (r.requested_format) {
+        out.member("requested_format", describe_features(*r.requested_format));
+    } else {
+        out.member("requested_format", nullptr);
+    }
+    out.member("samples", r.spec.samples);
+    out.member("spec_class", r.spec_class);
+    out.member("texture", r.texture);
+    out.key("usage");
+    write_usage(out, r.spec.usage);
+    out.member("width", r.spec.extent.width);
+    out.end_object();
+}
+
+void write_spec_class(JsonWriter& out, const SpecClass& c) {
+    out.begin_object();
+    write_format(out, c.spec);
+    out.member("height", c.spec.extent.height);
+    out.member("layers", c.spec.layers);
+    out.member("mips", c.spec.mips);
+    out.member("peak_live", c.peak_live);
+    out.array_member("resources", c.resources);
+    out.member("samples", c.spec.samples);
+    out.key("usage");
+    write_usage(out, c.spec.usage);
+    out.member("width", c.spec.extent.width);
+    out.end_object();
+}
+
+void write_texture(JsonWriter& out, const PlanTexture& t) {
+    out.begin_object();
+    out.member("alignment", t.alignment);
+    out.member("bytes", t.bytes);
+    write_format(out, t.spec);
+    if (t.placement) out.member("heap", t.placement->heap);
+    out.member("height", t.spec.extent.height);
+    out.member("layers", t.spec.layers);
+    out.member("mips", t.spec.mips);
+    out.member("name", t.name);
+    if (t.placement) out.member("offset", t.placement->offset);
+    out.array_member("resources", t.resources);
+    out.member("samples", t.spec.samples);
+    out.key("usage");
+    write_usage(out, t.spec.usage);
+    out.member("width", t.spec.extent.width);
+    out.end_object();
 }
 
 }  // namespace
 
-std::string plan_to_json(const Plan& plan, int indent) {
-    json out;
-    out["allocator"] = plan.allocator;
-    out["frame"] = {{"width", plan.frame.width}, {"height", plan.frame.height}};
-    out["sharing"] = spec_sharing_name(plan.sharing);
+void write_plan_json(std::ostream& stream, const Plan& plan, int indent) {
     char hash[24];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(plan_hash(plan)));
-    out["hash"] = hash;
-
     const PlanSummary& s = plan.summary;
-    out["summary"] = {{"textures", s.textures},
-                      {"bytes", s.bytes},
-                      {"naive_textures", s.naive_textures},
-                      {"naive_bytes", s.naive_bytes},
-                      {"lower_bound_textures", s.lower_bound_textures},
-                      {"lower_bound_bytes", s.lower_bound_bytes}};
 
-    json order = json::array();
-    json passes = json::array();
-    for (const PlanPass& pass : plan.order) {
-        order.push_back(pass.name);
-        json ports = json::array();
-        for (const PlanPort& port : pass.ports) {
-            json p{{"name", port.name}, {"kind", port_kind_name(port.kind)}, {"optional", port.optional}};
-            if (port.resource) {
-                p["resource"] = *port.resource;
-                p["texture"] = plan.resources[*port.resource].texture;
-                p["usage"] = usage_json(port.usage);
-            } else {
-                p["resource"] = nullptr;
-                p["texture"] = nullptr;
-            }
-            ports.push_back(std::move(p));
-        }
-        passes.push_back(json{{"name", pass.name},
-                              {"declaration_index", pass.declaration_index},
-                              {"side_effect", pass.side_effect},
-                              {"ports", std::move(ports)}});
-    }
-    out["order"] = std::move(order);
-    out["culled"] = plan.culled;
-    out["passes"] = std::move(passes);
+    JsonWriter out(stream, indent);
+    out.begin_object();
+    out.member("allocator", plan.allocator);
+    out.array_member("culled", plan.culled);
+    out.key("edges");
+    out.begin_array();
+    for (const PlanEdge& e : plan.edges) write_edge(out, plan, e);
+    out.end_array();
+    out.key("frame");
+    out.begin_object();
+    out.member("height", plan.frame.height);
+    out.member("width", plan.frame.width);
+    out.end_object();
+    out.array_member("graph_outputs", plan.graph_outputs);
+    out.member("hash", std::string_view(hash));
+    out.array_member("heaps", plan.heaps);
+    out.key("order");
+    out.begin_array();
+    for (const PlanPass& pass : plan.order) out.value(pass.name);
+    out.end_array();
+    out.key("passes");
+    out.begin_array();
+    for (const PlanPass& pass : plan.order) write_pass(out, plan, pass);
+    out.end_array();
+    out.key("resources");
+    out.begin_array();
+    for (const PlanResource& r : plan.resources) write_resource(out, r);
+    out.end_array();
+    out.member("sharing", spec_sharing_name(plan.sharing));
+    out.key("spec_classes");
+    out.begin_array();
+    for (const SpecClass& c : plan.spec_classes) write_spec_class(out, c);
+    out.end_array();
+    out.key("summary");
+    out.begin_object();
+    out.member("bytes", s.bytes);
+    out.member("lower_bound_bytes", s.lower_bound_bytes);
+    out.member("lower_bound_textures", s.lower_bound_textures);
+    out.member("naive_bytes", s.naive_bytes);
+    out.member("naive_textures", s.naive_textures);
+    out.member("textures", s.textures);
+    out.end_object();
+    out.key("textures");
+    out.begin_array();
+    for (const PlanTexture& t : plan.textures) write_texture(out, t);
+    out.end_array();
+    out.end_object();
+}
 
-    json edges = json::array();
-    for (const PlanEdge& e : plan.edges) {
-        const PlanPass& from = plan.order[e.from_pass];
-        const PlanPass& to = plan.order[e.to_pass];
-        edges.push_back(json{{"from", from.name + "." + from.ports[e.from_port].name},
-                             {"to", to.name + "." + to.ports[e.to_port].name},
-                             {"resource", e.resource},
-                             {"texture", plan.resources[e.resource].texture}});
-    }
-    out["edges"] = std::move(edges);
-    out["graph_outputs"] = plan.graph_outputs;
-
-    json resources = json::array();
-    for (const PlanResource& r : plan.resources) {
-        json item{{"name", r.name}, {"ports", r.ports}};
-        item["requested_format"] = r.requested_format ? json(describe_features(*r.requested_format)) : json(nullptr);
-        item.update(spec_json(r.spec));
-        item["lifetime"] = {r.lifetime.first, r.lifetime.last};
-        item["graph_output"] = r.graph_output;
-        item["spec_class"] = r.spec_class;
-        item["bytes"] = r.bytes;
-        item["alignment"] = r.alignment;
-        item["texture"] = r.texture;
-        resources.push_back(std::move(item));
-    }
-    out["resources"] = std::move(resources);
-
-    json classes = json::array();
-    for (const SpecClass& c : plan.spec_classes) {
-        json item = spec_json(c.spec);
-        item["resources"] = c.resources;
-        item["peak_live"] = c.peak_live;
-        classes.push_back(std::move(item));
-    }
-    out["spec_classes"] = std::move(classes);
-
-    json textures = json::array();
-    for (const PlanTexture& t : plan.textures) {
-        json item{{"name", t.name}};
-        item.update(spec_json(t.spec));
-        item["resources"] = t.resources;
-        item["bytes"] = t.bytes;
-        item["alignment"] = t.alignment;
-        if (t.placement) {
-            item["heap"] = t.placement->heap;
-            item["offset"] = t.placement->offset;
-        }
-        textures.push_back(std::move(item));
-    }
-    out["textures"] = std::move(textures);
-    out["heaps"] = plan.heaps;
-    return out.dump(indent);
+std::string plan_to_json(const Plan& plan, int indent) {
+    std::ostringstream out;
+    write_plan_json(out, plan, indent);
+    return std::move(out).str();
 }
 
 }  // namespace loom::fg

@@ -1,5 +1,7 @@
 #include <algorithm>
 #include <cstdio>
+#include <ostream>
+#include <sstream>
 #include <vector>
 
 #include "loom/framegraph/export.hpp"
@@ -14,22 +16,21 @@ public:
     explicit Table(std::vector<std::string> header) { rows_.push_back(std::move(header)); }
     void add(std::vector<std::string> row) { rows_.push_back(std::move(row)); }
 
-    [[nodiscard]] std::string render(std::string_view indent) const {
+    // Columns are as wide as their widest cell, so a table is written only once it is complete.
+    void render(std::ostream& out, std::string_view indent) const {
         std::vector<std::size_t> width;
         for (const auto& row : rows_) {
             width.resize(std::max(width.size(), row.size()), 0);
             for (std::size_t i = 0; i < row.size(); ++i) width[i] = std::max(width[i], row[i].size());
         }
-        std::string out;
         for (const auto& row : rows_) {
             std::string line(indent);
             for (std::size_t i = 0; i < row.size(); ++i) {
                 line += row[i];
                 if (i + 1 < row.size()) line += std::string(width[i] - row[i].size() + 2, ' ');
             }
-            out += line + "\n";
+            out << line << '\n';
         }
-        return out;
     }
 
 private:
@@ -59,17 +60,16 @@ std::string format_bytes(uint64_t bytes) {
     return buffer;
 }
 
-std::string plan_to_table(const Plan& plan) {
-    std::string out = "plan: allocator " + plan.allocator + ", frame " + std::to_string(plan.frame.width) + "x" +
-                      std::to_string(plan.frame.height) + ", sharing " + std::string(spec_sharing_name(plan.sharing)) +
-                      "\n\n";
+void write_plan_table(std::ostream& out, const Plan& plan) {
+    out << "plan: allocator " << plan.allocator << ", frame " << plan.frame.width << "x" << plan.frame.height
+        << ", sharing " << spec_sharing_name(plan.sharing) << "\n\n";
 
-    out += numbered("order (", plan.order.size()) + " passes";
+    out << numbered("order (", plan.order.size()) + " passes";
     if (!plan.culled.empty()) {
-        out += "; culled:";
-        for (const std::string& name : plan.culled) out += " " + name;
+        out << "; culled:";
+        for (const std::string& name : plan.culled) out << " " << name;
     }
-    out += ")\n";
+    out << ")\n";
     Table order({"#", "pass", "ports"});
     for (uint32_t at = 0; at < plan.order.size(); ++at) {
         const PlanPass& pass = plan.order[at];
@@ -82,9 +82,10 @@ std::string plan_to_table(const Plan& plan) {
         }
         order.add({std::to_string(at), pass.name + (pass.side_effect ? " (side effect)" : ""), ports});
     }
-    out += order.render("  ") + "\n";
+    order.render(out, "  ");
+    out << "\n";
 
-    out += "resources\n";
+    out << "resources\n";
     Table resources({"resource", "format", "size", "life", "texture", "bytes"});
     for (const PlanResource& r : plan.resources) {
         std::string format(rhi::format_name(r.spec.format));
@@ -101,9 +102,10 @@ std::string plan_to_table(const Plan& plan) {
                        std::to_string(r.lifetime.first) + "-" + std::to_string(r.lifetime.last),
                        numbered("t", r.texture), format_bytes(r.bytes)});
     }
-    out += resources.render("  ") + "\n";
+    resources.render(out, "  ");
+    out << "\n";
 
-    out += "textures\n";
+    out << "textures\n";
     Table textures({"texture", "spec", "holds", "bytes", "placement"});
     for (const PlanTexture& t : plan.textures) {
         std::string holds;
@@ -117,25 +119,30 @@ std::string plan_to_table(const Plan& plan) {
         }
         textures.add({t.name, describe_resolved(t.spec), holds, format_bytes(t.bytes), placement});
     }
-    out += textures.render("  ") + "\n";
+    textures.render(out, "  ");
+    out << "\n";
 
     const PlanSummary& s = plan.summary;
-    out += "summary\n";
+    out << "summary\n";
     Table summary({"", "textures", "bytes", "bytes / lower bound"});
     summary.add({"plan", std::to_string(s.textures), format_bytes(s.bytes), ratio(s.bytes, s.lower_bound_bytes)});
     summary.add({"naive", std::to_string(s.naive_textures), format_bytes(s.naive_bytes),
                  ratio(s.naive_bytes, s.lower_bound_bytes)});
     summary.add({"lower bound", std::to_string(s.lower_bound_textures), format_bytes(s.lower_bound_bytes), "1.000"});
-    out += summary.render("  ");
+    summary.render(out, "  ");
     if (!plan.heaps.empty()) {
-        out += "  heaps:";
+        out << "  heaps:";
         for (uint64_t size : plan.heaps) {
-            out += ' ';
-            out += format_bytes(size);
+            out << ' ' << format_bytes(size);
         }
-        out += "\n";
+        out << "\n";
     }
-    return out;
+}
+
+std::string plan_to_table(const Plan& plan) {
+    std::ostringstream out;
+    write_plan_table(out, plan);
+    return std::move(out).str();
 }
 
 }  // namespace loom::fg

@@ -44,6 +44,7 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
     port_offset_.push_back(first_port);
     sources_.resize(first_port + pass->ports().size());
     consumers_.resize(first_port + pass->ports().size());
+    marked_output_.resize(first_port + pass->ports().size());
     passes_.push_back(std::move(pass));
     ++revision_;
     return PassId{index};
@@ -119,7 +120,8 @@ Status FrameGraph::mark_output(const PortRef& ref) {
         return graph_error("mark_output " + ref.to_string() + ": an input cannot be a graph output; mark the port "
                            "that produces the texture");
     }
-    if (std::find(outputs_.begin(), outputs_.end(), *address) == outputs_.end()) {
+    if (!marked_output_[flat(*address)]) {
+        marked_output_[flat(*address)] = true;
         outputs_.push_back(*address);
         ++revision_;
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <functional>
 #include <queue>
+#include <unordered_map>
 
 namespace loom::fg::detail {
 namespace {
@@ -14,23 +15,46 @@ void sort_unique(std::vector<uint32_t>& values) {
     values.erase(std::unique(values.begin(), values.end()), values.end());
 }
 
-// Why `from` must run before `to`: the connection between them, or the texture `from` reads
-// before `to` modifies it in place.
-std::string edge_reason(const FrameGraph& graph, uint32_t from, uint32_t to) {
-    for (const Connection& c : graph.connections()) {
-        if (c.from.pass == from && c.to.pass == to) return graph.port_name(c.from) + " feeds " + graph.port_name(c.to);
-    }
-    for (const Connection& c : graph.connections()) {
-        if (c.to.pass != to || graph.port_at(c.to).kind != PortKind::InOut) continue;
-        for (const PortAddress& reader : graph.consumers(c.from)) {
-            if (reader.pass == from) {
-                return graph.port_name(reader) + " reads " + graph.port_name(c.from) + " before " +
-                       graph.port_name(c.to) + " modifies it in place";
-            }
+// Why one pass must run before another: the connection between them, or the texture the
+// first reads before the second modifies it in place. Indexed once, so that naming every edge
+// of a long cycle does not scan every connection per edge.
+class EdgeReasons {
+public:
+    explicit EdgeReasons(const FrameGraph& graph) : graph_(graph), into_(graph.pass_count()) {
+        const auto& connections = graph.connections();
+        for (uint32_t i = 0; i < connections.size(); ++i) {
+            const Connection& c = connections[i];
+            first_feeding_.try_emplace(pair_key(c.from.pass, c.to.pass), i);
+            into_[c.to.pass].push_back(i);
         }
     }
-    return "dependency";
-}
+
+    [[nodiscard]] std::string operator()(uint32_t from, uint32_t to) const {
+        const auto& connections = graph_.connections();
+        if (auto it = first_feeding_.find(pair_key(from, to)); it != first_feeding_.end()) {
+            const Connection& c = connections[it->second];
+            return graph_.port_name(c.from) + " feeds " + graph_.port_name(c.to);
+        }
+        for (uint32_t i : into_[to]) {
+            const Connection& c = connections[i];
+            if (graph_.port_at(c.to).kind != PortKind::InOut) continue;
+            for (const PortAddress& reader : graph_.consumers(c.from)) {
+                if (reader.pass == from) {
+                    return graph_.port_name(reader) + " reads " + graph_.port_name(c.from) + " before " +
+                           graph_.port_name(c.to) + " modifies it in place";
+                }
+            }
+        }
+        return "dependency";
+    }
+
+private:
+    static uint64_t pair_key(uint32_t from, uint32_t to) { return (uint64_t{from} << 32) | to; }
+
+    const FrameGraph& graph_;
+    std::unordered_map<uint64_t, uint32_t> first_feeding_;  // (from, to) -> first connection between them
+    std::vector<std::vector<uint32_t>> into_;               // per pass, the connections into it, in order
+};
 
 // Finds a cycle among the passes Kahn's algorithm could not order (each has a predecessor
 // among them) and names it in order, starting at the first declared pass on it.
@@ -62,6 +86,7 @@ Error cycle_error(const FrameGraph& graph, const Dependencies& dependencies, con
     std::reverse(cycle.begin(), cycle.end());  // the walk went against the edges
     std::rotate(cycle.begin(), std::min_element(cycle.begin(), cycle.end()), cycle.end());
 
+    const EdgeReasons edge_reason(graph);
     std::string names;
     std::string reasons;
     for (std::size_t i = 0; i < cycle.size(); ++i) {
@@ -69,7 +94,7 @@ Error cycle_error(const FrameGraph& graph, const Dependencies& dependencies, con
         const uint32_t to = cycle[(i + 1) % cycle.size()];
         names += graph.pass(PassId{from}).name() + " -> ";
         if (!reasons.empty()) reasons += "; ";
-        reasons += edge_reason(graph, from, to);
+        reasons += edge_reason(from, to);
     }
     names += graph.pass(PassId{cycle.front()}).name();
     return graph_error("cycle: " + names + " (" + reasons + ")");

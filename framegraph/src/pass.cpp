@@ -40,10 +40,9 @@ const Port* Pass::find_port(std::string_view name) const {
 }
 
 std::optional<uint32_t> Pass::port_index(std::string_view name) const {
-    for (std::size_t i = 0; i < ports_.size(); ++i) {
-        if (ports_[i].name == name) return static_cast<uint32_t>(i);
-    }
-    return std::nullopt;
+    auto it = port_indices_.find(name);
+    if (it == port_indices_.end()) return std::nullopt;
+    return it->second;
 }
 
 Status Pass::execute(PassContext& context) {
@@ -57,15 +56,15 @@ Status Pass::status() const {
 }
 
 void Pass::merge(const Port& declaration, const std::string& part) {
-    auto it = std::find_if(ports_.begin(), ports_.end(), [&](const Port& p) { return p.name == declaration.name; });
-    if (it == ports_.end()) {
+    const auto [it, inserted] = port_indices_.try_emplace(declaration.name, static_cast<uint32_t>(ports_.size()));
+    if (inserted) {
         ports_.push_back(declaration);
         ports_.back().parts = {part};
         return;
     }
     if (error_) return;  // keep the first error; later ones are usually consequences
 
-    Port& existing = *it;
+    Port& existing = ports_[it->second];
     const std::string& first_part = existing.parts.front();
     if (existing.kind != declaration.kind) {
         error_ = make_error(ErrorCode::Graph, "pass '" + name_ + "': port '" + declaration.name + "' is declared as " +

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <map>
 #include <numeric>
 #include <queue>
+#include <tuple>
 
 #include "graph_analysis.hpp"
 #include "loom/framegraph/allocator.hpp"
@@ -320,17 +322,29 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
     }
 
     // ---- spec classes: which resources may share a texture -------------------------------
+    // Equal sharing: a class per texture shape (its shape never changes, only its usage
+    // grows), found by key rather than by trying every class.
+    using ShapeKey = std::tuple<rhi::Format, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t>;
+    auto shape_key = [](const ResolvedSpec& spec) {
+        return ShapeKey{spec.format, spec.extent.width, spec.extent.height, spec.samples, spec.mips, spec.layers};
+    };
+    std::map<ShapeKey, uint32_t> class_of_shape;
     for (uint32_t r = 0; r < plan.resources.size(); ++r) {
         PlanResource& resource = plan.resources[r];
         uint32_t chosen = kNone;
-        for (uint32_t c = 0; c < plan.spec_classes.size() && chosen == kNone; ++c) {
+        if (options.sharing == SpecSharing::Equal) {
+            auto it = class_of_shape.find(shape_key(resource.spec));
+            if (it != class_of_shape.end()) {
+                chosen = it->second;
+                plan.spec_classes[chosen].spec.usage |= resource.spec.usage;
+            } else {
+                class_of_shape.emplace(shape_key(resource.spec), static_cast<uint32_t>(plan.spec_classes.size()));
+            }
+        }
+        for (uint32_t c = 0; options.sharing != SpecSharing::Equal && c < plan.spec_classes.size() && chosen == kNone;
+             ++c) {
             SpecClass& spec_class = plan.spec_classes[c];
-            if (options.sharing == SpecSharing::Equal) {
-                if (same_texture_shape(spec_class.spec, resource.spec)) {
-                    spec_class.spec.usage |= resource.spec.usage;
-                    chosen = c;
-                }
-            } else if (auto joined = join_resolved(spec_class.spec, resource.spec, options.frame)) {
+            if (auto joined = join_resolved(spec_class.spec, resource.spec, options.frame)) {
                 spec_class.spec = *joined;
                 chosen = c;
             }
@@ -375,12 +389,13 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
         const PlanResource& resource = plan.resources[r];
         problem.passes[resource.lifetime.first].begins.push_back(r);
         problem.resources.push_back(
-            AllocationResource{resource.spec_class, resource.lifetime, resource.bytes, resource.alignment});
+            AllocationResource{resource.spec_class, resource.lifetime, resource.bytes, resource.alignment, resource.name});
     }
+    std::vector<bool> listed_output(plan.resources.size(), false);
     for (const PortAddress& out : graph.outputs()) {
         const uint32_t r = resource_of_port[ports.flat(out)];
-        if (r != kNone && std::find(problem.graph_outputs.begin(), problem.graph_outputs.end(), r) ==
-                              problem.graph_outputs.end()) {
+        if (r != kNone && !listed_output[r]) {
+            listed_output[r] = true;
             problem.graph_outputs.push_back(r);
         }
     }

@@ -106,6 +106,8 @@ std::optional<std::string> parse_arguments(int argc, char** argv, Arguments& arg
 }  // namespace
 
 int main(int argc, char** argv) {
+    // The plan is streamed in many small pieces; iostreams need not keep stdio's order.
+    std::ios::sync_with_stdio(false);
     Arguments args;
     if (auto problem = parse_arguments(argc, argv, args)) return fail(2, *problem);
     if (args.help) {
@@ -126,13 +128,14 @@ int main(int argc, char** argv) {
 
     if (!args.dot.empty()) {
         std::ofstream dot(args.dot, std::ios::binary);
-        dot << loom::fg::plan_to_dot(*plan);
+        loom::fg::write_plan_dot(dot, *plan);
         if (!dot) return fail(1, "Io: cannot write " + args.dot);
     }
     if (args.json) {
-        std::cout << loom::fg::plan_to_json(*plan) << "\n";
+        loom::fg::write_plan_json(std::cout, *plan);
+        std::cout << "\n";
     } else {
-        std::cout << loom::fg::plan_to_table(*plan);
+        loom::fg::write_plan_table(std::cout, *plan);
     }
     return std::cout.good() ? 0 : 1;
 }

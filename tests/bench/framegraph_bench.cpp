@@ -1,6 +1,8 @@
 // Frame-graph benchmarks: the cost of building and planning random graphs of 100 to 10,000
 // passes with each allocator, of re-planning an unchanged graph, and the memory each
 // allocator needs on a corpus of random graphs relative to the lower bound (peak live bytes).
+// The Scale* cases grow one dimension to 1k, 10k and 100k: ports on a pass, connected
+// outputs and inputs, resources alive at once under a heap budget, passes written as JSON.
 //
 //   loom_framegraph_bench [--corpus=N] [google benchmark flags]
 //
@@ -9,6 +11,8 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <ostream>
+#include <streambuf>
 #include <string>
 #include <vector>
 
@@ -162,6 +166,134 @@ void BM_BytesOverLowerBoundCorpus(benchmark::State& state) {
     }
 }
 
+
+// ---- scale: the shapes of tests/bench/scale_graph.py, at 1k, 10k and 100k -----------------
+
+TextureSpec scale_texture() { return TextureSpec::of(loom::rhi::Format::RGBA8Unorm).with_size(16, 16); }
+
+std::string numbered(const char* prefix, int64_t i) { return prefix + std::to_string(i); }
+
+void plan_or_skip(benchmark::State& state, const FrameGraph& graph, const PlanOptions& options) {
+    auto plan = build_plan(graph, options);
+    if (!plan) {
+        state.SkipWithError(plan.error().message.c_str());
+        return;
+    }
+    state.counters["resources"] = static_cast<double>(plan->resources.size());
+    benchmark::DoNotOptimize(plan->summary);
+}
+
+// One pass with N outputs, every one a graph output: declaring, marking and planning.
+void BM_ScaleWidePass(benchmark::State& state) {
+    const int64_t ports = state.range(0);
+    for (auto _ : state) {
+        Pass wide("wide");
+        for (int64_t i = 0; i < ports; ++i) wide.output(numbered("o", i), scale_texture());
+        FrameGraph graph;
+        if (!graph.add_pass(std::move(wide))) return state.SkipWithError("add_pass");
+        for (int64_t i = 0; i < ports; ++i) {
+            if (!graph.mark_output(port("wide", numbered("o", i)))) return state.SkipWithError("mark_output");
+        }
+        plan_or_skip(state, graph, options_for("interval"));
+    }
+    state.SetComplexityN(ports);
+}
+
+// N outputs of one pass connected to the N inputs of another, then planned.
+void BM_ScaleConnect(benchmark::State& state) {
+    const int64_t ports = state.range(0);
+    for (auto _ : state) {
+        Pass producer("producer");
+        Pass consumer("consumer");
+        for (int64_t i = 0; i < ports; ++i) {
+            producer.output(numbered("o", i), scale_texture());
+            consumer.input(numbered("i", i));
+        }
+        consumer.output("final", scale_texture());
+        FrameGraph graph;
+        if (!graph.add_pass(std::move(producer)) || !graph.add_pass(std::move(consumer))) {
+            return state.SkipWithError("add_pass");
+        }
+        for (int64_t i = 0; i < ports; ++i) {
+            if (!graph.connect(port("producer", numbered("o", i)), port("consumer", numbered("i", i)))) {
+                return state.SkipWithError("connect");
+            }
+        }
+        if (!graph.mark_output(port("consumer", "final"))) return state.SkipWithError("mark_output");
+        plan_or_skip(state, graph, options_for("interval"));
+    }
+    state.SetComplexityN(ports);
+}
+
+// N producers read by one last pass: N + 1 resources alive at once, planned by the heap
+// allocator with a 1-byte budget (every resource in a heap of its own). Planning only.
+void BM_ScaleLiveHeap(benchmark::State& state) {
+    const int64_t producers = state.range(0);
+    FrameGraph graph;
+    Pass reader("reader");
+    for (int64_t i = 0; i < producers; ++i) {
+        if (!graph.add_pass(Pass(numbered("p", i)).output("out", scale_texture()))) return state.SkipWithError("add_pass");
+        reader.input(numbered("i", i));
+    }
+    reader.output("final", scale_texture());
+    if (!graph.add_pass(std::move(reader))) return state.SkipWithError("add_pass");
+    for (int64_t i = 0; i < producers; ++i) {
+        if (!graph.connect(port(numbered("p", i), "out"), port("reader", numbered("i", i)))) {
+            return state.SkipWithError("connect");
+        }
+    }
+    if (!graph.mark_output(port("reader", "final"))) return state.SkipWithError("mark_output");
+    PlanOptions options = options_for("heap");
+    options.max_heap_bytes = 1;
+    for (auto _ : state) plan_or_skip(state, graph, options);
+    state.SetComplexityN(producers);
+}
+
+// Counts what is written and keeps nothing, so only the writer's own memory shows.
+class CountingBuffer final : public std::streambuf {
+public:
+    [[nodiscard]] uint64_t count() const { return count_; }
+
+protected:
+    int_type overflow(int_type c) override {
+        if (!traits_type::eq_int_type(c, traits_type::eof())) ++count_;
+        return traits_type::not_eof(c);
+    }
+    std::streamsize xsputn(const char*, std::streamsize n) override {
+        count_ += static_cast<uint64_t>(n);
+        return n;
+    }
+
+private:
+    uint64_t count_ = 0;
+};
+
+// A chain of N passes planned once; the benchmark is writing the plan as JSON.
+void BM_ScalePlanJson(benchmark::State& state) {
+    const int64_t passes = state.range(0);
+    FrameGraph graph;
+    if (!graph.add_pass(Pass("p0").output("out", scale_texture()))) return state.SkipWithError("add_pass");
+    for (int64_t i = 1; i < passes; ++i) {
+        if (!graph.add_pass(Pass(numbered("p", i)).input("in").output("out")) ||
+            !graph.connect(port(numbered("p", i - 1), "out"), port(numbered("p", i), "in"))) {
+            return state.SkipWithError("add_pass/connect");
+        }
+    }
+    if (!graph.mark_output(port(numbered("p", passes - 1), "out"))) return state.SkipWithError("mark_output");
+    auto plan = build_plan(graph, options_for("interval"));
+    if (!plan) return state.SkipWithError(plan.error().message.c_str());
+    uint64_t bytes = 0;
+    for (auto _ : state) {
+        CountingBuffer buffer;
+        std::ostream out(&buffer);
+        write_plan_json(out, *plan);
+        bytes = buffer.count();
+    }
+    state.counters["json_bytes"] = static_cast<double>(bytes);
+    state.SetBytesProcessed(static_cast<int64_t>(bytes) * state.iterations());
+    state.SetComplexityN(passes);
+}
+
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_BuildAndPlan, paper, "paper")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
@@ -173,6 +305,10 @@ BENCHMARK_CAPTURE(BM_Plan, heap, "heap")->RangeMultiplier(10)->Range(100, 10000)
 BENCHMARK(BM_Build)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK(BM_Replan)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BytesOverLowerBoundCorpus)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ScaleWidePass)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK(BM_ScaleConnect)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK(BM_ScaleLiveHeap)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK(BM_ScalePlanJson)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMillisecond)->Complexity();
 
 int main(int argc, char** argv) {
     // Our own flag first; Google Benchmark rejects flags it does not know.

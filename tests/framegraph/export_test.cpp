@@ -1,6 +1,8 @@
 // JSON, DOT and table export of a plan.
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include <nlohmann/json.hpp>
 
 #include "loom/framegraph/framegraph.hpp"
@@ -84,6 +86,32 @@ TEST(Export, TableListsOrderResourcesTexturesAndSummary) {
     EXPECT_EQ(format_bytes(512), "512 B");
     EXPECT_EQ(format_bytes(1536), "1.5 KiB");
     EXPECT_EQ(format_bytes(3 * 1024 * 1024), "3.0 MiB");
+}
+
+TEST(Export, StreamedJsonIsWhatTheWholeDocumentDumpsAtEveryIndent) {
+    // write_plan_json writes member by member; the text must be what nlohmann's dump of the
+    // whole document prints (sorted keys, its escaping and its indentation), at every indent.
+    Plan plan = small_plan("heap");
+    plan.resources[0].name = "scene.\"color\"\t\u00e9";  // escaping goes through json
+    plan.culled.push_back("second culled");
+    const auto document = nlohmann::json::parse(plan_to_json(plan));
+    for (int indent : {-1, 0, 1, 2, 4}) {
+        std::ostringstream streamed;
+        write_plan_json(streamed, plan, indent);
+        EXPECT_EQ(streamed.str(), document.dump(indent)) << "indent " << indent;
+        EXPECT_EQ(plan_to_json(plan, indent), streamed.str()) << "indent " << indent;
+    }
+}
+
+TEST(Export, StreamedDotAndTableAreTheReturnedText) {
+    const Plan plan = small_plan("heap");
+    std::ostringstream dot;
+    write_plan_dot(dot, plan);
+    EXPECT_EQ(dot.str(), plan_to_dot(plan));
+    std::ostringstream table;
+    write_plan_table(table, plan);
+    EXPECT_EQ(table.str(), plan_to_table(plan));
+    EXPECT_NE(table.str().find("heaps: "), std::string::npos) << table.str();
 }
 
 }  // namespace

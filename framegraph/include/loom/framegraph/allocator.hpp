@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -32,6 +33,7 @@ struct AllocationResource {
     Lifetime lifetime;        ///< positions in the order; graph outputs last until the end
     uint64_t bytes = 0;
     uint64_t alignment = 1;
+    std::string name;         ///< the resource's name ("pass.port"), for error messages
 };
 
 /// What an allocator is given: the passes in order and the resources with their classes, lifetimes, sizes and alignments.

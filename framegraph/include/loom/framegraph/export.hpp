@@ -2,6 +2,7 @@
 // Plans as text: JSON (every field, for tools and tests), Graphviz DOT (passes as nodes with
 // their ports, edges coloured by physical texture) and a readable table.
 
+#include <iosfwd>
 #include <string>
 
 #include "loom/framegraph/plan.hpp"
@@ -12,14 +13,21 @@ namespace loom::fg {
 /// PlanSummary fields), order (pass names), culled, passes (ports with their resource and
 /// texture), edges, graph_outputs, resources, spec_classes, textures, heaps. See docs/framegraph.md.
 std::string plan_to_json(const Plan& plan, int indent = 2);
+/// The same text as plan_to_json, written to `out` piece by piece: memory stays proportional
+/// to one pass or resource, not to the whole document (large plans, loom-plan --json).
+void write_plan_json(std::ostream& out, const Plan& plan, int indent = 2);
 
 /// The plan as a Graphviz digraph: one record node per scheduled pass (inputs left, outputs
 /// right), culled passes dashed and grey, one edge per connection labelled and coloured by
 /// its physical texture, graph outputs leading to an "output" node.
 std::string plan_to_dot(const Plan& plan);
+/// The same text as plan_to_dot, written to `out` line by line.
+void write_plan_dot(std::ostream& out, const Plan& plan);
 
 /// The plan as aligned text tables: order, resources, textures, summary.
 std::string plan_to_table(const Plan& plan);
+/// The same text as plan_to_table, written to `out` table by table.
+void write_plan_table(std::ostream& out, const Plan& plan);
 
 /// "12.0 MiB", "512 KiB", "100 B".
 std::string format_bytes(uint64_t bytes);

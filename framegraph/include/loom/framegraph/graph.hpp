@@ -147,6 +147,7 @@ private:
     std::vector<std::vector<PortAddress>> consumers_;   // per flat port
     std::vector<Connection> connections_;
     std::vector<PortAddress> outputs_;
+    std::vector<bool> marked_output_;                  // per flat port: in outputs_
 
     uint64_t revision_ = 0;
     uint64_t plans_built_ = 0;

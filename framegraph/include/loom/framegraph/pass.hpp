@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -164,6 +165,9 @@ private:
 
     std::string name_;
     std::vector<Port> ports_;
+    // Port name -> index in ports_, so merging a declaration and finding a port by name do
+    // not scan every port (a pass may have very many).
+    std::map<std::string, uint32_t, std::less<>> port_indices_;
     bool side_effect_ = false;
     std::optional<Error> error_;
     ExecuteFunction execute_function_;
