@@ -9,6 +9,28 @@ namespace {
 
 Error graph_error(std::string message) { return make_error(ErrorCode::Graph, std::move(message)); }
 
+// A user's name in single quotes with control characters written as \n, \t or \xNN, so that
+// an error about a bad name is still one line.
+std::string quoted_name(std::string_view name) {
+    static constexpr char kHex[] = "0123456789abcdef";
+    std::string out = "'";
+    for (const char c : name) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (c == '\n') {
+            out += "\\n";
+        } else if (c == '\t') {
+            out += "\\t";
+        } else if (byte < 0x20 || byte == 0x7f) {
+            out += "\\x";
+            out += kHex[byte >> 4];
+            out += kHex[byte & 15];
+        } else {
+            out += c;
+        }
+    }
+    return out + "'";
+}
+
 std::string port_list(const Pass& pass) {
     std::string out;
     for (const Port& p : pass.ports()) {
@@ -35,6 +57,15 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
     if (!pass) return make_error(ErrorCode::InvalidArgument, "add_pass: null pass");
     LOOM_TRY(pass->status());
     if (pass->name().empty()) return graph_error("add_pass: a pass needs a name");
+    if (auto problem = name_problem(pass->name())) {
+        return graph_error("add_pass: the pass name " + quoted_name(pass->name()) + " " + *problem);
+    }
+    for (const Port& port : pass->ports()) {
+        if (auto problem = name_problem(port.name)) {
+            return graph_error("add_pass: pass '" + pass->name() + "': the port name " + quoted_name(port.name) + " " +
+                               *problem);
+        }
+    }
     if (pass_index_.contains(pass->name())) {
         return graph_error("add_pass: a pass called '" + pass->name() + "' already exists");
     }

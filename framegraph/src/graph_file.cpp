@@ -9,10 +9,21 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_structure.hpp"
+
 namespace loom::fg {
 namespace {
 
 using nlohmann::json;
+
+// A value as it stands in the file, cut short: error messages stay one short line whatever
+// the file holds (a value can be megabytes long).
+std::string excerpt(const nlohmann::json& value) {
+    constexpr std::size_t kMax = 60;
+    std::string text = value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    if (text.size() > kMax) text = text.substr(0, kMax) + "...";
+    return text;
+}
 
 std::string lowercase(std::string_view text) {
     std::string out(text);
@@ -112,20 +123,20 @@ private:
         }
         const json& value = object[key];
         const std::string where = path + "." + key;
-        if (!value.is_number_integer()) return fail(where, "must be a positive integer, not " + value.dump());
+        if (!value.is_number_integer()) return fail(where, "must be a positive integer, not " + excerpt(value));
         const auto number = value.get<int64_t>();
-        if (number < 1 || number > 1 << 30) return fail(where, "must be a positive integer, not " + value.dump());
+        if (number < 1 || number > 1 << 30) return fail(where, "must be a positive integer, not " + excerpt(value));
         return std::optional<uint32_t>(static_cast<uint32_t>(number));
     }
 
     Result<bool> boolean(const json& object, const std::string& path, const char* key) const {
         if (!object.contains(key)) return false;
-        if (!object[key].is_boolean()) return fail(path + "." + key, "must be true or false, not " + object[key].dump());
+        if (!object[key].is_boolean()) return fail(path + "." + key, "must be true or false, not " + excerpt(object[key]));
         return object[key].get<bool>();
     }
 
     Result<PortRef> port_ref(const json& value, const std::string& path) const {
-        if (!value.is_string()) return fail(path, "must be a \"pass.port\" string, not " + value.dump());
+        if (!value.is_string()) return fail(path, "must be a \"pass.port\" string, not " + excerpt(value));
         auto ref = parse_port_ref(value.get<std::string>());
         if (!ref) return fail(path, "\"" + value.get<std::string>() + "\" is not of the form \"pass.port\"");
         return *ref;
@@ -208,7 +219,7 @@ private:
                                std::all_of(size.begin(), size.end(), [](const json& v) {
                                    return v.is_number_integer() && v.get<int64_t>() >= 1 && v.get<int64_t>() <= 1 << 16;
                                });
-            if (!valid) return fail(path + ".size", "must be [width, height] in texels, not " + size.dump());
+            if (!valid) return fail(path + ".size", "must be [width, height] in texels, not " + excerpt(size));
             spec.size = SizeSpec::absolute(size[0].get<uint32_t>(), size[1].get<uint32_t>());
         }
         if (object.contains("scale")) {
@@ -219,7 +230,7 @@ private:
             } else if (scale.is_array() && scale.size() == 2 && valid_scale(scale[0]) && valid_scale(scale[1])) {
                 spec.size = SizeSpec::relative(scale[0].get<float>(), scale[1].get<float>());
             } else {
-                return fail(path + ".scale", "must be a number in (0, 16] or [sx, sy], not " + scale.dump());
+                return fail(path + ".scale", "must be a number in (0, 16] or [sx, sy], not " + excerpt(scale));
             }
         }
         for (const char* key : {"samples", "mips", "layers"}) {
@@ -239,7 +250,7 @@ private:
             if (!usage.is_array()) return fail(path + ".usage", "must be an array of usage names");
             for (std::size_t i = 0; i < usage.size(); ++i) {
                 const std::string where = path + ".usage[" + std::to_string(i) + "]";
-                if (!usage[i].is_string()) return fail(where, "must be a usage name, not " + usage[i].dump());
+                if (!usage[i].is_string()) return fail(where, "must be a usage name, not " + excerpt(usage[i]));
                 auto flag = parse_usage_flag(usage[i].get<std::string>());
                 if (!flag) {
                     return fail(where, "unknown usage \"" + usage[i].get<std::string>() +
@@ -262,7 +273,7 @@ private:
                                   "stencil), not both");
             }
             const json& value = object["format"];
-            if (!value.is_string()) return fail(path + ".format", "must be a format name, not " + value.dump());
+            if (!value.is_string()) return fail(path + ".format", "must be a format name, not " + excerpt(value));
             auto format = parse_format_alias(value.get<std::string>());
             if (!format) return fail(path + ".format", "unknown format \"" + value.get<std::string>() + "\"");
             return std::optional(rhi::format_info(*format).features);
@@ -278,7 +289,7 @@ private:
             for (rhi::ChannelKind k : kKinds) {
                 if (value.is_string() && value.get<std::string>() == rhi::channel_kind_name(k)) kind = k;
             }
-            if (!kind) return fail(path + ".kind", "must be one of unorm, snorm, float, uint, sint, not " + value.dump());
+            if (!kind) return fail(path + ".kind", "must be one of unorm, snorm, float, uint, sint, not " + excerpt(value));
         }
         auto bits_of = [&](const char* key, uint32_t max) -> Result<std::optional<uint32_t>> {
             auto bits = positive(object, path, key);
@@ -352,6 +363,10 @@ std::optional<rhi::Format> parse_format_alias(std::string_view name) {
 }
 
 Result<GraphFile> parse_graph_json(std::string_view text, std::string_view source) {
+    if (auto problem = check_json_structure(text, kMaxGraphFileDepth)) {
+        return make_error(ErrorCode::Parse, std::string(source) + ":" + std::to_string(problem->line) + ":" +
+                                                std::to_string(problem->column) + ": " + problem->message);
+    }
     json root;
     try {
         root = json::parse(text.begin(), text.end());
@@ -372,6 +387,11 @@ Result<GraphFile> parse_graph_json(std::string_view text, std::string_view sourc
         if (auto colon = what.rfind(": "); colon != std::string::npos) what = what.substr(colon + 2);
         return make_error(ErrorCode::Parse, std::string(source) + ":" + std::to_string(line) + ":" +
                                                 std::to_string(column) + ": invalid JSON: " + what);
+    } catch (const json::exception& error) {
+        // Any other refusal of the parser (the structure check above catches the known ones).
+        std::string what = error.what();
+        if (auto bracket = what.find("] "); bracket != std::string::npos) what = what.substr(bracket + 2);
+        return make_error(ErrorCode::Parse, std::string(source) + ": invalid JSON: " + what);
     }
     return GraphReader(source).read(root);
 }

@@ -15,6 +15,16 @@ std::string_view port_kind_name(PortKind kind) {
     return "unknown";
 }
 
+std::optional<std::string> name_problem(std::string_view name) {
+    if (name.empty()) return "is empty";
+    for (const char c : name) {
+        if (c == '.') return "contains '.', which separates pass and port names";
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte < 0x20 || byte == 0x7f) return "contains a control character (code " + std::to_string(byte) + ")";
+    }
+    return std::nullopt;
+}
+
 Part& Part::declare(std::string port, PortKind kind, TextureSpec spec, bool optional) {
     declarations_.push_back(Port{std::move(port), kind, std::move(spec), optional, {name_}});
     return *this;

@@ -35,6 +35,33 @@ Error plan_error(const FrameGraph& graph, PlanOptions options = {}) {
     return plan.ok() ? Error{} : plan.error();
 }
 
+TEST(GraphErrors, NamesThatWouldCollideOrSplitLinesAreRefused) {
+    // Pass "a" port "b.x" and pass "a.b" port "x" would both name the resource "a.b.x", and
+    // "a.b.x" cannot say which; a newline would split the plan table's rows.
+    FrameGraph graph;
+    const auto dotted_port = graph.add_pass(Pass("a").output("b.x"));
+    ASSERT_FALSE(dotted_port.ok());
+    EXPECT_EQ(dotted_port.error().code, ErrorCode::Graph);
+    EXPECT_EQ(dotted_port.error().message,
+              "add_pass: pass 'a': the port name 'b.x' contains '.', which separates pass and port names");
+    const auto dotted_pass = graph.add_pass(Pass("a.b").output("x"));
+    ASSERT_FALSE(dotted_pass.ok());
+    EXPECT_EQ(dotted_pass.error().message,
+              "add_pass: the pass name 'a.b' contains '.', which separates pass and port names");
+    const auto newline = graph.add_pass(Pass("tint").inout("color\nalpha"));
+    ASSERT_FALSE(newline.ok());
+    EXPECT_EQ(newline.error().message,
+              "add_pass: pass 'tint': the port name 'color\\nalpha' contains a control character (code 10)");
+    const auto bell = graph.add_pass(Pass(std::string("a\x07")).output("x"));
+    ASSERT_FALSE(bell.ok());
+    EXPECT_EQ(bell.error().message, "add_pass: the pass name 'a\\x07' contains a control character (code 7)");
+    EXPECT_EQ(graph.pass_count(), 0u);
+    // Everything else is a name: spaces, dashes, non-ASCII.
+    EXPECT_TRUE(graph.add_pass(Pass("bloom pass-2 \xc3\xa9").output("colour (linear)")).ok());
+    EXPECT_EQ(name_problem(""), "is empty");
+    EXPECT_EQ(name_problem("ok"), std::nullopt);
+}
+
 TEST(GraphErrors, UnknownPass) {
     FrameGraph graph = chain();
     EXPECT_EQ(connect_error(graph, port("shadow", "map"), port("sink", "extra")).message,

@@ -166,6 +166,78 @@ TEST(GraphFile, SyntaxErrorsGiveLineAndColumn) {
     EXPECT_EQ(error.message.rfind("g.json:3:18: invalid JSON", 0), 0u) << error.message;
 }
 
+TEST(GraphFile, NumbersBeyondADoubleAreAParseErrorNotAnException) {
+    const Error width = parse_error(R"({"frame": {"width": 1e400, "height": 10}, "passes": []})");
+    EXPECT_EQ(width.code, ErrorCode::Parse);
+    EXPECT_EQ(width.message, "g.json:1:21: the number 1e400 at frame.width is out of range (beyond a double)");
+    const Error negative = parse_error(R"({"passes": [{"name": "a", "outputs": [{"name": "x", "scale": -1e999}]}]})");
+    EXPECT_EQ(negative.message,
+              "g.json:1:62: the number -1e999 at passes[0].outputs[0].scale is out of range (beyond a double)");
+    // Within a double but beyond any limit: an ordinary range error, not a crash.
+    const Error big = parse_error(R"({"frame": {"width": 1e300, "height": 10}, "passes": []})");
+    EXPECT_EQ(big.message, "g.json: frame.width: must be a positive integer, not 1e+300");
+}
+
+std::string repeated(std::string_view text, std::size_t count) {
+    std::string out;
+    for (std::size_t i = 0; i < count; ++i) out += text;
+    return out;
+}
+
+TEST(GraphFile, NestingDeeperThanTheLimitIsRefusedBeforeParsing) {
+    // 70,000 levels overflowed the stack while the error message was formatted; 5 MB of '['
+    // took 401 MB. Both now stop at the first bracket past the limit, which the prefix's three
+    // containers ({, [ and {) leave as the run's (limit - 2)th.
+    const std::string prefix = R"({"passes": [{"name": "a", "side_effect": )";
+    const std::string deep = prefix + std::string(70000, '[') + std::string(70000, ']') + "}]}";
+    const Error error = parse_error(deep);
+    EXPECT_EQ(error.code, ErrorCode::Parse);
+    EXPECT_EQ(error.message, "g.json:1:" + std::to_string(prefix.size() + kMaxGraphFileDepth - 2) +
+                                 ": nested deeper than " + std::to_string(kMaxGraphFileDepth) +
+                                 " levels at passes[0].side_effect" + repeated("[0]", kMaxGraphFileDepth - 3));
+
+    const Error brackets = parse_error(std::string(5 << 20, '['));
+    EXPECT_EQ(brackets.message, "g.json:1:" + std::to_string(kMaxGraphFileDepth + 1) + ": nested deeper than " +
+                                    std::to_string(kMaxGraphFileDepth) + " levels at " +
+                                    repeated("[0]", kMaxGraphFileDepth));
+
+    // A document exactly at the limit reaches the reader (which then finds no object).
+    const std::string at_limit = std::string(kMaxGraphFileDepth, '[') + std::string(kMaxGraphFileDepth, ']');
+    EXPECT_EQ(parse_error(at_limit).message, "g.json: the top level must be an object");
+}
+
+TEST(GraphFile, DuplicateKeysAreRefusedWithTheirPath) {
+    const Error top = parse_error(R"({"passes": [], "passes": []})");
+    EXPECT_EQ(top.code, ErrorCode::Parse);
+    EXPECT_EQ(top.message, R"(g.json:1:16: duplicate key "passes" at passes)");
+    const Error port = parse_error("{\"passes\": [{\"name\": \"a\",\n \"outputs\": [{\"name\": \"x\", \"format\": \"R8\", "
+                                   "\"\\u0066ormat\": \"RGBA8\"}]}]}");
+    EXPECT_EQ(port.message, R"(g.json:2:44: duplicate key "format" at passes[0].outputs[0].format)");
+    // The same key in different objects is fine.
+    EXPECT_TRUE(parse_graph_json(R"({"passes": [{"name": "a"}, {"name": "b"}]})", "g.json").ok());
+}
+
+TEST(GraphFile, NamesWithDotsOrControlCharactersAreRefused) {
+    const Error dotted_port = parse_error(R"({"passes": [{"name": "a", "outputs": [{"name": "b.x"}]}]})");
+    EXPECT_EQ(dotted_port.code, ErrorCode::Graph);
+    EXPECT_EQ(dotted_port.message, "g.json: passes[0]: add_pass: pass 'a': the port name 'b.x' contains '.', which "
+                                   "separates pass and port names");
+    const Error dotted_pass = parse_error(R"({"passes": [{"name": "a.b", "outputs": [{"name": "x"}]}]})");
+    EXPECT_EQ(dotted_pass.message,
+              "g.json: passes[0]: add_pass: the pass name 'a.b' contains '.', which separates pass and port names");
+    const Error newline = parse_error(R"({"passes": [{"name": "a\nb"}]})");
+    EXPECT_EQ(newline.message,
+              "g.json: passes[0]: add_pass: the pass name 'a\\nb' contains a control character (code 10)");
+    EXPECT_EQ(newline.message.find('\n'), std::string::npos);
+}
+
+TEST(GraphFile, LongValuesAreCutShortInMessages) {
+    const std::string long_name(100000, 'x');
+    const Error error = parse_error(R"({"passes": [{"name": "a", "side_effect": ")" + long_name + R"("}]})");
+    EXPECT_EQ(error.message, "g.json: passes[0].side_effect: must be true or false, not \"" + std::string(59, 'x') +
+                                 "...");
+}
+
 TEST(GraphFile, MissingFileIsAnIoError) {
     auto file = load_graph_file("/nonexistent/graph.json");
     ASSERT_FALSE(file.ok());

@@ -112,6 +112,12 @@ TEST(PlanTool, BrokenGraphsFailWithOneLine) {
         {broken("broken_format.json"), "passes[2].outputs[0].format: unknown format \"RGBA17F\"\n"},
         {broken("broken_syntax.json"), "invalid JSON"},
         {broken("missing.json"), "loom-plan: Io: cannot read graph file"},
+        // Hostile input: each used to abort, or to plan something other than what was written.
+        {broken("broken_huge_number.json"), "broken_huge_number.json:1:21: the number 1e400 at frame.width is out of "
+                                            "range (beyond a double)\n"},
+        {broken("broken_duplicate_key.json"), "broken_duplicate_key.json:1:77: duplicate key \"outputs\" at outputs\n"},
+        {broken("broken_dotted_port.json"), "passes[0]: add_pass: pass 'a': the port name 'b.x' contains '.', which "
+                                            "separates pass and port names\n"},
     };
     for (const Case& c : cases) {
         const ToolRun run = run_tool(c.arguments);

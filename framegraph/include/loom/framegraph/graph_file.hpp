@@ -18,7 +18,13 @@
 // of sampled, color_attachment, depth_stencil_attachment, storage, copy_src, copy_dst).
 // Unknown keys and bad values are ErrorCode::Parse errors with the JSON path, e.g.
 // `graph.json: passes[2].outputs[0].format: unknown format "RGBA17F"`.
+//
+// Before the document is read, the text is refused (with line and column) when it nests
+// objects and arrays deeper than kMaxGraphFileDepth, repeats a key within one object, or holds
+// a number beyond a double (1e400). Pass and port names may not contain '.' or control
+// characters (see name_problem()). Values quoted in errors are cut to 60 characters.
 
+#include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <string_view>
@@ -28,6 +34,10 @@
 #include "loom/rhi/result.hpp"
 
 namespace loom::fg {
+
+/// How deeply a graph file may nest objects and arrays (graph files need five levels); deeper
+/// text is refused before a document is built from it.
+inline constexpr std::size_t kMaxGraphFileDepth = 64;
 
 /// A graph read from a file, with the frame size the file asks for (default 1920x1080).
 struct GraphFile {

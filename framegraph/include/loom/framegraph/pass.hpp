@@ -39,6 +39,11 @@ inline bool port_reads(PortKind kind) { return kind != PortKind::Output; }
 /// True for the kinds that produce a texture others can read (output, inout).
 inline bool port_writes(PortKind kind) { return kind != PortKind::Input; }
 
+/// Why `name` cannot name a pass or a port, or nullopt when it can. A name is non-empty and
+/// has no '.' (it separates pass and port in "pass.port" and in resource names) and no
+/// control character (a newline would split every line-based output: tables, logs, errors).
+std::optional<std::string> name_problem(std::string_view name);
+
 /// One declared port.
 struct Port {
     std::string name;

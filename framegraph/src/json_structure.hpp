@@ -1,0 +1,27 @@
+#pragma once
+// A check of a JSON text's structure that runs before nlohmann::json builds a document from
+// it: what the parser would accept but a graph file must not contain, found in one pass with
+// memory bounded by the nesting limit. nlohmann::json keeps the last of duplicate keys without
+// a word, builds a document (and recurses over it when printing) as deep as the text nests,
+// and throws a different exception type for numbers beyond a double.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace loom::fg {
+
+/// Where and what the structure check found (1-based line and column).
+struct JsonStructureProblem {
+    std::size_t line = 1;
+    std::size_t column = 1;
+    std::string message;
+};
+
+/// The first of: an object or array nested deeper than `max_depth`, a key repeated in one
+/// object (paths as the graph-file errors write them: passes[0].outputs[1].name), a number a
+/// double cannot hold (1e400). Text that is not JSON at all is left to the parser.
+std::optional<JsonStructureProblem> check_json_structure(std::string_view text, std::size_t max_depth);
+
+}  // namespace loom::fg
