@@ -45,9 +45,9 @@ public:
             const json& frame = root["frame"];
             if (!frame.is_object()) return fail("frame", "must be an object {\"width\": W, \"height\": H}");
             LOOM_TRY(only_keys(frame, "frame", {"width", "height"}));
-            auto width = positive(frame, "frame", "width", true);
+            auto width = positive(frame, "frame", "width", true, kMaxTextureExtent);
             if (!width) return width.take_error();
-            auto height = positive(frame, "frame", "height", true);
+            auto height = positive(frame, "frame", "height", true, kMaxTextureExtent);
             if (!height) return height.take_error();
             file.frame = {**width, **height};
         }
@@ -114,9 +114,9 @@ private:
         return {};
     }
 
-    // A positive integer member; nullopt when absent and not required.
+    // A positive integer member up to `max`; nullopt when absent and not required.
     Result<std::optional<uint32_t>> positive(const json& object, const std::string& path, const char* key,
-                                             bool required = false) const {
+                                             bool required = false, uint32_t max = 1u << 30) const {
         if (!object.contains(key)) {
             if (required) return fail(path, std::string("missing \"") + key + "\"");
             return std::optional<uint32_t>{};
@@ -125,7 +125,10 @@ private:
         const std::string where = path + "." + key;
         if (!value.is_number_integer()) return fail(where, "must be a positive integer, not " + excerpt(value));
         const auto number = value.get<int64_t>();
-        if (number < 1 || number > 1 << 30) return fail(where, "must be a positive integer, not " + excerpt(value));
+        if (number < 1) return fail(where, "must be a positive integer, not " + excerpt(value));
+        if (value.is_number_unsigned() ? value.get<uint64_t>() > max : static_cast<uint64_t>(number) > max) {
+            return fail(where, "must be at most " + std::to_string(max) + ", not " + excerpt(value));
+        }
         return std::optional<uint32_t>(static_cast<uint32_t>(number));
     }
 
@@ -215,11 +218,17 @@ private:
         if (object.contains("size") && object.contains("scale")) return fail(path, "give \"size\" or \"scale\", not both");
         if (object.contains("size")) {
             const json& size = object["size"];
-            const bool valid = size.is_array() && size.size() == 2 &&
-                               std::all_of(size.begin(), size.end(), [](const json& v) {
-                                   return v.is_number_integer() && v.get<int64_t>() >= 1 && v.get<int64_t>() <= 1 << 16;
-                               });
-            if (!valid) return fail(path + ".size", "must be [width, height] in texels, not " + excerpt(size));
+            const bool pair = size.is_array() && size.size() == 2 &&
+                              std::all_of(size.begin(), size.end(), [](const json& v) { return v.is_number_integer(); });
+            if (!pair) return fail(path + ".size", "must be [width, height] in texels, not " + excerpt(size));
+            const bool in_range = std::all_of(size.begin(), size.end(), [](const json& v) {
+                if (v.is_number_unsigned()) return v.get<uint64_t>() >= 1 && v.get<uint64_t>() <= kMaxTextureExtent;
+                return v.get<int64_t>() >= 1 && v.get<int64_t>() <= int64_t{kMaxTextureExtent};
+            });
+            if (!in_range) {
+                return fail(path + ".size", "each side must be in 1.." + std::to_string(kMaxTextureExtent) + ", not " +
+                                                excerpt(size));
+            }
             spec.size = SizeSpec::absolute(size[0].get<uint32_t>(), size[1].get<uint32_t>());
         }
         if (object.contains("scale")) {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <cstdio>
 
 #include "text.hpp"
 
@@ -86,6 +88,24 @@ Result<ResolvedSpec> resolve(const TextureSpec& spec, Extent2D frame, std::strin
     auto fail = [&](const std::string& problem) {
         return make_error(ErrorCode::Graph, std::string(what) + ": " + problem);
     };
+    // The size as asked (a scale times the frame, exactly), so that a size past the limit is
+    // reported as written, not as a value that overflowed on its way.
+    const auto asked = [&](uint32_t frame_side, float scale, uint32_t evaluated) -> double {
+        if (!spec.size || spec.size->kind == SizeSpec::Kind::Absolute) return evaluated;
+        return std::round(static_cast<double>(frame_side) * static_cast<double>(scale));
+    };
+    const double asked_width = asked(frame.width, spec.size ? spec.size->scale_x : 1.0f, out.extent.width);
+    const double asked_height = asked(frame.height, spec.size ? spec.size->scale_y : 1.0f, out.extent.height);
+    if (asked_width > kMaxTextureExtent || asked_height > kMaxTextureExtent) {
+        char size[64];
+        std::snprintf(size, sizeof size, "%.0fx%.0f", asked_width, asked_height);
+        std::string problem = std::string("size ") + size;
+        if (spec.size && spec.size->kind == SizeSpec::Kind::Relative) {
+            problem += " (" + describe_size(*spec.size) + " of " + std::to_string(frame.width) + "x" +
+                       std::to_string(frame.height) + ")";
+        }
+        return fail(problem + " is beyond the limit of " + std::to_string(kMaxTextureExtent) + " texels per side");
+    }
     if (out.extent.width == 0 || out.extent.height == 0) {
         return fail("size " + std::to_string(out.extent.width) + "x" + std::to_string(out.extent.height) +
                     " is empty");
@@ -94,6 +114,10 @@ Result<ResolvedSpec> resolve(const TextureSpec& spec, Extent2D frame, std::strin
         return fail("samples " + std::to_string(out.samples) + " is not one of 1, 2, 4, 8, 16, 32, 64");
     }
     if (out.layers == 0) return fail("layers must be at least 1");
+    if (out.layers > kMaxTextureLayers) {
+        return fail("layers " + std::to_string(out.layers) + " is beyond the limit of " +
+                    std::to_string(kMaxTextureLayers));
+    }
     if (out.mips == 0 || out.mips > max_mip_levels(out.extent)) {
         return fail("mips " + std::to_string(out.mips) + " not in 1.." + std::to_string(max_mip_levels(out.extent)) +
                     " for size " + std::to_string(out.extent.width) + "x" + std::to_string(out.extent.height));

@@ -1,5 +1,9 @@
 #include "loom/framegraph/texture_spec.hpp"
 
+#include <limits>
+
+#include "loom/rhi/checked_math.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -28,9 +32,12 @@ std::string format_scale(float value) {
     return buffer;
 }
 
+// Saturates at the largest uint32 instead of converting an out-of-range double (undefined
+// behaviour); resolve() refuses such sizes with the real value.
 uint32_t scaled(uint32_t frame, float scale) {
     const double texels = std::round(static_cast<double>(frame) * static_cast<double>(scale));
-    return texels < 1.0 ? 1u : static_cast<uint32_t>(texels);
+    if (texels < 1.0) return 1u;
+    return checked::to_integer<uint32_t>(texels).value_or(std::numeric_limits<uint32_t>::max());
 }
 
 }  // namespace

@@ -51,7 +51,9 @@ std::optional<loom::fg::Extent2D> parse_frame(std::string_view text) {
     uint64_t width = 0;
     uint64_t height = 0;
     if (!parse_number(text.substr(0, x), width) || !parse_number(text.substr(x + 1), height)) return std::nullopt;
-    if (width == 0 || height == 0 || width > 65536 || height > 65536) return std::nullopt;
+    if (width == 0 || height == 0 || width > loom::fg::kMaxTextureExtent || height > loom::fg::kMaxTextureExtent) {
+        return std::nullopt;
+    }
     return loom::fg::Extent2D{static_cast<uint32_t>(width), static_cast<uint32_t>(height)};
 }
 
@@ -81,7 +83,8 @@ std::optional<std::string> parse_arguments(int argc, char** argv, Arguments& arg
                 }
             } else if (arg == "--frame") {
                 args.frame = parse_frame(*v);
-                if (!args.frame) return "--frame must be WxH (e.g. 1920x1080), not '" + std::string(*v) + "'";
+                if (!args.frame) return "--frame must be WxH (e.g. 1920x1080) with each side in 1.." +
+                           std::to_string(loom::fg::kMaxTextureExtent) + ", not '" + std::string(*v) + "'";
             } else if (arg == "--max-heap") {
                 if (!parse_number(*v, args.options.max_heap_bytes)) {
                     return "--max-heap must be a byte count, not '" + std::string(*v) + "'";

@@ -4,6 +4,7 @@
 // rhi::Device::texture_memory_requirements, tests and tools use DefaultMemoryModel.
 
 #include <cstdint>
+#include <optional>
 
 #include "loom/rhi/descriptions.hpp"
 #include "loom/rhi/result.hpp"
@@ -31,14 +32,17 @@ public:
     /// Size (rounded up to the alignment) and alignment of `desc`.
     Result<rhi::MemoryRequirements> requirements(const rhi::TextureDesc& desc) override;
 
-    /// The unaligned byte count of a texture.
+    /// The unaligned byte count of a texture, or nullopt when it does not fit in 64 bits.
+    static std::optional<uint64_t> checked_texture_bytes(const rhi::TextureDesc& desc);
+    /// The unaligned byte count of a texture, saturated at the largest uint64 (never wrapped).
     static uint64_t texture_bytes(const rhi::TextureDesc& desc);
 
 private:
     uint64_t alignment_;
 };
 
-/// `value` rounded up to a multiple of `alignment` (alignment 0 or 1: unchanged).
+/// `value` rounded up to a multiple of `alignment` (alignment 0 or 1: unchanged). Wraps past
+/// 2^64; sizes from user input go through checked::align_up instead.
 constexpr uint64_t align_up(uint64_t value, uint64_t alignment) {
     return alignment <= 1 ? value : (value + alignment - 1) / alignment * alignment;
 }

@@ -12,6 +12,16 @@
 
 namespace loom::fg {
 
+/// Limits on what a port, a frame or a plan may ask for: one set, enforced by resolve() for the
+/// C++ API and by the graph-file loader and loom-plan before that. They are the smallest maxima
+/// that OpenGL 4.5 and Vulkan 1.3 let a device report (a device may allow more, never less, so
+/// every plan within them is also checked against the device's own limits when realised), and
+/// with them no byte size can overflow 64 bits: 65536² texels × 16 bytes × 2048 layers × 64
+/// samples is 2^53 bytes.
+inline constexpr uint32_t kMaxTextureExtent = 65536;  ///< texels per side, frames included
+inline constexpr uint32_t kMaxTextureLayers = 2048;   ///< array layers
+inline constexpr uint32_t kMaxTextureSamples = 64;    ///< samples per texel (a power of two)
+
 /// A width × height in texels.
 struct Extent2D {
     uint32_t width = 0;
