@@ -126,6 +126,19 @@ Status Executor::Impl::create_plan_resources() {
         if (!schedule->texture_needed[t]) continue;
         const PlanTexture& planned = p.textures[t];
         rhi::TextureDesc desc = to_texture_desc(planned.spec, texture_label(p, t));
+        // Plans stay within loom's limits (texture_spec.hpp), which a device may not reach:
+        // say so naming the ports, before the backend refuses a texture nobody asked for by name.
+        const uint32_t device_max = device.capabilities().max_texture_size;
+        if (device_max != 0 && (desc.width > device_max || desc.height > device_max)) {
+            std::string ports;
+            for (uint32_t r : planned.resources) {
+                for (const std::string& port : p.resources[r].ports) ports += (ports.empty() ? "" : ", ") + port;
+            }
+            return make_error(ErrorCode::Unsupported,
+                              "executor: texture " + in_quotes(desc.name) + " (" + describe_resolved(planned.spec) +
+                                  ", for " + ports + ") is larger than this device's limit of " +
+                                  std::to_string(device_max) + " texels per side");
+        }
         for (const HistoryTexture& history : schedule->histories) {
             if (p.resources[history.resource].texture == t) desc.usage |= rhi::TextureUsage::CopySrc;
         }

@@ -176,6 +176,33 @@ TEST_P(ExecutionErrors, BackendErrorInsideThePassNamesItsRenderPass) {
     LOOM_ASSERT_OK(executor.run_frame(graph, options));
 }
 
+TEST_P(ExecutionErrors, TexturesBeyondTheDevicesLimitNameTheirPorts) {
+    // Within loom's limit (65536 per side) but past the device's (16384 on llvmpipe and
+    // lavapipe): an error naming the ports, before any texture is created, and nothing leaks.
+    const uint32_t device_max = device().capabilities().max_texture_size;
+    ASSERT_GT(device_max, 0u);
+    if (device_max >= fg::kMaxTextureExtent) GTEST_SKIP() << "this device reaches loom's own limit";
+    fg::FrameGraph graph;
+    fg::Pass wide("wide");
+    wide.output("strip", fg::TextureSpec::of(Format::R8Unorm).with_size(device_max + 1, 2));
+    wide.on_execute([](fg::PassContext&) { return Status{}; });
+    ASSERT_TRUE(graph.add_pass(std::move(wide)).ok());
+    LOOM_ASSERT_OK(graph.mark_output(fg::port("wide", "strip")));
+    const rhi::ResourceStats before = device().resource_stats();
+    {
+        fg::Executor executor(device());
+        fg::PlanOptions options;
+        options.frame = {16, 8};
+        Status status = executor.run_frame(graph, options);
+        ASSERT_FALSE(status.ok());
+        EXPECT_EQ(status.error().code, ErrorCode::Unsupported);
+        const std::string expected = "R8Unorm " + std::to_string(device_max + 1) + "x2, for wide.strip) is larger than "
+                                     "this device's limit of " + std::to_string(device_max) + " texels per side";
+        EXPECT_NE(status.error().message.find(expected), std::string::npos) << status.error().message;
+    }
+    EXPECT_EQ(device().resource_stats().textures, before.textures);
+}
+
 TEST_P(ExecutionErrors, PlanningErrorsNameThePort) {
     fg::FrameGraph graph;
     ASSERT_TRUE(graph.add_pass(fg::Pass("lonely").input("in", kColor).output("out", kColor)).ok());
