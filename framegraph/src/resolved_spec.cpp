@@ -110,7 +110,7 @@ Result<ResolvedSpec> resolve(const TextureSpec& spec, Extent2D frame, std::strin
         return fail("size " + std::to_string(out.extent.width) + "x" + std::to_string(out.extent.height) +
                     " is empty");
     }
-    if (out.samples == 0 || out.samples > 64 || !std::has_single_bit(out.samples)) {
+    if (out.samples == 0 || out.samples > kMaxTextureSamples || !std::has_single_bit(out.samples)) {
         return fail("samples " + std::to_string(out.samples) + " is not one of 1, 2, 4, 8, 16, 32, 64");
     }
     if (out.layers == 0) return fail("layers must be at least 1");

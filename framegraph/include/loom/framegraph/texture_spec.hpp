@@ -13,11 +13,12 @@
 namespace loom::fg {
 
 /// Limits on what a port, a frame or a plan may ask for: one set, enforced by resolve() for the
-/// C++ API and by the graph-file loader and loom-plan before that. They are the smallest maxima
-/// that OpenGL 4.5 and Vulkan 1.3 let a device report (a device may allow more, never less, so
-/// every plan within them is also checked against the device's own limits when realised), and
-/// with them no byte size can overflow 64 bits: 65536² texels × 16 bytes × 2048 layers × 64
-/// samples is 2^53 bytes.
+/// C++ API and by the graph-file loader and loom-plan before that. They are at or above what
+/// GPUs offer today (2D textures of 16384 or 32768 texels per side, 2048 array layers, 64 as
+/// Vulkan's largest sample-count flag), so no plan a device could realise is refused here, and
+/// low enough that no byte size overflows 64 bits: 65536² texels × 16 bytes × 2048 layers × 64
+/// samples is 2^53 bytes. A device's own, lower texture size is checked when a plan is realised
+/// (Executor).
 inline constexpr uint32_t kMaxTextureExtent = 65536;  ///< texels per side, frames included
 inline constexpr uint32_t kMaxTextureLayers = 2048;   ///< array layers
 inline constexpr uint32_t kMaxTextureSamples = 64;    ///< samples per texel (a power of two)
