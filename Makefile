@@ -4,7 +4,7 @@ PRESET ?= release
 JOBS ?= $(shell nproc)
 OUT ?= out
 
-.PHONY: demo test deps configure build asan asan-gpu-free clean
+.PHONY: demo test deps configure build asan asan-gpu-free fuzz clean
 
 deps:
 	./scripts/install-deps.sh
@@ -31,6 +31,13 @@ asan:
 # building only what they need; .ci/run runs it after `make test`.
 asan-gpu-free:
 	$(MAKE) test PRESET=asan-gpu-free
+
+# Builds the libFuzzer harnesses with clang 14 (installed by install-deps.sh --fuzz) into
+# build/fuzz/fuzz/; docs/fuzzing.md says how to run them.
+fuzz:
+	./scripts/install-deps.sh --fuzz
+	cmake --preset fuzz
+	cmake --build --preset fuzz -j $(JOBS)
 
 clean:
 	rm -rf build $(OUT)
