@@ -31,7 +31,7 @@ std::string lowercase(std::string_view text) {
     return out;
 }
 
-// Reads one JSON document into a FrameGraph, keeping the JSON path for error messages.
+// Reads one JSON document into a FrameGraph, keeping the JSON pointer for error messages.
 class GraphReader {
 public:
     explicit GraphReader(std::string_view source) : source_(source) {}
@@ -43,20 +43,20 @@ public:
 
         if (root.contains("frame")) {
             const json& frame = root["frame"];
-            if (!frame.is_object()) return fail("frame", "must be an object {\"width\": W, \"height\": H}");
-            LOOM_TRY(only_keys(frame, "frame", {"width", "height"}));
-            auto width = positive(frame, "frame", "width", true, kMaxTextureExtent);
+            if (!frame.is_object()) return fail("/frame", "must be an object {\"width\": W, \"height\": H}");
+            LOOM_TRY(only_keys(frame, "/frame", {"width", "height"}));
+            auto width = positive(frame, "/frame", "width", true, kMaxTextureExtent);
             if (!width) return width.take_error();
-            auto height = positive(frame, "frame", "height", true, kMaxTextureExtent);
+            auto height = positive(frame, "/frame", "height", true, kMaxTextureExtent);
             if (!height) return height.take_error();
             file.frame = {**width, **height};
         }
 
         if (!root.contains("passes")) return fail("", "missing \"passes\"");
         const json& passes = root["passes"];
-        if (!passes.is_array()) return fail("passes", "must be an array");
+        if (!passes.is_array()) return fail("/passes", "must be an array");
         for (std::size_t i = 0; i < passes.size(); ++i) {
-            const std::string path = "passes[" + std::to_string(i) + "]";
+            const std::string path = "/passes/" + std::to_string(i);
             auto pass = read_pass(passes[i], path);
             if (!pass) return pass.take_error();
             auto added = file.graph.add_pass(std::move(*pass));
@@ -65,14 +65,14 @@ public:
 
         if (root.contains("connections")) {
             const json& connections = root["connections"];
-            if (!connections.is_array()) return fail("connections", "must be an array of [\"pass.port\", \"pass.port\"]");
+            if (!connections.is_array()) return fail("/connections", "must be an array of [\"pass.port\", \"pass.port\"]");
             for (std::size_t i = 0; i < connections.size(); ++i) {
-                const std::string path = "connections[" + std::to_string(i) + "]";
+                const std::string path = "/connections/" + std::to_string(i);
                 const json& pair = connections[i];
                 if (!pair.is_array() || pair.size() != 2) return fail(path, "must be [\"pass.port\", \"pass.port\"]");
-                auto from = port_ref(pair[0], path + "[0]");
+                auto from = port_ref(pair[0], path + "/0");
                 if (!from) return from.take_error();
-                auto to = port_ref(pair[1], path + "[1]");
+                auto to = port_ref(pair[1], path + "/1");
                 if (!to) return to.take_error();
                 auto connected = file.graph.connect(*from, *to);
                 if (!connected) return at(path, connected.take_error());
@@ -81,9 +81,9 @@ public:
 
         if (root.contains("outputs")) {
             const json& outputs = root["outputs"];
-            if (!outputs.is_array()) return fail("outputs", "must be an array of \"pass.port\"");
+            if (!outputs.is_array()) return fail("/outputs", "must be an array of \"pass.port\"");
             for (std::size_t i = 0; i < outputs.size(); ++i) {
-                const std::string path = "outputs[" + std::to_string(i) + "]";
+                const std::string path = "/outputs/" + std::to_string(i);
                 auto ref = port_ref(outputs[i], path);
                 if (!ref) return ref.take_error();
                 auto marked = file.graph.mark_output(*ref);
@@ -109,7 +109,7 @@ private:
             if (std::find(allowed.begin(), allowed.end(), it.key()) != allowed.end()) continue;
             std::string known;
             for (std::string_view key : allowed) known += (known.empty() ? "" : ", ") + std::string(key);
-            return fail(path.empty() ? it.key() : path + "." + it.key(), "unknown key (expected one of: " + known + ")");
+            return fail(path + "/" + json_pointer_token(it.key()), "unknown key (expected one of: " + known + ")");
         }
         return {};
     }
@@ -122,7 +122,7 @@ private:
             return std::optional<uint32_t>{};
         }
         const json& value = object[key];
-        const std::string where = path + "." + key;
+        const std::string where = path + "/" + key;
         if (!value.is_number_integer()) return fail(where, "must be a positive integer, not " + excerpt(value));
         const auto number = value.get<int64_t>();
         if (number < 1) return fail(where, "must be a positive integer, not " + excerpt(value));
@@ -134,7 +134,7 @@ private:
 
     Result<bool> boolean(const json& object, const std::string& path, const char* key) const {
         if (!object.contains(key)) return false;
-        if (!object[key].is_boolean()) return fail(path + "." + key, "must be true or false, not " + excerpt(object[key]));
+        if (!object[key].is_boolean()) return fail(path + "/" + key, "must be true or false, not " + excerpt(object[key]));
         return object[key].get<bool>();
     }
 
@@ -149,7 +149,7 @@ private:
         if (!object.is_object()) return fail(path, "a pass must be an object");
         LOOM_TRY(only_keys(object, path, {"name", "inputs", "outputs", "inouts", "parts", "side_effect"}));
         if (!object.contains("name") || !object["name"].is_string() || object["name"].get<std::string>().empty()) {
-            return fail(path + ".name", "a pass needs a non-empty string name");
+            return fail(path + "/name", "a pass needs a non-empty string name");
         }
         Pass pass(object["name"].get<std::string>());
         auto side_effect = boolean(object, path, "side_effect");
@@ -162,14 +162,14 @@ private:
         pass.add(*own);
         if (object.contains("parts")) {
             const json& parts = object["parts"];
-            if (!parts.is_array()) return fail(path + ".parts", "must be an array of parts");
+            if (!parts.is_array()) return fail(path + "/parts", "must be an array of parts");
             for (std::size_t i = 0; i < parts.size(); ++i) {
-                const std::string part_path = path + ".parts[" + std::to_string(i) + "]";
+                const std::string part_path = path + "/parts/" + std::to_string(i);
                 const json& part = parts[i];
                 if (!part.is_object()) return fail(part_path, "a part must be an object");
                 LOOM_TRY(only_keys(part, part_path, {"name", "inputs", "outputs", "inouts"}));
                 if (!part.contains("name") || !part["name"].is_string()) {
-                    return fail(part_path + ".name", "a part needs a string name");
+                    return fail(part_path + "/name", "a part needs a string name");
                 }
                 auto read = read_part(part, part_path, part["name"].get<std::string>());
                 if (!read) return read.take_error();
@@ -187,10 +187,10 @@ private:
         for (const auto& [key, kind] : kLists) {
             if (!object.contains(key)) continue;
             const json& list = object[key];
-            const std::string list_path = path + "." + key;
+            const std::string list_path = path + "/" + key;
             if (!list.is_array()) return fail(list_path, "must be an array of ports");
             for (std::size_t i = 0; i < list.size(); ++i) {
-                const std::string port_path = list_path + "[" + std::to_string(i) + "]";
+                const std::string port_path = list_path + "/" + std::to_string(i);
                 auto port = read_port(list[i], port_path);
                 if (!port) return port.take_error();
                 part.declare(port->name, kind, port->spec, port->optional);
@@ -205,7 +205,7 @@ private:
                            {"name", "format", "channels", "bits", "kind", "srgb", "depth", "stencil", "size", "scale",
                             "samples", "mips", "layers", "optional", "usage"}));
         if (!object.contains("name") || !object["name"].is_string() || object["name"].get<std::string>().empty()) {
-            return fail(path + ".name", "a port needs a non-empty string name");
+            return fail(path + "/name", "a port needs a non-empty string name");
         }
         Port port;
         port.name = object["name"].get<std::string>();
@@ -220,13 +220,13 @@ private:
             const json& size = object["size"];
             const bool pair = size.is_array() && size.size() == 2 &&
                               std::all_of(size.begin(), size.end(), [](const json& v) { return v.is_number_integer(); });
-            if (!pair) return fail(path + ".size", "must be [width, height] in texels, not " + excerpt(size));
+            if (!pair) return fail(path + "/size", "must be [width, height] in texels, not " + excerpt(size));
             const bool in_range = std::all_of(size.begin(), size.end(), [](const json& v) {
                 if (v.is_number_unsigned()) return v.get<uint64_t>() >= 1 && v.get<uint64_t>() <= kMaxTextureExtent;
                 return v.get<int64_t>() >= 1 && v.get<int64_t>() <= int64_t{kMaxTextureExtent};
             });
             if (!in_range) {
-                return fail(path + ".size", "each side must be in 1.." + std::to_string(kMaxTextureExtent) + ", not " +
+                return fail(path + "/size", "each side must be in 1.." + std::to_string(kMaxTextureExtent) + ", not " +
                                                 excerpt(size));
             }
             spec.size = SizeSpec::absolute(size[0].get<uint32_t>(), size[1].get<uint32_t>());
@@ -239,7 +239,7 @@ private:
             } else if (scale.is_array() && scale.size() == 2 && valid_scale(scale[0]) && valid_scale(scale[1])) {
                 spec.size = SizeSpec::relative(scale[0].get<float>(), scale[1].get<float>());
             } else {
-                return fail(path + ".scale", "must be a number in (0, 16] or [sx, sy], not " + excerpt(scale));
+                return fail(path + "/scale", "must be a number in (0, 16] or [sx, sy], not " + excerpt(scale));
             }
         }
         for (const char* key : {"samples", "mips", "layers"}) {
@@ -256,9 +256,9 @@ private:
 
         if (object.contains("usage")) {
             const json& usage = object["usage"];
-            if (!usage.is_array()) return fail(path + ".usage", "must be an array of usage names");
+            if (!usage.is_array()) return fail(path + "/usage", "must be an array of usage names");
             for (std::size_t i = 0; i < usage.size(); ++i) {
-                const std::string where = path + ".usage[" + std::to_string(i) + "]";
+                const std::string where = path + "/usage/" + std::to_string(i);
                 if (!usage[i].is_string()) return fail(where, "must be a usage name, not " + excerpt(usage[i]));
                 auto flag = parse_usage_flag(usage[i].get<std::string>());
                 if (!flag) {
@@ -282,9 +282,9 @@ private:
                                   "stencil), not both");
             }
             const json& value = object["format"];
-            if (!value.is_string()) return fail(path + ".format", "must be a format name, not " + excerpt(value));
+            if (!value.is_string()) return fail(path + "/format", "must be a format name, not " + excerpt(value));
             auto format = parse_format_alias(value.get<std::string>());
-            if (!format) return fail(path + ".format", "unknown format \"" + value.get<std::string>() + "\"");
+            if (!format) return fail(path + "/format", "unknown format \"" + value.get<std::string>() + "\"");
             return std::optional(rhi::format_info(*format).features);
         }
         if (!partial_color && !partial_depth) return std::optional<rhi::FormatFeatures>{};
@@ -298,13 +298,13 @@ private:
             for (rhi::ChannelKind k : kKinds) {
                 if (value.is_string() && value.get<std::string>() == rhi::channel_kind_name(k)) kind = k;
             }
-            if (!kind) return fail(path + ".kind", "must be one of unorm, snorm, float, uint, sint, not " + excerpt(value));
+            if (!kind) return fail(path + "/kind", "must be one of unorm, snorm, float, uint, sint, not " + excerpt(value));
         }
         auto bits_of = [&](const char* key, uint32_t max) -> Result<std::optional<uint32_t>> {
             auto bits = positive(object, path, key);
             if (!bits) return bits.take_error();
             if (*bits && **bits > max) {
-                return fail(path + "." + key, "must be at most " + std::to_string(max) + ", not " +
+                return fail(path + "/" + key, "must be at most " + std::to_string(max) + ", not " +
                                                   std::to_string(**bits));
             }
             return *bits;
@@ -319,7 +319,7 @@ private:
             auto stencil = bits_of("stencil", 8);
             if (!stencil) return stencil.take_error();
             if (kind && *kind != rhi::ChannelKind::Unorm && *kind != rhi::ChannelKind::Float) {
-                return fail(path + ".kind", "depth is unorm or float");
+                return fail(path + "/kind", "depth is unorm or float");
             }
             rhi::FormatFeatures features{};
             if (*depth) {

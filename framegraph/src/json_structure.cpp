@@ -13,16 +13,31 @@ namespace {
 // One open object or array.
 struct Container {
     bool object = false;
-    std::string path;                      // as graph-file errors write it; "" for the top level
+    std::string path;                      // JSON pointer, as graph-file errors write it; "" for the top level
     std::unordered_set<std::string> keys;  // objects: the keys seen so far
     std::string key;                       // objects: the key whose value comes next
     bool expect_key = true;                // objects: the next string is a key
     std::size_t index = 0;                 // arrays: the element that comes next
 };
 
+}  // namespace
+
+std::string json_pointer_token(std::string_view key) {
+    std::string token;
+    token.reserve(key.size());
+    for (char c : key) {
+        if (c == '~') token += "~0";
+        else if (c == '/') token += "~1";
+        else token += c;
+    }
+    return token;
+}
+
+namespace {
+
 std::string member_path(const Container& parent) {
-    if (parent.object) return parent.path.empty() ? parent.key : parent.path + "." + parent.key;
-    return parent.path + "[" + std::to_string(parent.index) + "]";
+    if (parent.object) return parent.path + "/" + json_pointer_token(parent.key);
+    return parent.path + "/" + std::to_string(parent.index);
 }
 
 // The key's text as the parser will see it (escapes decoded), so "a" and "\u0061" are one key.

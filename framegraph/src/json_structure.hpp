@@ -19,8 +19,11 @@ struct JsonStructureProblem {
     std::string message;
 };
 
+/// One reference token of an RFC 6901 JSON pointer: '~' written "~0" and '/' written "~1".
+std::string json_pointer_token(std::string_view key);
+
 /// The first of: an object or array nested deeper than `max_depth`, a key repeated in one
-/// object (paths as the graph-file errors write them: passes[0].outputs[1].name), a number a
+/// object (located by JSON pointer as the graph-file errors write them: /passes/0/outputs/1/name), a number a
 /// double cannot hold (1e400). Text that is not JSON at all is left to the parser.
 std::optional<JsonStructureProblem> check_json_structure(std::string_view text, std::size_t max_depth);
 

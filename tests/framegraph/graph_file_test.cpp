@@ -102,7 +102,7 @@ TEST(GraphFile, PassesComposedFromParts) {
     const Error clash = parse_error(R"({"passes": [{"name": "d", "outputs": [{"name": "c"}],
         "parts": [{"name": "other", "inputs": [{"name": "c"}]}]}]})");
     EXPECT_EQ(clash.code, ErrorCode::Graph);
-    EXPECT_EQ(clash.message, "g.json: passes[0]: pass 'd': port 'c' is declared as output by part 'd' and as input "
+    EXPECT_EQ(clash.message, "g.json: /passes/0: pass 'd': port 'c' is declared as output by part 'd' and as input "
                              "by part 'other'");
 }
 
@@ -113,33 +113,33 @@ TEST(GraphFile, ErrorsCarryTheJsonPath) {
     };
     const Case cases[] = {
         {R"({"passes": [{"name": "a"}, {"name": "b"}, {"name": "c", "outputs": [{"name": "x", "format": "RGBA17F"}]}]})",
-         R"(g.json: passes[2].outputs[0].format: unknown format "RGBA17F")"},
-        {R"({"passes": [], "extra": 1})", "g.json: extra: unknown key (expected one of: frame, passes, connections, outputs)"},
+         R"(g.json: /passes/2/outputs/0/format: unknown format "RGBA17F")"},
+        {R"({"passes": [], "extra": 1})", "g.json: /extra: unknown key (expected one of: frame, passes, connections, outputs)"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "colour": 1}]}]})",
-         "g.json: passes[0].outputs[0].colour: unknown key (expected one of: name, format, channels, bits, kind, srgb, "
+         "g.json: /passes/0/outputs/0/colour: unknown key (expected one of: name, format, channels, bits, kind, srgb, "
          "depth, stencil, size, scale, samples, mips, layers, optional, usage)"},
         {R"({"frame": {"width": 0, "height": 10}, "passes": []})",
-         "g.json: frame.width: must be a positive integer, not 0"},
+         "g.json: /frame/width: must be a positive integer, not 0"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "samples": 2.5}]}]})",
-         "g.json: passes[0].outputs[0].samples: must be a positive integer, not 2.5"},
+         "g.json: /passes/0/outputs/0/samples: must be a positive integer, not 2.5"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "size": [10]}]}]})",
-         "g.json: passes[0].outputs[0].size: must be [width, height] in texels, not [10]"},
+         "g.json: /passes/0/outputs/0/size: must be [width, height] in texels, not [10]"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "kind": "half"}]}]})",
-         R"(g.json: passes[0].outputs[0].kind: must be one of unorm, snorm, float, uint, sint, not "half")"},
+         R"(g.json: /passes/0/outputs/0/kind: must be one of unorm, snorm, float, uint, sint, not "half")"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "format": "R8", "bits": 8}]}]})",
-         "g.json: passes[0].outputs[0]: give \"format\" or partial constraints (channels, bits, kind, srgb, depth, "
+         "g.json: /passes/0/outputs/0: give \"format\" or partial constraints (channels, bits, kind, srgb, depth, "
          "stencil), not both"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "usage": ["sampled", "texture"]}]}]})",
-         R"(g.json: passes[0].outputs[0].usage[1]: unknown usage "texture" (sampled, color_attachment, depth_stencil_attachment, storage, copy_src, copy_dst))"},
+         R"(g.json: /passes/0/outputs/0/usage/1: unknown usage "texture" (sampled, color_attachment, depth_stencil_attachment, storage, copy_src, copy_dst))"},
         {R"({"passes": [{"name": "a", "side_effect": "yes"}]})",
-         R"(g.json: passes[0].side_effect: must be true or false, not "yes")"},
-        {R"({"passes": [{"outputs": []}]})", "g.json: passes[0].name: a pass needs a non-empty string name"},
-        {R"({"passes": {}})", "g.json: passes: must be an array"},
+         R"(g.json: /passes/0/side_effect: must be true or false, not "yes")"},
+        {R"({"passes": [{"outputs": []}]})", "g.json: /passes/0/name: a pass needs a non-empty string name"},
+        {R"({"passes": {}})", "g.json: /passes: must be an array"},
         {R"({"connections": []})", R"(g.json: missing "passes")"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x"}]}], "connections": [["a.x"]]})",
-         R"(g.json: connections[0]: must be ["pass.port", "pass.port"])"},
+         R"(g.json: /connections/0: must be ["pass.port", "pass.port"])"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x"}]}], "connections": [["a.x", "bx"]]})",
-         R"(g.json: connections[0][1]: "bx" is not of the form "pass.port")"},
+         R"(g.json: /connections/0/1: "bx" is not of the form "pass.port")"},
     };
     for (const Case& c : cases) {
         const Error error = parse_error(c.text);
@@ -152,12 +152,12 @@ TEST(GraphFile, GraphErrorsKeepTheirCodeAndGainAPath) {
     const Error unknown = parse_error(R"({"passes": [{"name": "a", "outputs": [{"name": "x"}]}],
                                          "connections": [["a.x", "b.y"]]})");
     EXPECT_EQ(unknown.code, ErrorCode::Graph);
-    EXPECT_EQ(unknown.message, "g.json: connections[0]: connect a.x -> b.y: unknown pass 'b'");
+    EXPECT_EQ(unknown.message, "g.json: /connections/0: connect a.x -> b.y: unknown pass 'b'");
     const Error duplicate = parse_error(R"({"passes": [{"name": "a"}, {"name": "a"}]})");
-    EXPECT_EQ(duplicate.message, "g.json: passes[1]: add_pass: a pass called 'a' already exists");
+    EXPECT_EQ(duplicate.message, "g.json: /passes/1: add_pass: a pass called 'a' already exists");
     const Error output = parse_error(R"({"passes": [{"name": "a", "inputs": [{"name": "x"}]}], "outputs": ["a.x"]})");
     EXPECT_EQ(output.code, ErrorCode::Graph);
-    EXPECT_NE(output.message.find("g.json: outputs[0]: mark_output a.x"), std::string::npos);
+    EXPECT_NE(output.message.find("g.json: /outputs/0: mark_output a.x"), std::string::npos);
 }
 
 TEST(GraphFile, SyntaxErrorsGiveLineAndColumn) {
@@ -169,13 +169,13 @@ TEST(GraphFile, SyntaxErrorsGiveLineAndColumn) {
 TEST(GraphFile, NumbersBeyondADoubleAreAParseErrorNotAnException) {
     const Error width = parse_error(R"({"frame": {"width": 1e400, "height": 10}, "passes": []})");
     EXPECT_EQ(width.code, ErrorCode::Parse);
-    EXPECT_EQ(width.message, "g.json:1:21: the number 1e400 at frame.width is out of range (beyond a double)");
+    EXPECT_EQ(width.message, "g.json:1:21: the number 1e400 at /frame/width is out of range (beyond a double)");
     const Error negative = parse_error(R"({"passes": [{"name": "a", "outputs": [{"name": "x", "scale": -1e999}]}]})");
     EXPECT_EQ(negative.message,
-              "g.json:1:62: the number -1e999 at passes[0].outputs[0].scale is out of range (beyond a double)");
+              "g.json:1:62: the number -1e999 at /passes/0/outputs/0/scale is out of range (beyond a double)");
     // Within a double but beyond any limit: an ordinary range error, not a crash.
     const Error big = parse_error(R"({"frame": {"width": 1e300, "height": 10}, "passes": []})");
-    EXPECT_EQ(big.message, "g.json: frame.width: must be a positive integer, not 1e+300");
+    EXPECT_EQ(big.message, "g.json: /frame/width: must be a positive integer, not 1e+300");
 }
 
 std::string repeated(std::string_view text, std::size_t count) {
@@ -194,12 +194,12 @@ TEST(GraphFile, NestingDeeperThanTheLimitIsRefusedBeforeParsing) {
     EXPECT_EQ(error.code, ErrorCode::Parse);
     EXPECT_EQ(error.message, "g.json:1:" + std::to_string(prefix.size() + kMaxGraphFileDepth - 2) +
                                  ": nested deeper than " + std::to_string(kMaxGraphFileDepth) +
-                                 " levels at passes[0].side_effect" + repeated("[0]", kMaxGraphFileDepth - 3));
+                                 " levels at /passes/0/side_effect" + repeated("/0", kMaxGraphFileDepth - 3));
 
     const Error brackets = parse_error(std::string(5 << 20, '['));
     EXPECT_EQ(brackets.message, "g.json:1:" + std::to_string(kMaxGraphFileDepth + 1) + ": nested deeper than " +
                                     std::to_string(kMaxGraphFileDepth) + " levels at " +
-                                    repeated("[0]", kMaxGraphFileDepth));
+                                    repeated("/0", kMaxGraphFileDepth));
 
     // A document exactly at the limit reaches the reader (which then finds no object).
     const std::string at_limit = std::string(kMaxGraphFileDepth, '[') + std::string(kMaxGraphFileDepth, ']');
@@ -209,32 +209,43 @@ TEST(GraphFile, NestingDeeperThanTheLimitIsRefusedBeforeParsing) {
 TEST(GraphFile, DuplicateKeysAreRefusedWithTheirPath) {
     const Error top = parse_error(R"({"passes": [], "passes": []})");
     EXPECT_EQ(top.code, ErrorCode::Parse);
-    EXPECT_EQ(top.message, R"(g.json:1:16: duplicate key "passes" at passes)");
+    EXPECT_EQ(top.message, R"(g.json:1:16: duplicate key "passes" at /passes)");
     const Error port = parse_error("{\"passes\": [{\"name\": \"a\",\n \"outputs\": [{\"name\": \"x\", \"format\": \"R8\", "
                                    "\"\\u0066ormat\": \"RGBA8\"}]}]}");
-    EXPECT_EQ(port.message, R"(g.json:2:44: duplicate key "format" at passes[0].outputs[0].format)");
+    EXPECT_EQ(port.message, R"(g.json:2:44: duplicate key "format" at /passes/0/outputs/0/format)");
     // The same key in different objects is fine.
     EXPECT_TRUE(parse_graph_json(R"({"passes": [{"name": "a"}, {"name": "b"}]})", "g.json").ok());
+}
+
+TEST(GraphFile, ErrorLocationsAreJsonPointersWithEscapedKeys) {
+    // RFC 6901: '~' is written ~0 and '/' is written ~1 in a reference token.
+    const Error unknown = parse_error(R"({"passes": [{"name": "a", "outputs": [{"name": "x", "a/b~c": 1}]}]})");
+    EXPECT_EQ(unknown.code, ErrorCode::Parse);
+    EXPECT_EQ(unknown.message.substr(0, 48), "g.json: /passes/0/outputs/0/a~1b~0c: unknown key");
+    const Error duplicate = parse_error(R"({"passes": [], "~/": 1, "~/": 2})");
+    EXPECT_EQ(duplicate.message, R"(g.json:1:25: duplicate key "~/" at /~0~1)");
+    const Error frame = parse_error(R"({"frame": {"width": 0, "height": 1}, "passes": []})");
+    EXPECT_EQ(frame.message, "g.json: /frame/width: must be a positive integer, not 0");
 }
 
 TEST(GraphFile, NamesWithDotsOrControlCharactersAreRefused) {
     const Error dotted_port = parse_error(R"({"passes": [{"name": "a", "outputs": [{"name": "b.x"}]}]})");
     EXPECT_EQ(dotted_port.code, ErrorCode::Graph);
-    EXPECT_EQ(dotted_port.message, "g.json: passes[0]: add_pass: pass 'a': the port name 'b.x' contains '.', which "
+    EXPECT_EQ(dotted_port.message, "g.json: /passes/0: add_pass: pass 'a': the port name 'b.x' contains '.', which "
                                    "separates pass and port names");
     const Error dotted_pass = parse_error(R"({"passes": [{"name": "a.b", "outputs": [{"name": "x"}]}]})");
     EXPECT_EQ(dotted_pass.message,
-              "g.json: passes[0]: add_pass: the pass name 'a.b' contains '.', which separates pass and port names");
+              "g.json: /passes/0: add_pass: the pass name 'a.b' contains '.', which separates pass and port names");
     const Error newline = parse_error(R"({"passes": [{"name": "a\nb"}]})");
     EXPECT_EQ(newline.message,
-              "g.json: passes[0]: add_pass: the pass name 'a\\nb' contains a control character (code 10)");
+              "g.json: /passes/0: add_pass: the pass name 'a\\nb' contains a control character (code 10)");
     EXPECT_EQ(newline.message.find('\n'), std::string::npos);
 }
 
 TEST(GraphFile, LongValuesAreCutShortInMessages) {
     const std::string long_name(100000, 'x');
     const Error error = parse_error(R"({"passes": [{"name": "a", "side_effect": ")" + long_name + R"("}]})");
-    EXPECT_EQ(error.message, "g.json: passes[0].side_effect: must be true or false, not \"" + std::string(59, 'x') +
+    EXPECT_EQ(error.message, "g.json: /passes/0/side_effect: must be true or false, not \"" + std::string(59, 'x') +
                                  "...");
 }
 

@@ -79,11 +79,11 @@ TEST(Limits, TheMemoryModelNeverWraps) {
 TEST(Limits, GraphFilesUseTheSameLimits) {
     auto frame = parse_graph_json(R"({"frame": {"width": 1073741824, "height": 1073741824}, "passes": []})", "g.json");
     ASSERT_FALSE(frame.ok());
-    EXPECT_EQ(frame.error().message, "g.json: frame.width: must be at most 65536, not 1073741824");
+    EXPECT_EQ(frame.error().message, "g.json: /frame/width: must be at most 65536, not 1073741824");
     auto size = parse_graph_json(R"({"passes": [{"name": "a", "outputs": [{"name": "x", "size": [17179869184, 64]}]}]})",
                                  "g.json");
     ASSERT_FALSE(size.ok());
-    EXPECT_EQ(size.error().message, "g.json: passes[0].outputs[0].size: each side must be in 1..65536, not [17179869184,64]");
+    EXPECT_EQ(size.error().message, "g.json: /passes/0/outputs/0/size: each side must be in 1..65536, not [17179869184,64]");
     auto at_limit = parse_graph_json(R"({"frame": {"width": 65536, "height": 1}, "passes": []})", "g.json");
     EXPECT_TRUE(at_limit.ok());
 }

@@ -109,14 +109,14 @@ TEST(PlanTool, BrokenGraphsFailWithOneLine) {
     };
     const Case cases[] = {
         {broken("broken_cycle.json"), "loom-plan: Graph: cycle: a -> b -> a (a.out feeds b.in; b.out feeds a.in)\n"},
-        {broken("broken_format.json"), "passes[2].outputs[0].format: unknown format \"RGBA17F\"\n"},
+        {broken("broken_format.json"), "/passes/2/outputs/0/format: unknown format \"RGBA17F\"\n"},
         {broken("broken_syntax.json"), "invalid JSON"},
         {broken("missing.json"), "loom-plan: Io: cannot read graph file"},
         // Hostile input: each used to abort, or to plan something other than what was written.
-        {broken("broken_huge_number.json"), "broken_huge_number.json:1:21: the number 1e400 at frame.width is out of "
+        {broken("broken_huge_number.json"), "broken_huge_number.json:1:21: the number 1e400 at /frame/width is out of "
                                             "range (beyond a double)\n"},
-        {broken("broken_duplicate_key.json"), "broken_duplicate_key.json:1:77: duplicate key \"outputs\" at outputs\n"},
-        {broken("broken_dotted_port.json"), "passes[0]: add_pass: pass 'a': the port name 'b.x' contains '.', which "
+        {broken("broken_duplicate_key.json"), "broken_duplicate_key.json:1:77: duplicate key \"outputs\" at /outputs\n"},
+        {broken("broken_dotted_port.json"), "/passes/0: add_pass: pass 'a': the port name 'b.x' contains '.', which "
                                             "separates pass and port names\n"},
     };
     for (const Case& c : cases) {

@@ -16,8 +16,8 @@
 // (unorm, snorm, float, uint, sint), "srgb", "depth" (bits), "stencil" (bits); "size" [w, h]
 // or "scale" (a number or [sx, sy]); "samples", "mips", "layers"; "optional"; "usage" (a list
 // of sampled, color_attachment, depth_stencil_attachment, storage, copy_src, copy_dst).
-// Unknown keys and bad values are ErrorCode::Parse errors with the JSON path, e.g.
-// `graph.json: passes[2].outputs[0].format: unknown format "RGBA17F"`.
+// Unknown keys and bad values are ErrorCode::Parse errors with the JSON pointer (RFC 6901), e.g.
+// `graph.json: /passes/2/outputs/0/format: unknown format "RGBA17F"`.
 //
 // Before the document is read, the text is refused (with line and column) when it nests
 // objects and arrays deeper than kMaxGraphFileDepth, repeats a key within one object, or holds
