@@ -101,6 +101,15 @@ TEST_P(ErrorsTest, InvalidDescriptionsNameTheObjectAndField) {
     ASSERT_FALSE(w.ok());
     EXPECT_EQ(w.error().code, ErrorCode::InvalidArgument);
     EXPECT_TRUE(mentions(w.error(), "small")) << w.error().message;
+    // Offsets near 2^64: offset + size wraps into range unless the check avoids computing it.
+    const std::vector<std::byte> eight(8);
+    auto wrapped = device().write_buffer(small, UINT64_MAX - 3, eight);
+    ASSERT_FALSE(wrapped.ok());
+    EXPECT_EQ(wrapped.error().code, ErrorCode::InvalidArgument);
+    EXPECT_TRUE(mentions(wrapped.error(), "small")) << wrapped.error().message;
+    auto read_wrapped = device().read_buffer(small, UINT64_MAX - 3, 8);
+    ASSERT_FALSE(read_wrapped.ok());
+    EXPECT_EQ(read_wrapped.error().code, ErrorCode::InvalidArgument);
 
     LOOM_ASSIGN_OR_FAIL(auto texture, make_target(device(), "upload target", rhi::Format::RGBA8Unorm, 4, 4));
     const std::vector<std::byte> wrong_size(4 * 4 * 4 - 1);

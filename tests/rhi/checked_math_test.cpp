@@ -46,3 +46,13 @@ TEST(CheckedMath, Narrow) {
     EXPECT_EQ(checked::narrow<uint32_t>(int64_t{-1}), std::nullopt);
     EXPECT_EQ(checked::narrow<uint32_t>(uint64_t{7}), 7u);
 }
+
+TEST(CheckedMath, RangeFitsWithoutWrapping) {
+    EXPECT_TRUE(checked::range_fits(0, 16, 16));
+    EXPECT_TRUE(checked::range_fits(16, 0, 16));
+    EXPECT_FALSE(checked::range_fits(0, 17, 16));
+    EXPECT_FALSE(checked::range_fits(17, 0, 16));
+    // UINT64_MAX - 3 + 8 wraps to 4, which a naive "offset + size > capacity" would accept.
+    EXPECT_FALSE(checked::range_fits(UINT64_MAX - 3, 8, 16));
+    EXPECT_TRUE(checked::range_fits(UINT64_MAX - 8, 8, UINT64_MAX));
+}

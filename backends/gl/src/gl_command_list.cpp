@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "loom/rhi/checked_math.hpp"
 #include "gl_device.hpp"
 
 namespace loom::gl {
@@ -439,7 +440,7 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
                 const uint64_t alignment = uniform ? device_->capabilities().uniform_buffer_offset_alignment
                                                    : device_->capabilities().storage_buffer_offset_alignment;
                 const uint64_t size = range->size ? range->size : buf.desc.size - std::min(buf.desc.size, range->offset);
-                if (range->offset % alignment != 0 || range->offset + size > buf.desc.size || size == 0) {
+                if (range->offset % alignment != 0 || !checked::range_fits(range->offset, size, buf.desc.size) || size == 0) {
                     fail(ErrorCode::InvalidArgument, prefix + slot + ": range " + std::to_string(range->offset) + "+" +
                                                          std::to_string(size) + " of buffer " + quote_name(buf.desc.name) +
                                                          " is out of bounds or not aligned to " + std::to_string(alignment));
@@ -587,7 +588,8 @@ void GlCommandList::draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t off
                                              std::to_string(kCommandBytes));
         return;
     }
-    if (draw_count > 0 && offset + uint64_t{draw_count - 1} * stride + kCommandBytes > b.desc.size) {
+    // At most (2^32 - 1)^2 + kCommandBytes bytes: the span itself cannot overflow; offset + span can.
+    if (draw_count > 0 && !checked::range_fits(offset, uint64_t{draw_count - 1} * stride + kCommandBytes, b.desc.size)) {
         fail(ErrorCode::InvalidArgument, where(command) + std::to_string(draw_count) + " commands from offset " +
                                              std::to_string(offset) + " run past the end of buffer " + quote_name(b.desc.name));
         return;
@@ -651,14 +653,16 @@ void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_
         const bool u16 = index_buffer_.type == rhi::IndexType::Uint16;
         index_buffer = (*buffer)->name;
         index_type = u16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
-        index_offset = static_cast<uintptr_t>(index_buffer_.offset + uint64_t{first} * (u16 ? 2 : 4));
+        const uint64_t index_bytes = u16 ? 2 : 4;
+        const auto start = checked::add<uint64_t>(index_buffer_.offset, uint64_t{first} * index_bytes);
         // Indirect draws' index ranges are in GPU memory: the GPU checks them.
-        if (!indirect && index_offset + uint64_t{count} * (u16 ? 2 : 4) > (*buffer)->desc.size) {
+        if (!start || (!indirect && !checked::range_fits(*start, uint64_t{count} * index_bytes, (*buffer)->desc.size))) {
             fail(ErrorCode::InvalidArgument, where(command) + std::to_string(count) + " indices from index " +
                                                  std::to_string(first) + " run past the end of index buffer " +
                                                  quote_name((*buffer)->desc.name));
             return;
         }
+        index_offset = static_cast<uintptr_t>(*start);
     }
     const GLuint program = p->program, vao = p->vao;
     const GLenum topology = p->topology;

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "formats.hpp"
+#include "loom/rhi/checked_math.hpp"
 #include "vulkan_device.hpp"
 
 namespace loom::vulkan {
@@ -480,9 +481,10 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
                                                      std::to_string(alignment));
                 return false;
             }
-            uint64_t range = binding->size ? binding->size : buffer->desc.size - binding->offset;
+            // No underflow when the offset is past the end: the check below refuses it.
+            uint64_t range = binding->size ? binding->size : buffer->desc.size - std::min(buffer->desc.size, binding->offset);
             if (!binding->size && uniform) range = std::min(range, device_.max_uniform_range());
-            if (binding->offset + range > buffer->desc.size) {
+            if (!checked::range_fits(binding->offset, range, buffer->desc.size)) {
                 fail(ErrorCode::InvalidArgument, where + ": range " + std::to_string(binding->offset) + "+" + std::to_string(range) +
                                                      " is beyond buffer " + in_quotes(buffer->desc.name) + " (" +
                                                      std::to_string(buffer->desc.size) + " bytes)");
@@ -650,7 +652,8 @@ void VulkanCommandList::draw_indexed_indirect(rhi::BufferHandle handle, uint64_t
                                                     std::to_string(stride) + " must be multiples of 4, the stride at least " +
                                                     std::to_string(kCommandBytes));
     }
-    if (draw_count > 0 && offset + uint64_t{draw_count - 1} * stride + kCommandBytes > b.desc.size) {
+    // At most (2^32 - 1)^2 + kCommandBytes bytes: the span itself cannot overflow; offset + span can.
+    if (draw_count > 0 && !checked::range_fits(offset, uint64_t{draw_count - 1} * stride + kCommandBytes, b.desc.size)) {
         return fail(ErrorCode::InvalidArgument, std::string(what) + ": " + std::to_string(draw_count) + " commands from offset " +
                                                     std::to_string(offset) + " run past the end of buffer " + in_quotes(b.desc.name));
     }

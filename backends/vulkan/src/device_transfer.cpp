@@ -3,6 +3,7 @@
 // function that submits work to the queue.
 #include <cstring>
 
+#include "loom/rhi/checked_math.hpp"
 #include "vulkan_device.hpp"
 
 namespace loom::vulkan {
@@ -208,7 +209,7 @@ loom::Status VulkanDevice::write_buffer(rhi::BufferHandle handle, uint64_t offse
     if (!b.ok()) return b.take_error();
     Buffer& buffer = **b;
     if (data.empty()) return {};
-    if (offset + data.size() > buffer.desc.size) {
+    if (!checked::range_fits(offset, data.size(), buffer.desc.size)) {
         return Error{ErrorCode::InvalidArgument, "write_buffer: " + std::to_string(data.size()) + " bytes at offset " +
                                                      std::to_string(offset) + " exceed buffer " + in_quotes(buffer.desc.name) + " (" +
                                                      std::to_string(buffer.desc.size) + " bytes)"};
@@ -233,7 +234,7 @@ loom::Result<std::vector<std::byte>> VulkanDevice::read_buffer(rhi::BufferHandle
     auto b = buffers_.get(handle);
     if (!b.ok()) return b.take_error();
     Buffer& buffer = **b;
-    if (offset + size > buffer.desc.size) {
+    if (!checked::range_fits(offset, size, buffer.desc.size)) {
         return Error{ErrorCode::InvalidArgument, "read_buffer: range " + std::to_string(offset) + "+" + std::to_string(size) +
                                                      " exceeds buffer " + in_quotes(buffer.desc.name) + " (" +
                                                      std::to_string(buffer.desc.size) + " bytes)"};

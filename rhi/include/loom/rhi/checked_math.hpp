@@ -40,6 +40,12 @@ template <std::unsigned_integral T>
     return out;
 }
 
+/// Whether the byte range [offset, offset + size) lies within [0, capacity), decided without
+/// computing offset + size (which a hostile offset would wrap past 2^64 into range).
+[[nodiscard]] constexpr bool range_fits(uint64_t offset, uint64_t size, uint64_t capacity) {
+    return offset <= capacity && size <= capacity - offset;
+}
+
 /// value rounded up to a multiple of alignment (alignment > 0), or nullopt on overflow.
 [[nodiscard]] constexpr std::optional<uint64_t> align_up(uint64_t value, uint64_t alignment) {
     if (alignment == 0) return std::nullopt;
