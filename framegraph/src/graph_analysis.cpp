@@ -97,7 +97,9 @@ Error cycle_error(const FrameGraph& graph, const Dependencies& dependencies, con
         reasons += edge_reason(from, to);
     }
     names += graph.pass(PassId{cycle.front()}).name();
-    return graph_error("cycle: " + names + " (" + reasons + ")");
+    Error error = graph_error("cycle: " + names + " (" + reasons + ")");
+    for (uint32_t pass : cycle) error.subjects.push_back(graph.pass(PassId{pass}).name());
+    return error;
 }
 
 }  // namespace
@@ -117,8 +119,10 @@ Result<Dependencies> analyze(const FrameGraph& graph) {
             auto source = graph.source(address);
             if (!source) {
                 if (port.optional) continue;
-                return graph_error("required " + std::string(port_kind_name(port.kind)) + " " +
-                                   graph.port_name(address) + " is not connected");
+                Error error = graph_error("required " + std::string(port_kind_name(port.kind)) + " " +
+                                          graph.port_name(address) + " is not connected");
+                error.subjects = {graph.port_name(address)};
+                return error;
             }
             out.successors[source->pass].push_back(pass_index);
             out.producers[pass_index].push_back(source->pass);
@@ -127,9 +131,11 @@ Result<Dependencies> analyze(const FrameGraph& graph) {
             for (const PortAddress& reader : graph.consumers(*source)) {
                 if (reader == address) continue;
                 if (reader.pass == pass_index) {
-                    return graph_error("pass '" + pass.name() + "' reads " + graph.port_name(*source) + " through " +
-                                       graph.port_name(reader) + " while modifying it in place through " +
-                                       graph.port_name(address));
+                    Error error = graph_error("pass '" + pass.name() + "' reads " + graph.port_name(*source) +
+                                              " through " + graph.port_name(reader) +
+                                              " while modifying it in place through " + graph.port_name(address));
+                    error.subjects = {graph.port_name(address), graph.port_name(reader), graph.port_name(*source)};
+                    return error;
                 }
                 out.successors[reader.pass].push_back(pass_index);
             }

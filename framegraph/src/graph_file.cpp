@@ -6,6 +6,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include <nlohmann/json.hpp>
 
@@ -90,6 +91,8 @@ public:
                 if (!marked) return at(path, marked.take_error());
             }
         }
+        file.source = std::string(source_);
+        file.pointers = std::move(pointers_);
         return file;
     }
 
@@ -145,13 +148,15 @@ private:
         return *ref;
     }
 
-    Result<Pass> read_pass(const json& object, const std::string& path) const {
+    Result<Pass> read_pass(const json& object, const std::string& path) {
         if (!object.is_object()) return fail(path, "a pass must be an object");
         LOOM_TRY(only_keys(object, path, {"name", "inputs", "outputs", "inouts", "parts", "side_effect"}));
         if (!object.contains("name") || !object["name"].is_string() || object["name"].get<std::string>().empty()) {
             return fail(path + "/name", "a pass needs a non-empty string name");
         }
         Pass pass(object["name"].get<std::string>());
+        pass_name_ = pass.name();
+        pointers_.try_emplace(pass_name_, path);
         auto side_effect = boolean(object, path, "side_effect");
         if (!side_effect) return side_effect.take_error();
         pass.set_side_effect(*side_effect);
@@ -180,7 +185,7 @@ private:
         return pass;
     }
 
-    Result<Part> read_part(const json& object, const std::string& path, std::string name) const {
+    Result<Part> read_part(const json& object, const std::string& path, std::string name) {
         Part part(std::move(name));
         static constexpr std::array<std::pair<const char*, PortKind>, 3> kLists{
             {{"inputs", PortKind::Input}, {"outputs", PortKind::Output}, {"inouts", PortKind::InOut}}};
@@ -194,6 +199,8 @@ private:
                 auto port = read_port(list[i], port_path);
                 if (!port) return port.take_error();
                 part.declare(port->name, kind, port->spec, port->optional);
+                // A port declared by the pass and its parts is located where it is first declared.
+                pointers_.try_emplace(pass_name_ + "." + port->name, port_path);
             }
         }
         return part;
@@ -344,6 +351,8 @@ private:
     }
 
     std::string_view source_;
+    std::string pass_name_;  // the pass being read
+    std::unordered_map<std::string, std::string> pointers_;
 };
 
 }  // namespace
@@ -412,6 +421,25 @@ Result<GraphFile> load_graph_file(const std::filesystem::path& path) {
     text << in.rdbuf();
     if (in.bad()) return make_error(ErrorCode::Io, "error while reading graph file " + path.string());
     return parse_graph_json(text.str(), path.string());
+}
+
+Error locate_in_graph_file(const GraphFile& file, Error error) {
+    // The subjects' JSON pointers, in the order the error names them, each once.
+    std::vector<std::string> pointers;
+    for (const std::string& subject : error.subjects) {
+        auto it = file.pointers.find(subject);
+        if (it == file.pointers.end()) continue;
+        if (std::find(pointers.begin(), pointers.end(), it->second) == pointers.end()) pointers.push_back(it->second);
+    }
+    std::string prefix = file.source + ": ";
+    if (!pointers.empty()) prefix += pointers.front() + ": ";
+    error.message = prefix + error.message;
+    if (pointers.size() > 1) {
+        std::string also;
+        for (std::size_t i = 1; i < pointers.size(); ++i) also += (i > 1 ? ", " : "") + pointers[i];
+        error.message += " (see also " + also + ")";
+    }
+    return error;
 }
 
 }  // namespace loom::fg

@@ -144,9 +144,15 @@ Result<TextureSpec> join_group(const FrameGraph& graph, const Group& group, Exte
                 named.a_name = a_name;
                 named.b_name = b_name;
                 auto single = join(only_property(joined, i), only_property(spec, i), named);
-                if (!single) return single.take_error();
+                if (!single) {
+                    Error error = single.take_error();
+                    error.subjects = {b_name, a_name};
+                    return error;
+                }
             }
-            return result.take_error();
+            Error error = result.take_error();
+            error.subjects = {graph.port_name(address)};
+            return error;
         }
         if (spec.format && !origin[0]) origin[0] = address;
         if (spec.size && !origin[1]) origin[1] = address;
@@ -287,7 +293,11 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
 
         const std::string name = graph.port_name(start);
         auto resolved = resolve(*joined, options.frame, name);
-        if (!resolved) return resolved.take_error();
+        if (!resolved) {
+            Error error = resolved.take_error();
+            for (const PortAddress& address : item.kept_ports) error.subjects.push_back(graph.port_name(address));
+            return error;
+        }
         TextureUsage usage = TextureUsage::None;
         for (const PortAddress& address : item.kept_ports) usage |= port_usage(graph.port_at(address), resolved->format);
         if (graph_output) usage |= TextureUsage::CopySrc;

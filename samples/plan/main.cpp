@@ -124,9 +124,10 @@ int main(int argc, char** argv) {
 
     auto plan = loom::fg::build_plan(file->graph, args.options);
     if (!plan) {
-        // A bad allocator name is an argument error, not a graph error.
-        const int status = plan.error().code == loom::ErrorCode::InvalidArgument ? 2 : 1;
-        return fail(status, plan.error().to_string());
+        // A bad allocator name is an argument error, not a graph error (nor located in the file).
+        if (plan.error().code == loom::ErrorCode::InvalidArgument) return fail(2, plan.error().to_string());
+        // A planning error names passes and ports; say where the file declares them.
+        return fail(1, loom::fg::locate_in_graph_file(*file, plan.take_error()).to_string());
     }
 
     if (!args.dot.empty()) {

@@ -160,6 +160,59 @@ TEST(GraphFile, GraphErrorsKeepTheirCodeAndGainAPath) {
     EXPECT_NE(output.message.find("g.json: /outputs/0: mark_output a.x"), std::string::npos);
 }
 
+/// The planning error of a graph file that parses, located in the file.
+Error planning_error(std::string_view text) {
+    auto file = parse_graph_json(text, "g.json");
+    EXPECT_TRUE(file.ok()) << (file.ok() ? "" : file.error().message);
+    if (!file.ok()) return {};
+    PlanOptions options;
+    options.frame = file->frame;
+    auto plan = build_plan(file->graph, options);
+    EXPECT_FALSE(plan.ok());
+    return plan.ok() ? Error{} : locate_in_graph_file(*file, plan.take_error());
+}
+
+TEST(GraphFile, PlanningErrorsNameTheFileAndTheJsonPointerOfWhatTheyBlame) {
+    // An input nobody feeds: where the input is declared (here in a part of the pass).
+    const Error unconnected = planning_error(R"({"passes": [
+        {"name": "a", "outputs": [{"name": "out", "format": "RGBA8"}]},
+        {"name": "b", "outputs": [{"name": "out", "format": "RGBA8"}],
+         "parts": [{"name": "lit", "inputs": [{"name": "shadow"}]}]}],
+      "outputs": ["a.out", "b.out"]})");
+    EXPECT_EQ(unconnected.code, ErrorCode::Graph);
+    EXPECT_EQ(unconnected.message, "g.json: /passes/1/parts/0/inputs/0: required input b.shadow is not connected");
+
+    // A failed join: the port that contradicts first, then the one that constrained first.
+    const Error join = planning_error(R"({"passes": [
+        {"name": "a", "outputs": [{"name": "out", "format": "RGBA8"}]},
+        {"name": "b", "inputs": [{"name": "in", "format": "Depth32F"}], "outputs": [{"name": "out", "format": "RGBA8"}]}],
+      "connections": [["a.out", "b.in"]], "outputs": ["b.out"]})");
+    EXPECT_EQ(join.code, ErrorCode::Join);
+    EXPECT_EQ(join.message.rfind("g.json: /passes/1/inputs/0: cannot join a.out and b.in: ", 0), 0u) << join.message;
+    EXPECT_NE(join.message.find(" (see also /passes/0/outputs/0)"), std::string::npos) << join.message;
+
+    // A cycle: every pass on it, in the cycle's order.
+    const Error cycle = planning_error(R"({"passes": [
+        {"name": "x", "outputs": [{"name": "out", "format": "RGBA8"}]},
+        {"name": "a", "inputs": [{"name": "in"}], "outputs": [{"name": "out", "format": "RGBA8"}]},
+        {"name": "b", "inputs": [{"name": "in"}], "outputs": [{"name": "out", "format": "RGBA8"}]}],
+      "connections": [["a.out", "b.in"], ["b.out", "a.in"]], "outputs": ["b.out", "x.out"]})");
+    EXPECT_EQ(cycle.message,
+              "g.json: /passes/1: cycle: a -> b -> a (a.out feeds b.in; b.out feeds a.in) (see also /passes/2)");
+
+    // A size beyond the limits once the frame scales it: every port of the resource.
+    const Error size = planning_error(R"({"frame": {"width": 40000, "height": 100}, "passes": [
+        {"name": "a", "outputs": [{"name": "out", "format": "RGBA8", "scale": 2}]},
+        {"name": "b", "inputs": [{"name": "in"}], "side_effect": true}],
+      "connections": [["a.out", "b.in"]]})");
+    EXPECT_EQ(size.message.rfind("g.json: /passes/0/outputs/0: ", 0), 0u) << size.message;
+    EXPECT_NE(size.message.find("(see also /passes/1/inputs/0)"), std::string::npos) << size.message;
+
+    // Nothing to blame by name: the file alone.
+    const Error nothing = planning_error(R"({"passes": [{"name": "a", "outputs": [{"name": "out", "format": "RGBA8"}]}]})");
+    EXPECT_EQ(nothing.message.rfind("g.json: nothing to run", 0), 0u) << nothing.message;
+}
+
 TEST(GraphFile, SyntaxErrorsGiveLineAndColumn) {
     const Error error = parse_error("{\n  \"passes\": [\n    {\"name\": \"a\",}\n  ]\n}\n");
     EXPECT_EQ(error.code, ErrorCode::Parse);

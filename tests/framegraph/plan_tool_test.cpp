@@ -108,7 +108,10 @@ TEST(PlanTool, BrokenGraphsFailWithOneLine) {
         std::string error;
     };
     const Case cases[] = {
-        {broken("broken_cycle.json"), "loom-plan: Graph: cycle: a -> b -> a (a.out feeds b.in; b.out feeds a.in)\n"},
+        {broken("broken_cycle.json"),
+         "broken_cycle.json: /passes/0: cycle: a -> b -> a (a.out feeds b.in; b.out feeds a.in) (see also /passes/1)\n"},
+        {broken("broken_unconnected.json"), "broken_unconnected.json: /passes/1/inputs/1: required input lit.shadow is not "
+                                            "connected\n"},
         {broken("broken_format.json"), "/passes/2/outputs/0/format: unknown format \"RGBA17F\"\n"},
         {broken("broken_syntax.json"), "invalid JSON"},
         {broken("missing.json"), "loom-plan: Io: cannot read graph file"},

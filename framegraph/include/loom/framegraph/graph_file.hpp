@@ -27,7 +27,9 @@
 #include <cstddef>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <string_view>
+#include <unordered_map>
 
 #include "loom/framegraph/graph.hpp"
 #include "loom/rhi/format.hpp"
@@ -43,6 +45,12 @@ inline constexpr std::size_t kMaxGraphFileDepth = 64;
 struct GraphFile {
     FrameGraph graph;
     Extent2D frame{1920, 1080};
+    /// What the text was called in parse_graph_json (the file name for load_graph_file).
+    std::string source;
+    /// Where each pass ("pass") and port ("pass.port") is declared in the text, as a JSON
+    /// pointer ("/passes/2", "/passes/2/outputs/0"; a port a pass and its parts both declare:
+    /// its first declaration).
+    std::unordered_map<std::string, std::string> pointers;
 };
 
 /// Parses a JSON graph. `source` names the text in error messages (usually the file name).
@@ -50,6 +58,13 @@ Result<GraphFile> parse_graph_json(std::string_view text, std::string_view sourc
 
 /// Reads and parses a JSON graph file (ErrorCode::Io when it cannot be read).
 Result<GraphFile> load_graph_file(const std::filesystem::path& path);
+
+/// An error found later (by build_plan: a failed join, a cycle, an unconnected input) about
+/// `file`'s graph, located in the file: "<source>: <JSON pointer of its first subject>:
+/// <message>", with the pointers of its other subjects after it, e.g.
+/// `g.json: /passes/1/inputs/0: required input b.in is not connected`. An error without known
+/// subjects gets the source only.
+Error locate_in_graph_file(const GraphFile& file, Error error);
 
 /// A format by rhi name ("RGBA16Float") or short alias: a trailing "F" for Float ("RGBA16F",
 /// "R11G11B10F"), no suffix for Unorm ("RGBA8", "R16"), "D16", "D24", "D32F", "D24S8",

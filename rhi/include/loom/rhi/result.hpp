@@ -9,6 +9,7 @@
 #include <string_view>
 #include <utility>
 #include <variant>
+#include <vector>
 
 namespace loom {
 
@@ -36,6 +37,10 @@ std::string_view error_code_name(ErrorCode code);
 struct Error {
     ErrorCode code = ErrorCode::InvalidArgument;
     std::string message;
+    /// What the error is about, by name, for tools that map names back to where they were
+    /// written (e.g. graph files to JSON pointers): passes as "pass", ports as "pass.port".
+    /// Filled where the message names them (the frame graph's planning errors); may be empty.
+    std::vector<std::string> subjects{};
 
     /// "ShaderCompile: shaders/foo.frag:12: 'x' undeclared identifier"
     [[nodiscard]] std::string to_string() const;
