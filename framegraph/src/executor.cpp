@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "frame_state.hpp"
+#include "loom/rhi/checked_math.hpp"
 
 namespace loom::fg {
 namespace {
@@ -128,16 +129,28 @@ Status Executor::Impl::create_plan_resources() {
         rhi::TextureDesc desc = to_texture_desc(planned.spec, texture_label(p, t));
         // Plans stay within loom's limits (texture_spec.hpp), which a device may not reach:
         // say so naming the ports, before the backend refuses a texture nobody asked for by name.
-        const uint32_t device_max = device.capabilities().max_texture_size;
-        if (device_max != 0 && (desc.width > device_max || desc.height > device_max)) {
+        const rhi::Capabilities& caps = device.capabilities();
+        auto beyond = [&](const std::string& what) {
             std::string ports;
             for (uint32_t r : planned.resources) {
                 for (const std::string& port : p.resources[r].ports) ports += (ports.empty() ? "" : ", ") + port;
             }
-            return make_error(ErrorCode::Unsupported,
-                              "executor: texture " + in_quotes(desc.name) + " (" + describe_resolved(planned.spec) +
-                                  ", for " + ports + ") is larger than this device's limit of " +
-                                  std::to_string(device_max) + " texels per side");
+            Error error = make_error(ErrorCode::Unsupported, "executor: texture " + in_quotes(desc.name) + " (" +
+                                                                 describe_resolved(planned.spec) + ", for " + ports + ") " + what);
+            for (uint32_t r : planned.resources) {
+                for (const std::string& port : p.resources[r].ports) error.subjects.push_back(port);
+            }
+            return error;
+        };
+        if (caps.max_texture_size != 0 && (desc.width > caps.max_texture_size || desc.height > caps.max_texture_size)) {
+            return beyond("is larger than this device's limit of " + std::to_string(caps.max_texture_size) +
+                          " texels per side");
+        }
+        if (caps.max_texture_layers != 0 && planned.spec.layers > caps.max_texture_layers) {
+            return beyond("has more layers than this device's limit of " + std::to_string(caps.max_texture_layers));
+        }
+        if (caps.max_samples != 0 && planned.spec.samples > caps.max_samples) {
+            return beyond("has more samples than this device's limit of " + std::to_string(caps.max_samples));
         }
         for (const HistoryTexture& history : schedule->histories) {
             if (p.resources[history.resource].texture == t) desc.usage |= rhi::TextureUsage::CopySrc;
@@ -148,7 +161,7 @@ Status Executor::Impl::create_plan_resources() {
             if (!needs) return make_error(needs.error().code, "executor: texture " + in_quotes(desc.name) + ": " + needs.error().message);
             const HeapRange& range = *planned.placement;
             if (range.offset % std::max<uint64_t>(needs->alignment, 1) != 0 || needs->size > planned.bytes ||
-                range.offset + needs->size > p.heaps[range.heap]) {
+                !checked::range_fits(range.offset, needs->size, p.heaps[range.heap])) {
                 return make_error(ErrorCode::InvalidArgument,
                                   "executor: texture " + in_quotes(desc.name) + " needs " + std::to_string(needs->size) +
                                       " bytes aligned to " + std::to_string(needs->alignment) + " on this device, but the plan gives it " +

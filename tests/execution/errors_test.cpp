@@ -203,6 +203,33 @@ TEST_P(ExecutionErrors, TexturesBeyondTheDevicesLimitNameTheirPorts) {
     EXPECT_EQ(device().resource_stats().textures, before.textures);
 }
 
+TEST_P(ExecutionErrors, SampleCountsBeyondTheDevicesLimitNameTheirPorts) {
+    // Within loom's limit (64 samples) but past the device's (4 on llvmpipe and lavapipe).
+    const uint32_t device_max = device().capabilities().max_samples;
+    ASSERT_GE(device_max, 1u);
+    ASSERT_GT(device().capabilities().max_texture_layers, 0u);
+    if (device_max >= fg::kMaxTextureSamples) GTEST_SKIP() << "this device reaches loom's own limit";
+    fg::FrameGraph graph;
+    fg::Pass msaa("msaa");
+    msaa.output("color", fg::TextureSpec::of(Format::RGBA8Unorm).with_samples(device_max * 2));
+    msaa.on_execute([](fg::PassContext&) { return Status{}; });
+    ASSERT_TRUE(graph.add_pass(std::move(msaa)).ok());
+    LOOM_ASSERT_OK(graph.mark_output(fg::port("msaa", "color")));
+    const rhi::ResourceStats before = device().resource_stats();
+    {
+        fg::Executor executor(device());
+        fg::PlanOptions options;
+        options.frame = {16, 8};
+        Status status = executor.run_frame(graph, options);
+        ASSERT_FALSE(status.ok());
+        EXPECT_EQ(status.error().code, ErrorCode::Unsupported);
+        const std::string expected = "for msaa.color) has more samples than this device's limit of " + std::to_string(device_max);
+        EXPECT_NE(status.error().message.find(expected), std::string::npos) << status.error().message;
+        EXPECT_EQ(status.error().subjects, (std::vector<std::string>{"msaa.color"}));
+    }
+    EXPECT_EQ(device().resource_stats().textures, before.textures);
+}
+
 TEST_P(ExecutionErrors, PlanningErrorsNameThePort) {
     fg::FrameGraph graph;
     ASSERT_TRUE(graph.add_pass(fg::Pass("lonely").input("in", kColor).output("out", kColor)).ok());

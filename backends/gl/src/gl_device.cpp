@@ -108,6 +108,8 @@ void GlDevice::init_capabilities() {
     limits_.max_3d_texture_size = integer(GL_MAX_3D_TEXTURE_SIZE);
     limits_.max_array_layers = integer(GL_MAX_ARRAY_TEXTURE_LAYERS);
     limits_.max_cube_size = integer(GL_MAX_CUBE_MAP_TEXTURE_SIZE);
+    caps_.max_texture_layers = limits_.max_array_layers;
+    caps_.max_samples = std::max<uint32_t>(1, limits_.max_samples);
 }
 
 // Mesa 22.3's llvmpipe answers the first GL_TIME_ELAPSED query of a context that contains

@@ -78,6 +78,17 @@ loom::Status VulkanDevice::init_device(const rhi::DeviceDesc& desc) {
     caps_.draw_indirect = context_->draw_indirect_first_instance();
     caps_.timestamps = context_->timestamp_valid_bits() > 0 && props.limits.timestampPeriod > 0.0f;
     caps_.max_texture_size = props.limits.maxImageDimension2D;
+    caps_.max_texture_layers = props.limits.maxImageArrayLayers;
+    // The most samples both colour and depth attachments allow: the highest common bit.
+    const VkSampleCountFlags counts =
+        props.limits.framebufferColorSampleCounts & props.limits.framebufferDepthSampleCounts;
+    caps_.max_samples = 1;
+    for (uint32_t n = 64; n > 1; n /= 2) {
+        if (counts & n) {
+            caps_.max_samples = n;
+            break;
+        }
+    }
     caps_.max_color_attachments = props.limits.maxColorAttachments;
     caps_.uniform_buffer_offset_alignment = props.limits.minUniformBufferOffsetAlignment;
     caps_.storage_buffer_offset_alignment = props.limits.minStorageBufferOffsetAlignment;

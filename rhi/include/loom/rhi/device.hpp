@@ -77,6 +77,10 @@ struct Capabilities {
     /// false, draw each DrawIndexedIndirectCommand with draw_indexed instead.
     bool draw_indirect = false;
     uint32_t max_texture_size = 0;
+    /// Layers of an array texture.
+    uint32_t max_texture_layers = 0;
+    /// Samples per texel of a multisampled colour or depth attachment (1: no multisampling).
+    uint32_t max_samples = 0;
     uint32_t max_color_attachments = 0;
     uint64_t uniform_buffer_offset_alignment = 256;
     uint64_t storage_buffer_offset_alignment = 256;
