@@ -173,6 +173,36 @@ Status DeferredPipeline::build() {
     return {};
 }
 
+void DeferredPipeline::drop_graph() {
+    // The passes (and their pipelines) go with the graph; the executor's textures are the
+    // executor's and outlive it.
+    passes_.clear();
+    shadow_ = nullptr;
+    masked_shadow_ = nullptr;
+    geometry_ = nullptr;
+    deferred_ = nullptr;
+    forward_ = nullptr;
+    transparent_ = nullptr;
+    blur_h_ = nullptr;
+    blur_v_ = nullptr;
+    composite_ = nullptr;
+    present_ = nullptr;
+    graph_ = fg::FrameGraph();
+}
+
+Status DeferredPipeline::rebuild(const PipelineSettings& settings) {
+    drop_graph();
+    settings_ = settings;
+    if (settings_.library) {
+        library_ = settings_.library;
+    } else {
+        settings_.library = library_;
+    }
+    Status built = build();
+    if (!built) drop_graph();
+    return built;
+}
+
 passes::SceneView DeferredPipeline::view(fg::Extent2D frame) const {
     const float aspect = static_cast<float>(frame.width) / static_cast<float>(frame.height);
     passes::SceneView view;
@@ -191,6 +221,7 @@ passes::SceneView DeferredPipeline::view(fg::Extent2D frame) const {
 }
 
 Status DeferredPipeline::prepare(fg::Extent2D frame) {
+    if (!shadow_) return make_error(ErrorCode::InvalidState, "deferred pipeline: no graph (the last rebuild failed)");
     if (frame.width == 0 || frame.height == 0) {
         return make_error(ErrorCode::InvalidArgument, "deferred pipeline: empty frame size");
     }

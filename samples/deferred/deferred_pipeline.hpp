@@ -120,6 +120,13 @@ public:
     DeferredPipeline(const DeferredPipeline&) = delete;
     DeferredPipeline& operator=(const DeferredPipeline&) = delete;
 
+    /// Replaces the graph and its passes by those `settings` describe (e.g. the lit pass
+    /// toggled between deferred and forward), as an engine rebuilding its frame graph does. The
+    /// scene, the executor and its textures stay: the next frame plans the new graph and the
+    /// executor keeps what the new plan can reuse. The shader library stays unless `settings`
+    /// names another. After an error the pipeline has no graph until a rebuild succeeds.
+    Status rebuild(const PipelineSettings& settings);
+
     /// Renders one frame of `frame` size offscreen (begin_frame .. end_frame).
     Status render(fg::Extent2D frame);
     /// Records one frame into a frame the caller began, presenting into `target` (imported as
@@ -154,6 +161,7 @@ public:
 private:
     DeferredPipeline(rhi::Device& device, PipelineScene scene, PipelineSettings settings);
     Status build();
+    void drop_graph();
     Status prepare(fg::Extent2D frame);
 
     rhi::Device& device_;

@@ -3,6 +3,7 @@
 // GL or Vulkan. Headless it writes the final frame, every intermediate texture (the paper's
 // Figures 3-7), the plan as JSON and DOT, and prints what the plan and the device used. The
 // scene is the built-in procedural one or a glTF file (--scene FILE).
+#include <algorithm>
 #include <cinttypes>
 #include <cstdint>
 #include <cstdio>
@@ -22,6 +23,8 @@
 #include "loom/rhi/image.hpp"
 #include "loom/sample_common/options.hpp"
 #include "procedural_scene.hpp"
+#include "soak.hpp"
+#include "soak_plot.hpp"
 #include "visualize.hpp"
 
 namespace {
@@ -42,6 +45,10 @@ struct Options {
     /// A glTF file; empty: the built-in scene.
     std::filesystem::path scene;
     std::optional<uint32_t> camera;
+    /// --soak N: frames of the soak run (0: no soak run).
+    uint64_t soak = 0;
+    uint32_t resize_every = 100;
+    uint32_t rebuild_every = 10;
 };
 
 const char* kUsage =
@@ -58,7 +65,13 @@ std::string extra_help() {
            "  --scene FILE|builtin  a glTF 2.0 file (.gltf, .glb), or the built-in procedural scene (the default)\n"
            "  --camera N            the file's camera N (default: its first camera, or one framing the scene)\n"
            "  --pipeline NAME       deferred (Figure 2, the default) or forward (one forward pass with the\n"
-           "                        same shadow-render and high-pass-render parts)\n";
+           "                        same shadow-render and high-pass-render parts)\n"
+           "  --soak N              soak run of N frames (headless): resize every --resize-every frames\n"
+           "                        (default 100; between --size and 3/4 of it), rebuild the graph with the\n"
+           "                        lit pass toggled (deferred <-> forward) every --rebuild-every frames\n"
+           "                        (default 10); writes soak.csv, soak.svg and soak.txt into --out DIR and\n"
+           "                        fails unless the live GPU objects repeat exactly once warmed up\n"
+           "                        (docs/soak.md); N must exceed two periods (400 frames by default)\n";
 }
 
 loom::Result<Options> parse(int argc, char** argv) {
@@ -92,6 +105,19 @@ loom::Result<Options> parse(int argc, char** argv) {
                 return loom::make_error(loom::ErrorCode::InvalidArgument, "--frames expects a number, got '" + *v + "'");
             }
             options.frames = n;
+        } else if (name == "--soak" || name == "--resize-every" || name == "--rebuild-every") {
+            auto v = take();
+            if (!v) return v.take_error();
+            char* end = nullptr;
+            const unsigned long long n = std::strtoull(v->c_str(), &end, 10);
+            const uint64_t max = name == "--soak" ? UINT64_MAX : UINT32_MAX;
+            if (v->empty() || *end != '\0' || (*v)[0] == '-' || n == 0 || n > max) {
+                return loom::make_error(loom::ErrorCode::InvalidArgument,
+                                        name + " expects a positive number, got '" + *v + "'");
+            }
+            if (name == "--soak") options.soak = n;
+            if (name == "--resize-every") options.resize_every = static_cast<uint32_t>(n);
+            if (name == "--rebuild-every") options.rebuild_every = static_cast<uint32_t>(n);
         } else if (name == "--allocator") {
             auto v = take();
             if (!v) return v.take_error();
@@ -124,6 +150,21 @@ loom::Result<Options> parse(int argc, char** argv) {
     }
     if (options.camera && options.scene.empty()) {
         return loom::make_error(loom::ErrorCode::InvalidArgument, "--camera needs a glTF scene (--scene FILE)");
+    }
+    if (options.soak != 0) {
+        if (options.common.window) {
+            return loom::make_error(loom::ErrorCode::InvalidArgument, "--soak runs headless (leave out --window)");
+        }
+        loom::deferred::SoakSettings soak;
+        soak.resize_every = options.resize_every;
+        soak.rebuild_every = options.rebuild_every;
+        const uint64_t period = loom::deferred::soak_period(soak);
+        if (period > UINT64_MAX / 2 || options.soak <= 2 * period) {
+            return loom::make_error(loom::ErrorCode::InvalidArgument,
+                                    "--soak " + std::to_string(options.soak) + " is too short: the check compares each frame after a " +
+                                        "warm-up period with one period earlier, so it needs more than two periods (" +
+                                        std::to_string(period) + " frames each with these settings)");
+        }
     }
     if (!options.common.window && options.frames == 0) {
         return loom::make_error(loom::ErrorCode::InvalidArgument, "--frames 0 only makes sense with --window");
@@ -296,6 +337,71 @@ int run_window(const Options& options) {
     return EXIT_SUCCESS;
 }
 
+/// The soak run (docs/soak.md): its CSV, plot and verdict into --out; fails when the live
+/// objects do not repeat.
+int run_soak(const Options& options) {
+    using namespace loom;
+    auto device = rhi::create_device(samples::device_desc(options.common, "loom deferred"));
+    if (!device) return fail(device.error());
+    rhi::Device& dev = **device;
+    deferred::PipelineSettings settings;
+    settings.allocator = options.allocator;
+    settings.forward = options.forward;
+    // No read-back copies: the soak measures what a frame keeps alive, not the capture.
+    settings.capture = false;
+    std::string scene_line;
+    auto pipeline = make_pipeline(dev, options, settings, scene_line);
+    if (!pipeline) return fail(pipeline.error());
+
+    deferred::SoakSettings soak;
+    soak.frames = options.soak;
+    soak.resize_every = options.resize_every;
+    soak.rebuild_every = options.rebuild_every;
+    soak.size = {options.common.width, options.common.height};
+    const std::filesystem::path dir = options.common.out;
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    std::ofstream csv(dir / "soak.csv", std::ios::binary);
+    if (!csv) return fail("cannot write " + (dir / "soak.csv").string());
+    csv << deferred::soak_csv_header();
+    const uint64_t progress_every = std::max<uint64_t>(1000, options.soak / 10);
+    auto samples = deferred::run_soak(dev, **pipeline, soak, [&](const deferred::SoakSample& sample) {
+        csv << deferred::soak_csv_row(sample);
+        if ((sample.frame + 1) % progress_every == 0) {
+            std::fprintf(stderr, "%s: soak frame %" PRIu64 " of %" PRIu64 ": %" PRIu64 " textures, %" PRIu64
+                                 " pipelines, resident %s\n",
+                         kName, sample.frame + 1, options.soak, sample.live.textures, sample.live.pipelines,
+                         fg::format_bytes(sample.resident_bytes).c_str());
+        }
+    });
+    csv.close();
+    if (!samples) return fail(samples.error());
+    if (!csv) return fail("cannot write " + (dir / "soak.csv").string());
+
+    const deferred::SoakVerdict verdict = deferred::check_soak(*samples, deferred::soak_period(soak));
+    const std::string title = std::string("loom-deferred --soak ") + std::to_string(options.soak) + " on " +
+                              std::string(rhi::backend_name(dev.backend())) + " (" + dev.capabilities().device_name + "), " +
+                              std::to_string(soak.size.width) + "x" + std::to_string(soak.size.height);
+    if (auto status = write_text(dir / "soak.svg", deferred::soak_svg(*samples, title, verdict.warm_up_frames)); !status) {
+        return fail(status.error());
+    }
+    double total_ms = 0.0;
+    for (const auto& sample : *samples) total_ms += sample.frame_ms;
+    const deferred::SoakSample& last = samples->back();
+    std::ostringstream text;
+    text << title << "\n" << scene_line << "\n"
+         << "resize every " << soak.resize_every << " frames, graph rebuilt (lit pass toggled) every "
+         << soak.rebuild_every << " frames; " << samples->size() << " frames in " << (total_ms / 1000.0) << " s\n"
+         << "live at the end: " << last.live.textures << " textures, " << last.live.buffers << " buffers, "
+         << last.live.heaps << " heaps, " << last.live.samplers << " samplers, " << last.live.shaders << " shaders, "
+         << last.live.pipelines << " pipelines, " << fg::format_bytes(last.live.total_bytes()) << "\n"
+         << verdict.describe() << "\n";
+    if (auto status = write_text(dir / "soak.txt", text.str()); !status) return fail(status.error());
+    std::printf("%s", text.str().c_str());
+    std::printf("wrote soak.csv, soak.svg and soak.txt to %s\n", dir.string().c_str());
+    return verdict.steady ? EXIT_SUCCESS : EXIT_FAILURE;
+}
+
 int run_headless(const Options& options) {
     using namespace loom;
     auto device = rhi::create_device(samples::device_desc(options.common, "loom deferred"));
@@ -340,5 +446,6 @@ int main(int argc, char** argv) {
         std::printf("%s%s%s", kUsage, loom::samples::common_options_help(defaults).c_str(), extra_help().c_str());
         return EXIT_SUCCESS;
     }
+    if (options->soak != 0) return run_soak(*options);
     return options->common.window ? run_window(*options) : run_headless(*options);
 }
