@@ -87,10 +87,11 @@ void chart(std::ostringstream& svg, const std::vector<SoakSample>& samples, doub
     }
     svg << "<text x=\"14\" y=\"" << number(top + kChartHeight / 2) << "\" font-size=\"11\" transform=\"rotate(-90 14 "
         << number(top + kChartHeight / 2) << ")\" text-anchor=\"middle\">" << escape(unit) << "</text>\n";
-    for (int i = 0; i <= 5; ++i) {
-        const double frame = frames * i / 5;
+    // Frame numbers at round steps (0, 2000, 4000...), not at fifths of the run (1999, 3999...).
+    const double step = std::max(1.0, axis_top(frames / 5));
+    for (double frame = 0; frame <= frames; frame += step) {
         svg << "<text x=\"" << number(x_of(frame)) << "\" y=\"" << number(top + kChartHeight + 16)
-            << "\" text-anchor=\"middle\" font-size=\"11\">" << label(std::round(frame)) << "</text>\n";
+            << "\" text-anchor=\"middle\" font-size=\"11\">" << label(frame) << "</text>\n";
     }
     svg << "<rect x=\"" << kLeft << "\" y=\"" << top << "\" width=\"" << kPlotWidth << "\" height=\"" << kChartHeight
         << "\" fill=\"none\" stroke=\"#444444\"/>\n";
