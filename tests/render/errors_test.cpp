@@ -225,6 +225,53 @@ TEST_P(ErrorsTest, MisuseInCommandListIsReportedByEndFrame) {
     }));
 }
 
+TEST_P(ErrorsTest, IndexRangesPastTheIndexBufferAreRefused) {
+    LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "index target", rhi::Format::RGBA8Unorm, 8, 8));
+    LOOM_ASSIGN_OR_FAIL(auto pipeline, make_solid_pipeline(device(), rhi::Format::RGBA8Unorm));
+    const std::vector<float> vertices = {-1, -1, 0, 3, -1, 0, -1, 3, 0};
+    LOOM_ASSIGN_OR_FAIL(auto vb, make_buffer_of(device(), "vertices", rhi::BufferUsage::Vertex, vertices));
+    LOOM_ASSIGN_OR_FAIL(auto ib, make_buffer_of(device(), "three indices", rhi::BufferUsage::Index,
+                                                 std::vector<uint32_t>{0, 1, 2}));
+    auto draw = [&](uint32_t count, uint32_t first, std::array<double, 4> clear) {
+        return run_frame(device(), [&](rhi::CommandList& list) {
+            list.begin_render_pass(clear_pass("indexed", target, clear));
+            list.set_pipeline(pipeline);
+            list.set_vertex_buffer(0, vb);
+            list.set_index_buffer(ib, rhi::IndexType::Uint32);
+            list.push_constants_of(std::array<float, 4>{1, 0, 0, 1});
+            list.draw_indexed(count, 1, first, 0, 0);
+            list.end_render_pass();
+        });
+    };
+    // One index too many, and a count whose byte size passes 2^32: refused, the draw skipped.
+    for (auto [count, first] : {std::pair<uint32_t, uint32_t>{3, 1}, {0xFFFFFFFFu, 0}}) {
+        auto status = draw(count, first, {0, 0, 1, 1});
+        ASSERT_FALSE(status.ok()) << count << " from " << first;
+        EXPECT_EQ(status.error().code, ErrorCode::InvalidArgument);
+        EXPECT_TRUE(mentions(status.error(), "run past the end of index buffer") && mentions(status.error(), "three indices"))
+            << status.error().message;
+        LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(target));
+        EXPECT_EQ(rgba8_at(image, 1, 1), (std::array<int, 4>{0, 0, 255, 255})) << "the refused draw ran";
+    }
+    // An index buffer bound at its end: refused (at the bind on Vulkan, at the draw on GL).
+    auto at_end = run_frame(device(), [&](rhi::CommandList& list) {
+        list.begin_render_pass(clear_pass("indexed", target, {0, 0, 1, 1}));
+        list.set_pipeline(pipeline);
+        list.set_vertex_buffer(0, vb);
+        list.set_index_buffer(ib, rhi::IndexType::Uint32, 12);
+        list.push_constants_of(std::array<float, 4>{1, 0, 0, 1});
+        list.draw_indexed(1, 1, 0, 0, 0);
+        list.end_render_pass();
+    });
+    ASSERT_FALSE(at_end.ok());
+    EXPECT_EQ(at_end.error().code, ErrorCode::InvalidArgument);
+    EXPECT_TRUE(mentions(at_end.error(), "three indices")) << at_end.error().message;
+    // The three indices themselves draw.
+    LOOM_ASSERT_OK(draw(3, 0, {0, 0, 0, 1}));
+    LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(target));
+    EXPECT_EQ(rgba8_at(image, 1, 1), (std::array<int, 4>{255, 0, 0, 255}));
+}
+
 TEST_P(ErrorsTest, SamplingATextureNotInShaderReadIsInvalidState) {
     LOOM_ASSIGN_OR_FAIL(auto rendered, make_target(device(), "rendered", rhi::Format::RGBA8Unorm, 8, 8, rhi::TextureUsage::Sampled));
     LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "sampling target", rhi::Format::RGBA8Unorm, 8, 8));

@@ -317,7 +317,8 @@ void VulkanCommandList::set_viewport(const rhi::Viewport& v) {
     }
     // Outside a pass there is nothing to set: begin_render_pass resets viewport and scissor.
     if (!in_render_pass_) return;
-    // Negative height: NDC y up, row 0 at the top (DESIGN.md conventions).
+    // Negative height: NDC y up, row 0 at the top (docs/architecture.md, "Conventions that make
+    // the two APIs agree").
     VkViewport vp{v.x, v.y + v.height, v.width, -v.height, v.min_depth, v.max_depth};
     vkCmdSetViewport(cmd_, 0, 1, &vp);
     ++stats_.api_calls;
@@ -393,6 +394,14 @@ void VulkanCommandList::set_index_buffer(rhi::BufferHandle handle, rhi::IndexTyp
     if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, "set_index_buffer: " + buffer.error().message);
     if (!rhi::has_all((*buffer)->desc.usage, rhi::BufferUsage::Index)) {
         return fail(ErrorCode::InvalidArgument, "set_index_buffer: buffer " + in_quotes((*buffer)->desc.name) + " lacks Index usage");
+    }
+    // Vulkan requires the offset inside the buffer and a multiple of the index size.
+    const uint64_t index_bytes = type == rhi::IndexType::Uint16 ? 2 : 4;
+    if (offset >= (*buffer)->desc.size || offset % index_bytes != 0) {
+        return fail(ErrorCode::InvalidArgument, "set_index_buffer: offset " + std::to_string(offset) + " of buffer " +
+                                                    in_quotes((*buffer)->desc.name) + " (" + std::to_string((*buffer)->desc.size) +
+                                                    " bytes) is past its end or not a multiple of the index size " +
+                                                    std::to_string(index_bytes));
     }
     vkCmdBindIndexBuffer(cmd_, (*buffer)->buffer, offset, to_vk(type));
     index_buffer_ = handle;
@@ -628,8 +637,18 @@ void VulkanCommandList::draw(uint32_t vertex_count, uint32_t instance_count, uin
 void VulkanCommandList::draw_indexed(uint32_t index_count, uint32_t instance_count, uint32_t first_index, int32_t base_vertex,
                                      uint32_t first_instance) {
     if (!prepare_draw("draw_indexed")) return;
-    if (!device_.buffers().find(index_buffer_)) {
+    const Buffer* indices = device_.buffers().find(index_buffer_);
+    if (!indices) {
         fail(ErrorCode::InvalidState, "draw_indexed without a (live) index buffer");
+        return;
+    }
+    // The GPU would read past the buffer (undefined without robustness features): refuse, as GL does.
+    const uint64_t index_bytes = index_type_ == rhi::IndexType::Uint16 ? 2 : 4;
+    const auto start = checked::add<uint64_t>(index_offset_, uint64_t{first_index} * index_bytes);
+    if (!start || !checked::range_fits(*start, uint64_t{index_count} * index_bytes, indices->desc.size)) {
+        fail(ErrorCode::InvalidArgument, "draw_indexed: " + std::to_string(index_count) + " indices from index " +
+                                             std::to_string(first_index) + " run past the end of index buffer " +
+                                             in_quotes(indices->desc.name));
         return;
     }
     vkCmdDrawIndexed(cmd_, index_count, instance_count, first_index, base_vertex, first_instance);
