@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cctype>
 #include <fstream>
 #include <set>
@@ -249,14 +250,24 @@ private:
                 return fail(path + "/scale", "must be a number in (0, 16] or [sx, sy], not " + excerpt(scale));
             }
         }
-        for (const char* key : {"samples", "mips", "layers"}) {
-            auto count = positive(object, path, key);
-            if (!count) return count.take_error();
-            if (!*count) continue;
-            if (std::string_view(key) == "samples") spec.samples = **count;
-            if (std::string_view(key) == "mips") spec.mips = **count;
-            if (std::string_view(key) == "layers") spec.layers = **count;
+        // The limits of texture_spec.hpp, refused here with a JSON pointer rather than later by
+        // resolve(); mips also depend on the resolved size, which resolve() checks.
+        constexpr uint32_t kMaxMips = 17;  // a full chain of kMaxTextureExtent texels per side
+        static_assert(kMaxTextureExtent == 1u << (kMaxMips - 1));
+        auto samples = positive(object, path, "samples", false, kMaxTextureSamples);
+        if (!samples) return samples.take_error();
+        if (*samples) {
+            if (!std::has_single_bit(**samples)) {
+                return fail(path + "/samples", "must be one of 1, 2, 4, 8, 16, 32, 64, not " + excerpt(object["samples"]));
+            }
+            spec.samples = **samples;
         }
+        auto mips = positive(object, path, "mips", false, kMaxMips);
+        if (!mips) return mips.take_error();
+        if (*mips) spec.mips = **mips;
+        auto layers = positive(object, path, "layers", false, kMaxTextureLayers);
+        if (!layers) return layers.take_error();
+        if (*layers) spec.layers = **layers;
         auto optional = boolean(object, path, "optional");
         if (!optional) return optional.take_error();
         port.optional = *optional;
