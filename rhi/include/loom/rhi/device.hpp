@@ -2,9 +2,9 @@
 // The render-hardware interface: a small Device / CommandList pair (after NVRHI's IDevice and
 // ICommandList) that the OpenGL and Vulkan backends implement identically.
 //
-// Conventions (the same on every backend, see DESIGN.md): NDC y points up, depth runs 0..1,
-// row 0 of every framebuffer, texture, upload and readback is the top row, counter-clockwise
-// triangles (as seen in NDC) are front faces.
+// Conventions (the same on every backend; docs/architecture.md, "Conventions that make the two
+// APIs agree"): NDC y points up, depth runs 0..1, row 0 of every framebuffer, texture, upload and
+// readback is the top row, counter-clockwise triangles (as seen in NDC) are front faces.
 //
 // A frame is recorded between begin_frame() and end_frame(). Uploads (write_buffer,
 // write_texture) may happen at any time and are ordered before the commands of the next frame
