@@ -3,33 +3,14 @@
 #include <algorithm>
 
 #include "graph_analysis.hpp"
+#include "quoted_name.hpp"
 
 namespace loom::fg {
 namespace {
 
-Error graph_error(std::string message) { return make_error(ErrorCode::Graph, std::move(message)); }
+using detail::printable_name;
 
-// A user's name in single quotes with control characters written as \n, \t or \xNN, so that
-// an error about a bad name is still one line.
-std::string quoted_name(std::string_view name) {
-    static constexpr char kHex[] = "0123456789abcdef";
-    std::string out = "'";
-    for (const char c : name) {
-        const auto byte = static_cast<unsigned char>(c);
-        if (c == '\n') {
-            out += "\\n";
-        } else if (c == '\t') {
-            out += "\\t";
-        } else if (byte < 0x20 || byte == 0x7f) {
-            out += "\\x";
-            out += kHex[byte >> 4];
-            out += kHex[byte & 15];
-        } else {
-            out += c;
-        }
-    }
-    return out + "'";
-}
+Error graph_error(std::string message) { return make_error(ErrorCode::Graph, std::move(message)); }
 
 std::string port_list(const Pass& pass) {
     std::string out;
@@ -55,7 +36,8 @@ FrameGraph& FrameGraph::operator=(FrameGraph&&) noexcept = default;
 
 Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
     if (!pass) return make_error(ErrorCode::InvalidArgument, "add_pass: null pass");
-    LOOM_TRY(pass->status());
+    // Names first: a bad name is the error to report, rather than a declaration error of the
+    // pass (status()) that merely contains it.
     if (pass->name().empty()) return graph_error("add_pass: a pass needs a name");
     if (auto problem = name_problem(pass->name())) {
         return graph_error("add_pass: the pass name " + quoted_name(pass->name()) + " " + *problem);
@@ -66,6 +48,8 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
                                *problem);
         }
     }
+    // Bad part names were refused by Pass::add (its status).
+    LOOM_TRY(pass->status());
     if (pass_index_.contains(pass->name())) {
         return graph_error("add_pass: a pass called '" + pass->name() + "' already exists");
     }
@@ -99,18 +83,19 @@ std::string FrameGraph::port_name(PortAddress address) const {
 
 Result<PortAddress> FrameGraph::resolve(const PortRef& ref) const {
     auto pass_id = find_pass(ref.pass);
-    if (!pass_id) return graph_error("unknown pass '" + ref.pass + "'");
+    // The reference is the caller's and may hold any bytes; names in the graph are checked.
+    if (!pass_id) return graph_error("unknown pass " + quoted_name(ref.pass));
     const Pass& p = pass(*pass_id);
     auto port_index = p.port_index(ref.port);
     if (!port_index) {
-        return graph_error("unknown port '" + ref.port + "' on pass '" + ref.pass + "' (its ports: " + port_list(p) +
-                           ")");
+        return graph_error("unknown port " + quoted_name(ref.port) + " on pass '" + ref.pass + "' (its ports: " +
+                           port_list(p) + ")");
     }
     return PortAddress{pass_id->index, *port_index};
 }
 
 Status FrameGraph::connect(const PortRef& from, const PortRef& to) {
-    const std::string what = "connect " + from.to_string() + " -> " + to.to_string() + ": ";
+    const std::string what = "connect " + printable_name(from.to_string()) + " -> " + printable_name(to.to_string()) + ": ";
     auto from_address = resolve(from);
     if (!from_address) return graph_error(what + from_address.error().message);
     auto to_address = resolve(to);
@@ -146,7 +131,7 @@ Status FrameGraph::connect(const PortRef& from, const PortRef& to) {
 
 Status FrameGraph::mark_output(const PortRef& ref) {
     auto address = resolve(ref);
-    if (!address) return graph_error("mark_output " + ref.to_string() + ": " + address.error().message);
+    if (!address) return graph_error("mark_output " + printable_name(ref.to_string()) + ": " + address.error().message);
     if (!port_writes(port_at(*address).kind)) {
         return graph_error("mark_output " + ref.to_string() + ": an input cannot be a graph output; mark the port "
                            "that produces the texture");
@@ -161,7 +146,7 @@ Status FrameGraph::mark_output(const PortRef& ref) {
 
 Status FrameGraph::set_side_effect(std::string_view name, bool side_effect) {
     auto id = find_pass(name);
-    if (!id) return graph_error("set_side_effect: unknown pass '" + std::string(name) + "'");
+    if (!id) return graph_error("set_side_effect: unknown pass " + quoted_name(name));
     if (passes_[id->index]->side_effect() != side_effect) {
         passes_[id->index]->set_side_effect(side_effect);
         ++revision_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "loom/framegraph/join.hpp"
+#include "quoted_name.hpp"
 
 namespace loom::fg {
 
@@ -25,6 +26,32 @@ std::optional<std::string> name_problem(std::string_view name) {
     return std::nullopt;
 }
 
+namespace detail {
+
+std::string printable_name(std::string_view name) {
+    static constexpr char kHex[] = "0123456789abcdef";
+    std::string out;
+    for (const char c : name) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (c == '\n') {
+            out += "\\n";
+        } else if (c == '\t') {
+            out += "\\t";
+        } else if (byte < 0x20 || byte == 0x7f) {
+            out += "\\x";
+            out += kHex[byte >> 4];
+            out += kHex[byte & 15];
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
+}  // namespace detail
+
+std::string quoted_name(std::string_view name) { return "'" + detail::printable_name(name) + "'"; }
+
 Part& Part::declare(std::string port, PortKind kind, TextureSpec spec, bool optional) {
     declarations_.push_back(Port{std::move(port), kind, std::move(spec), optional, {name_}});
     return *this;
@@ -35,6 +62,16 @@ Pass::Pass(std::string name) : name_(std::move(name)) {}
 Pass::~Pass() = default;
 
 Pass& Pass::add(const Part& part) {
+    // A part's name appears in errors and in Port::parts (loom-plan's table, the JSON plan),
+    // so it follows the rules of pass and port names; its ports are not added. A part named
+    // after the pass (the graph file's own ports) is checked as the pass name by add_pass.
+    if (auto problem = part.name() == name_ ? std::nullopt : name_problem(part.name())) {
+        if (!error_) {
+            error_ = make_error(ErrorCode::Graph, "pass " + quoted_name(name_) + ": the part name " +
+                                                      quoted_name(part.name()) + " " + *problem);
+        }
+        return *this;
+    }
     for (const Port& declaration : part.declarations()) merge(declaration, part.name());
     return *this;
 }
@@ -77,11 +114,12 @@ void Pass::merge(const Port& declaration, const std::string& part) {
     Port& existing = ports_[it->second];
     const std::string& first_part = existing.parts.front();
     if (existing.kind != declaration.kind) {
-        error_ = make_error(ErrorCode::Graph, "pass '" + name_ + "': port '" + declaration.name + "' is declared as " +
-                                                  std::string(port_kind_name(existing.kind)) + " by part '" +
-                                                  first_part + "' and as " +
-                                                  std::string(port_kind_name(declaration.kind)) + " by part '" +
-                                                  part + "'");
+        error_ = make_error(ErrorCode::Graph, "pass " + quoted_name(name_) + ": port " +
+                                                  quoted_name(declaration.name) + " is declared as " +
+                                                  std::string(port_kind_name(existing.kind)) + " by part " +
+                                                  quoted_name(first_part) + " and as " +
+                                                  std::string(port_kind_name(declaration.kind)) + " by part " +
+                                                  quoted_name(part));
         return;
     }
     const std::string a_name = name_ + "." + existing.name + " (part '" + first_part + "')";

@@ -1,5 +1,10 @@
 #include "loom/passes/composer.hpp"
 
+#include <algorithm>
+#include <optional>
+#include <string_view>
+
+#include "loom/framegraph/pass.hpp"
 #include "loom/shaders/builtin.hpp"
 
 namespace loom::passes {
@@ -24,9 +29,67 @@ std::string_view stage_define(rhi::ShaderStage stage) {
 }
 
 std::string describe(const Composition& composition, rhi::ShaderStage stage) {
-    return "pass '" + composition.pass + "', object kind '" +
-           (composition.object ? composition.object->name() : std::string("none")) + "', " +
+    return "pass " + fg::quoted_name(composition.pass) + ", object kind " +
+           fg::quoted_name(composition.object ? composition.object->name() : std::string("none")) + ", " +
            std::string(rhi::shader_stage_name(stage)) + " stage";
+}
+
+// Why `text` cannot be a name written into the composed source, or nullopt. Names go into
+// `#line 1 "<owner>, part <name> (<origin>)"` directives, so a newline would start a line of
+// GLSL of the name's choosing (and a '"' or '\\' end or escape the directive's string) instead
+// of being reported with the part's name.
+std::optional<std::string> source_name_problem(std::string_view text) {
+    if (text.empty()) return "is empty";
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte < 0x20 || byte == 0x7f) return "contains a control character (code " + std::to_string(byte) + ")";
+        if (c == '"' || c == '\\') return std::string("contains '") + c + "', which would end the #line name";
+    }
+    return std::nullopt;
+}
+
+// A #define's name: a GLSL identifier.
+bool is_identifier(std::string_view name) {
+    if (name.empty() || (name.front() >= '0' && name.front() <= '9')) return false;
+    return std::all_of(name.begin(), name.end(), [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+    });
+}
+
+// Every name and #define of the composition that goes into the source (see
+// source_name_problem), checked before any of it is written.
+Status check_names(const Composition& composition, rhi::ShaderStage stage) {
+    auto bad = [&](const std::string& what, std::string_view text, const std::string& problem) {
+        return make_error(ErrorCode::InvalidArgument,
+                          describe(composition, stage) + ": " + what + " " + fg::quoted_name(text) + " " + problem);
+    };
+    if (auto problem = source_name_problem(composition.pass)) return bad("the pass name", composition.pass, *problem);
+    auto check_part = [&](const ShaderPart& part) -> Status {
+        if (auto problem = source_name_problem(part.name())) return bad("the part name", part.name(), *problem);
+        for (const StageCode& code : part.stages()) {
+            if (auto problem = source_name_problem(code.origin)) {
+                return bad("part '" + part.name() + "': the code origin", code.origin, *problem);
+            }
+        }
+        return {};
+    };
+    if (composition.object) {
+        const std::string& kind = composition.object->name();
+        if (auto problem = source_name_problem(kind)) return bad("the object kind name", kind, *problem);
+        for (const ShaderPart& part : composition.object->parts()) LOOM_TRY(check_part(part));
+    }
+    for (const ShaderPart* part : composition.pass_parts) LOOM_TRY(check_part(*part));
+    for (const auto& [name, value] : composition.defines) {
+        if (!is_identifier(name)) return bad("the define", name, "is not a GLSL identifier");
+        for (const char c : value) {
+            const auto byte = static_cast<unsigned char>(c);
+            if (byte < 0x20 || byte == 0x7f) {
+                return bad("the value of define " + name + ",", value,
+                           "contains a control character (code " + std::to_string(byte) + ")");
+            }
+        }
+    }
+    return {};
 }
 
 /// Appends one part's code with its set, its first binding and a #line naming it.
@@ -43,6 +106,7 @@ void append_part(std::string& out, const std::string& owner, const ShaderPart& p
 }  // namespace
 
 Result<rhi::ShaderSource> compose_stage(const Composition& composition, rhi::ShaderStage stage) {
+    LOOM_TRY(check_names(composition, stage));
     const bool with_object = composition.object != nullptr && composition.use_object_parts;
 
     // Resources are numbered over the parts in order, whether or not a part has code in this

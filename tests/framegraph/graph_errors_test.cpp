@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "loom/framegraph/graph.hpp"
+#include "loom/framegraph/graph_file.hpp"
 
 namespace loom::fg {
 namespace {
@@ -60,6 +61,63 @@ TEST(GraphErrors, NamesThatWouldCollideOrSplitLinesAreRefused) {
     EXPECT_TRUE(graph.add_pass(Pass("bloom pass-2 \xc3\xa9").output("colour (linear)")).ok());
     EXPECT_EQ(name_problem(""), "is empty");
     EXPECT_EQ(name_problem("ok"), std::nullopt);
+}
+
+TEST(GraphErrors, PartNamesFollowTheRulesOfPassAndPortNames) {
+    // A part's name is printed in errors and in every port's list of parts (loom-plan's table,
+    // the JSON plan): a newline in it would split those lines like one in a port name.
+    FrameGraph graph;
+    Pass lit("lit");
+    lit.add(Part("shadow\nrender").input("shadow"));
+    EXPECT_EQ(lit.find_port("shadow"), nullptr);
+    const auto newline = graph.add_pass(std::move(lit));
+    ASSERT_FALSE(newline.ok());
+    EXPECT_EQ(newline.error().code, ErrorCode::Graph);
+    EXPECT_EQ(newline.error().message,
+              "pass 'lit': the part name 'shadow\\nrender' contains a control character (code 10)");
+    EXPECT_EQ(graph.add_pass(Pass("lit").add(Part("deferred.render").output("color"))).error().message,
+              "pass 'lit': the part name 'deferred.render' contains '.', which separates pass and port names");
+    EXPECT_EQ(graph.add_pass(Pass("lit").add(Part("").output("color"))).error().message,
+              "pass 'lit': the part name '' is empty");
+    // A bad name is what is reported, also where its ports would have clashed with others.
+    EXPECT_EQ(graph.add_pass(Pass("tonemap").add(Part("ok").output("c")).add(Part("x\ty").input("c"))).error().message,
+              "pass 'tonemap': the part name 'x\\ty' contains a control character (code 9)");
+    // A bad pass name is reported as such even when its parts also clash.
+    EXPECT_EQ(graph.add_pass(Pass("a\nb").add(Part("p").output("c")).add(Part("q").input("c"))).error().message,
+              "add_pass: the pass name 'a\\nb' contains a control character (code 10)");
+    EXPECT_EQ(graph.pass_count(), 0u);
+    EXPECT_TRUE(graph.add_pass(Pass("lit").add(Part("shadow-render 2").input("shadow"))).ok());
+}
+
+TEST(GraphErrors, GraphFilePartNamesAreCheckedAndLocated) {
+    auto file = parse_graph_json(
+        R"({"passes": [{"name": "lit", "parts": [{"name": "shadow\nrender", "inputs": [{"name": "shadow"}]}]}]})",
+        "g.json");
+    ASSERT_FALSE(file.ok());
+    EXPECT_EQ(file.error().code, ErrorCode::Graph);
+    EXPECT_EQ(file.error().message.find('\n'), std::string::npos) << file.error().message;
+    EXPECT_NE(file.error().message.find("/passes/0"), std::string::npos) << file.error().message;
+    EXPECT_NE(file.error().message.find("the part name 'shadow\\nrender' contains a control character"),
+              std::string::npos)
+        << file.error().message;
+}
+
+TEST(GraphErrors, ReferencesWithControlCharactersGiveOneLineErrors) {
+    // Found by fuzz/names: connect and mark_output printed the caller's references as given,
+    // so a newline in one split the error.
+    FrameGraph graph = chain();
+    EXPECT_EQ(connect_error(graph, port("a\nb", "c"), port("sink", "extra")).message,
+              "connect a\\nb.c -> sink.extra: unknown pass 'a\\nb'");
+    EXPECT_EQ(connect_error(graph, port("producer", "color\r"), port("sink", "extra")).message,
+              "connect producer.color\\x0d -> sink.extra: unknown port 'color\\x0d' on pass 'producer' (its ports: "
+              "color)");
+    const Status output = graph.mark_output(port("sink", "final\t2"));
+    ASSERT_FALSE(output.ok());
+    EXPECT_EQ(output.error().message,
+              "mark_output sink.final\\t2: unknown port 'final\\t2' on pass 'sink' (its ports: source, extra, final)");
+    const Status side_effect = graph.set_side_effect("sink\n");
+    ASSERT_FALSE(side_effect.ok());
+    EXPECT_EQ(side_effect.error().message, "set_side_effect: unknown pass 'sink\\n'");
 }
 
 TEST(GraphErrors, UnknownPass) {

@@ -11,6 +11,7 @@
 
 #include "loom/passes/blit_pass.hpp"
 #include "loom/passes/blur_pass.hpp"
+#include "loom/passes/composer.hpp"
 #include "loom/passes/composite_pass.hpp"
 #include "loom/passes/deferred_pass.hpp"
 #include "loom/passes/forward_pass.hpp"
@@ -192,6 +193,52 @@ TEST(Composition, AnErrorInAPassPartNamesThePartsFileAndLine) {
     const std::string& message = program.error().message;
     EXPECT_THAT(message, HasSubstr("pass 'tinted', object kind 'none', fragment stage"));
     EXPECT_THAT(message, HasSubstr("pass tinted, part tint (tint.frag.glsl):4: 'missing_tint'"));
+}
+
+TEST(Composition, NamesThatWouldRewriteTheComposedSourceAreRefused) {
+    // Names go into #line directives of the composed GLSL: a newline in one would start a line
+    // of code of its own (here a #define that changes the pass's output) instead of an error.
+    ShaderPart vertex("fullscreen");
+    vertex.stage(ShaderStage::Vertex, "void main() {}\n");
+    ShaderPart evil("tint\n#define out_color discard");
+    evil.stage(ShaderStage::Fragment, "void main() {}\n");
+    Composition composition;
+    composition.pass = "tinted";
+    composition.pass_parts = {&vertex, &evil};
+    auto source = compose_stage(composition, ShaderStage::Fragment);
+    ASSERT_FALSE(source.ok());
+    EXPECT_EQ(source.error().code, ErrorCode::InvalidArgument);
+    EXPECT_EQ(source.error().message,
+              "pass 'tinted', object kind 'none', fragment stage: the part name 'tint\\n#define out_color discard' "
+              "contains a control character (code 10)");
+
+    ShaderPart quoted("a\"b");
+    quoted.stage(ShaderStage::Fragment, "void main() {}\n");
+    composition.pass_parts = {&vertex, &quoted};
+    EXPECT_THAT(compose_stage(composition, ShaderStage::Fragment).error().message,
+                HasSubstr("the part name 'a\"b' contains '\"', which would end the #line name"));
+
+    // An embedded file name is the code's origin, written into the #line directive too.
+    ShaderPart ghost("ghost");
+    ghost.stage_file(ShaderStage::Fragment, "x.glsl\n#error injected");
+    composition.pass_parts = {&vertex, &ghost};
+    EXPECT_THAT(compose_stage(composition, ShaderStage::Fragment).error().message,
+                HasSubstr("part 'ghost': the code origin 'x.glsl\\n#error injected' contains a control character"));
+
+    composition.pass_parts = {&vertex};
+    composition.pass = "a\nb";
+    EXPECT_EQ(compose_stage(composition, ShaderStage::Vertex).error().message,
+              "pass 'a\\nb', object kind 'none', vertex stage: the pass name 'a\\nb' contains a control character "
+              "(code 10)");
+    composition.pass = "tinted";
+    composition.defines = {{"LOOM X", "1"}};
+    EXPECT_THAT(compose_stage(composition, ShaderStage::Vertex).error().message,
+                HasSubstr("the define 'LOOM X' is not a GLSL identifier"));
+    composition.defines = {{"LOOM_X", "1\n#version 460"}};
+    EXPECT_THAT(compose_stage(composition, ShaderStage::Vertex).error().message,
+                HasSubstr("the value of define LOOM_X, '1\\n#version 460' contains a control character (code 10)"));
+    composition.defines = {{"LOOM_X", "(1 + 2)"}};
+    EXPECT_TRUE(compose_stage(composition, ShaderStage::Vertex).ok());
 }
 
 TEST(Composition, AMissingEmbeddedFileIsReportedWithThePart) {

@@ -127,6 +127,31 @@ TEST(SceneRobustness, EveryTruncationOfAGlbFails) {
     EXPECT_EQ(outcome.failed, bytes.size());
 }
 
+TEST(SceneRobustness, UnknownPngChunkTypeBytesStayOneLine) {
+    // Found by fuzz/gltf_import: stb_image names an unknown critical PNG chunk by its four type
+    // bytes, straight from the file, so a type with a newline split the importer's error.
+    const std::filesystem::path dir = synthetic_dir("png_chunk_type");
+    rhi::Image pixel(1, 1, rhi::Format::RGBA8Unorm);
+    ASSERT_TRUE(rhi::write_png(pixel, dir / "pixel.png").ok());
+    std::vector<unsigned char> png = read_bytes(dir / "pixel.png");
+    // After the signature (8 bytes) and IHDR (25): an empty chunk of type "\n\xffAB" (critical:
+    // bit 5 of its first byte is clear) and its CRC, which stb_image does not check.
+    const std::vector<unsigned char> chunk{0, 0, 0, 0, '\n', 0xff, 'A', 'B', 0, 0, 0, 0};
+    png.insert(png.begin() + 33, chunk.begin(), chunk.end());
+    GltfBuilder builder;
+    builder.add_quad(false, 0);
+    builder.json()["images"] = nlohmann::json::array({{{"bufferView", builder.add_view(png)}, {"mimeType", "image/png"}}});
+    builder.json()["textures"] = nlohmann::json::array({{{"source", 0}}});
+    builder.json()["materials"] = nlohmann::json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    const std::filesystem::path path = builder.write(dir, "chunk", Layout::Binary);
+    auto result = scene::load_gltf(path);
+    ASSERT_FALSE(result.ok());
+    EXPECT_EQ(result.error().code, ErrorCode::Parse);
+    EXPECT_EQ(result.error().message.find('\n'), std::string::npos) << result.error().message;
+    EXPECT_NE(result.error().message.find("cannot decode image: \\x0a\\xffAB PNG chunk not known"), std::string::npos)
+        << result.error().message;
+}
+
 TEST(SceneRobustness, CorruptedGlbHeaderBytes) {
     const std::filesystem::path dir = synthetic_dir("corrupted_glb");
     const GltfBuilder builder = complete_document(dir);

@@ -44,6 +44,10 @@ inline bool port_writes(PortKind kind) { return kind != PortKind::Input; }
 /// control character (a newline would split every line-based output: tables, logs, errors).
 std::optional<std::string> name_problem(std::string_view name);
 
+/// `name` in single quotes with control characters written as \n, \t or \xNN, so that an error
+/// naming a user's name (which may be one name_problem() refuses) is still one line.
+std::string quoted_name(std::string_view name);
+
 /// One declared port.
 struct Port {
     std::string name;
@@ -62,7 +66,8 @@ struct Port {
 /// A named set of port declarations that passes are composed from.
 class Part {
 public:
-    /// An empty part called `name` (named in errors about its ports).
+    /// An empty part called `name` (named in errors about its ports; Pass::add refuses names
+    /// that name_problem() refuses).
     explicit Part(std::string name) : name_(std::move(name)) {}
 
     /// Records a port declaration; Pass::add merges repeated names.
@@ -111,7 +116,8 @@ public:
     Pass(Pass&&) noexcept = default;
     Pass& operator=(Pass&&) noexcept = default;
 
-    /// Adds every port of `part`, merging names declared before.
+    /// Adds every port of `part`, merging names declared before. A part name that name_problem()
+    /// refuses is an error (status()) naming the pass and the part, and its ports are not added.
     Pass& add(const Part& part);
 
     // Declarations on the pass's own part.

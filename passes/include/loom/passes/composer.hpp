@@ -32,8 +32,10 @@ struct Composition {
 };
 
 /// The composed source of `stage`, named "<pass>/<kind>.<vert|frag>". Errors (InvalidArgument):
-/// a stage no part has code for, more resources in a set than rhi::kMaxBindingsPerGroup; both
-/// name the pass, the kind and the stage.
+/// a stage no part has code for, more resources in a set than rhi::kMaxBindingsPerGroup, a
+/// pass, kind or part name or a code origin that is empty or holds a control character, '"' or
+/// '\\' (they are written into #line directives), a define whose name is not a GLSL identifier
+/// or whose value holds a control character; each names the pass, the kind and the stage.
 Result<rhi::ShaderSource> compose_stage(const Composition& composition, rhi::ShaderStage stage);
 
 /// Compiles composed sources: one rhi::ShaderCompiler with loom's shader snippets

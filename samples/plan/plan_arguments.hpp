@@ -1,0 +1,39 @@
+#pragma once
+// The command line of loom-plan, parsed apart from main() so that the tool, its tests and the
+// command-line fuzz harness (fuzz/command_line_fuzzer.cpp) run the same parser.
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "loom/framegraph/framegraph.hpp"
+#include "loom/rhi/result.hpp"
+
+namespace loom::plan {
+
+/// The one-line usage text (--help prints it; a missing graph file quotes it).
+inline constexpr std::string_view kUsage =
+    "usage: loom-plan GRAPH.json [--allocator paper|interval|heap] [--sharing equal|joinable] [--frame WxH] "
+    "[--max-heap BYTES] [--json] [--dot FILE]";
+
+/// What the command line asks for.
+struct Arguments {
+    std::string graph;
+    fg::PlanOptions options;
+    /// --frame; the graph file's frame size when absent.
+    std::optional<fg::Extent2D> frame;
+    bool json = false;
+    bool help = false;
+    /// --dot's file; empty: no DOT output.
+    std::string dot;
+};
+
+/// "WxH" with each side in 1..fg::kMaxTextureExtent, or nullopt.
+std::optional<fg::Extent2D> parse_frame(std::string_view text);
+
+/// Parses `args` (without the program name). Errors are InvalidArgument with a message naming
+/// the argument; the allocator name is not checked here (build_plan reports an unknown one).
+Result<Arguments> parse_arguments(std::span<const std::string> args);
+
+}  // namespace loom::plan
