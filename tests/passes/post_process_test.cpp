@@ -10,6 +10,15 @@
 // approximates (exp2 and log2 polynomials): 0.05% of the texels of a 256x256 composite land one
 // half-float step from std::pow's, so the sRGB composite may be one step away at each
 // texel's own magnitude (format_steps.hpp).
+//
+// Other drivers may contract a multiply and an add into one FMA or evaluate a sum in another
+// order, which moves a result that lies at a rounding boundary by one step: on NVIDIA's driver
+// (H200, 580.159) one texel in 2,257 of the blurs and the high pass and 19 in 65,536 of the
+// linear composite were one half-float step away, and the RGBA32F blur's 9-tap sums were up to 3
+// float steps away. So "exact" holds on Mesa's software drivers, which CI runs, and elsewhere
+// one step is allowed (four float steps for the 9-tap RGBA32F sums: at most half a step for each
+// of the rounding points a fused multiply-add skips) — still far below what a wrong weight, tap
+// offset or edge clamp gives.
 #include <cmath>
 #include <cstdint>
 #include <iostream>
@@ -101,6 +110,12 @@ protected:
         return image ? std::move(*image) : rhi::Image{};
     }
 
+    /// Steps a driver may round differently from the reference (see the top of this file):
+    /// none on Mesa's llvmpipe and lavapipe, `elsewhere` on other drivers.
+    double rounding_steps(double elsewhere = 1.0) {
+        return device().capabilities().device_name.find("llvmpipe") != std::string::npos ? 0.0 : elsewhere;
+    }
+
     /// Expects every channel within `steps` half-float steps of the reference at its magnitude
     /// (0: bit for bit).
     void expect_near_reference(const rhi::Image& gpu, const rhi::Image& reference, const std::string& name,
@@ -139,7 +154,7 @@ TEST_P(PostProcessTest, BlurInEachDirectionMatchesTheReference) {
         ASSERT_TRUE(graph.mark_output(fg::port("blur", "color")).ok());
         const rhi::Image gpu = run(kWidth, kHeight, "blur", "color");
         const rhi::Image reference = reference_blur(input, axis, passes::gaussian_weights(7));
-        expect_near_reference(gpu, reference, axis == BlurAxis::Horizontal ? "blur_h" : "blur_v", 0.0);
+        expect_near_reference(gpu, reference, axis == BlurAxis::Horizontal ? "blur_h" : "blur_v", rounding_steps());
         // The blur really spreads: a bright texel's neighbours along the axis got some of it.
         EXPECT_GT(compare_steps(gpu, input).fraction_differing(), 0.9);
     }
@@ -160,7 +175,11 @@ TEST_P(PostProcessTest, BlurInFloat32MatchesTheReference) {
     ASSERT_EQ(gpu.format, Format::RGBA32Float);
     const StepComparison comparison = compare_steps(gpu, reference);
     std::cout << rhi::backend_name(backend()) << ", blur_f32 vs CPU: " << comparison.summary() << "\n";
-    EXPECT_EQ(comparison.pixels_differing, 0u) << comparison.summary();
+    if (rounding_steps() == 0.0) {
+        EXPECT_EQ(comparison.pixels_differing, 0u) << comparison.summary();
+    } else {
+        EXPECT_LE(comparison.max_local_steps, rounding_steps(4.0)) << comparison.summary();
+    }
 }
 
 TEST_P(PostProcessTest, SeparableBlurOfTwoPassesMatchesTheReference) {
@@ -176,7 +195,7 @@ TEST_P(PostProcessTest, SeparableBlurOfTwoPassesMatchesTheReference) {
     const std::vector<float> weights = passes::gaussian_weights(20);
     const rhi::Image reference =
         reference_blur(reference_blur(input, BlurAxis::Horizontal, weights), BlurAxis::Vertical, weights);
-    expect_near_reference(gpu, reference, "blur_hv", 0.0);
+    expect_near_reference(gpu, reference, "blur_hv", rounding_steps());
 }
 
 TEST_P(PostProcessTest, HighPassMatchesTheReference) {
@@ -190,7 +209,7 @@ TEST_P(PostProcessTest, HighPassMatchesTheReference) {
     ASSERT_TRUE(graph.mark_output(fg::port("high-pass", "high_pass")).ok());
     const rhi::Image gpu = run(kWidth, kHeight, "high-pass", "high_pass");
     const rhi::Image reference = reference_high_pass(input, 1.5f);
-    expect_near_reference(gpu, reference, "high_pass", 0.0);
+    expect_near_reference(gpu, reference, "high_pass", rounding_steps());
     // Dim texels are cut to black, bright ones kept: both happen in this image.
     uint32_t black = 0, kept = 0;
     for (uint32_t y = 0; y < kHeight; ++y) {
@@ -219,7 +238,8 @@ TEST_P(PostProcessTest, CompositeMatchesTheReference) {
         ASSERT_TRUE(graph.mark_output(fg::port("composite", "final")).ok());
         const rhi::Image gpu = run(kCompositeSize, kCompositeSize, "composite", "final");
         const rhi::Image reference = reference_composite(color, bloom, 0.8f, 0.6f, srgb);
-        expect_near_reference(gpu, reference, srgb ? "composite_srgb" : "composite_linear", srgb ? 1.0 : 0.0);
+        expect_near_reference(gpu, reference, srgb ? "composite_srgb" : "composite_linear",
+                              srgb ? 1.0 : rounding_steps());
     }
 }
 

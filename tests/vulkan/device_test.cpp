@@ -2,6 +2,7 @@
 // uploads larger than the staging ring, ring wrap-around, frames in flight with deferred
 // destruction, readback in the middle of a frame, growth of the transient uniform ring.
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
@@ -196,7 +197,10 @@ TEST_F(VulkanDeviceTest, CapabilitiesComeFromTheDevice) {
     EXPECT_EQ(caps.backend, rhi::Backend::Vulkan);
     EXPECT_TRUE(caps.placed_resources);
     EXPECT_FALSE(caps.device_name.empty());
-    EXPECT_EQ(caps.api_version.rfind("Vulkan 1.3", 0), 0u) << caps.api_version;
+    // The device's own version: 1.3 on lavapipe 22.3, 1.4 on current NVIDIA drivers; loom needs 1.3.
+    unsigned major = 0, minor = 0;
+    ASSERT_EQ(std::sscanf(caps.api_version.c_str(), "Vulkan %u.%u", &major, &minor), 2) << caps.api_version;
+    EXPECT_TRUE(major > 1 || (major == 1 && minor >= 3)) << caps.api_version;
     EXPECT_TRUE(caps.format(rhi::Format::RGBA8Unorm).color_attachment);
     EXPECT_TRUE(caps.format(rhi::Format::RGBA8Unorm).blendable);
     EXPECT_TRUE(caps.format(rhi::Format::Depth32F).depth_stencil_attachment);
