@@ -174,6 +174,14 @@ loom::Result<Options> parse(int argc, char** argv) {
 
 std::string file_name(const std::string& texture) { return texture + ".png"; }
 
+/// The pipeline settings the options choose (allocator, lit pass); the callers add the rest.
+loom::deferred::PipelineSettings pipeline_settings(const Options& options) {
+    loom::deferred::PipelineSettings settings;
+    settings.allocator = options.allocator;
+    settings.forward = options.forward;
+    return settings;
+}
+
 /// The pipeline on the scene the options name (built-in, or a glTF file seen from its camera).
 /// `scene_line` says what was loaded, for the summary.
 loom::Result<std::unique_ptr<loom::deferred::DeferredPipeline>> make_pipeline(loom::rhi::Device& device,
@@ -314,9 +322,7 @@ int run_window(const Options& options) {
     auto desc = dev.texture_desc(dev.backbuffer());
     if (auto ended = dev.end_frame(); !ended) return fail(ended.error());
     if (!desc) return fail(desc.error());
-    deferred::PipelineSettings settings;
-    settings.allocator = options.allocator;
-    settings.forward = options.forward;
+    deferred::PipelineSettings settings = pipeline_settings(options);
     settings.capture = false;
     settings.target_format = desc->format;
     std::string scene_line;
@@ -344,9 +350,7 @@ int run_soak(const Options& options) {
     auto device = rhi::create_device(samples::device_desc(options.common, "loom deferred"));
     if (!device) return fail(device.error());
     rhi::Device& dev = **device;
-    deferred::PipelineSettings settings;
-    settings.allocator = options.allocator;
-    settings.forward = options.forward;
+    deferred::PipelineSettings settings = pipeline_settings(options);
     // No read-back copies: the soak measures what a frame keeps alive, not the capture.
     settings.capture = false;
     std::string scene_line;
@@ -407,9 +411,7 @@ int run_headless(const Options& options) {
     auto device = rhi::create_device(samples::device_desc(options.common, "loom deferred"));
     if (!device) return fail(device.error());
     rhi::Device& dev = **device;
-    deferred::PipelineSettings settings;
-    settings.allocator = options.allocator;
-    settings.forward = options.forward;
+    const deferred::PipelineSettings settings = pipeline_settings(options);
     std::string scene_line;
     auto pipeline = make_pipeline(dev, options, settings, scene_line);
     if (!pipeline) return fail(pipeline.error());

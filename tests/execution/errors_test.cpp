@@ -25,6 +25,31 @@ protected:
         RenderTest::TearDown();
     }
 
+    /// Runs a graph of one pass whose output `port` of `pass` is `spec` at a 16x8 frame and
+    /// expects a realisation error: Unsupported, a message containing `expected`, the port as
+    /// the error's subject, and no texture left behind.
+    void expect_refused_at_realisation(const std::string& pass, const std::string& port, const fg::TextureSpec& spec,
+                                       const std::string& expected) {
+        fg::FrameGraph graph;
+        fg::Pass only(pass);
+        only.output(port, spec);
+        only.on_execute([](fg::PassContext&) { return Status{}; });
+        ASSERT_TRUE(graph.add_pass(std::move(only)).ok());
+        LOOM_ASSERT_OK(graph.mark_output(fg::port(pass, port)));
+        const rhi::ResourceStats before = device().resource_stats();
+        {
+            fg::Executor executor(device());
+            fg::PlanOptions options;
+            options.frame = {16, 8};
+            Status status = executor.run_frame(graph, options);
+            ASSERT_FALSE(status.ok());
+            EXPECT_EQ(status.error().code, ErrorCode::Unsupported);
+            EXPECT_NE(status.error().message.find(expected), std::string::npos) << status.error().message;
+            EXPECT_EQ(status.error().subjects, (std::vector<std::string>{pass + "." + port}));
+        }
+        EXPECT_EQ(device().resource_stats().textures, before.textures);
+    }
+
     // first → broken → last; `broken` runs `behaviour` and then draws its output normally
     // unless the behaviour says it failed.
     fg::FrameGraph graph_with(std::function<Status(fg::PassContext&)> behaviour) {
@@ -182,25 +207,9 @@ TEST_P(ExecutionErrors, TexturesBeyondTheDevicesLimitNameTheirPorts) {
     const uint32_t device_max = device().capabilities().max_texture_size;
     ASSERT_GT(device_max, 0u);
     if (device_max >= fg::kMaxTextureExtent) GTEST_SKIP() << "this device reaches loom's own limit";
-    fg::FrameGraph graph;
-    fg::Pass wide("wide");
-    wide.output("strip", fg::TextureSpec::of(Format::R8Unorm).with_size(device_max + 1, 2));
-    wide.on_execute([](fg::PassContext&) { return Status{}; });
-    ASSERT_TRUE(graph.add_pass(std::move(wide)).ok());
-    LOOM_ASSERT_OK(graph.mark_output(fg::port("wide", "strip")));
-    const rhi::ResourceStats before = device().resource_stats();
-    {
-        fg::Executor executor(device());
-        fg::PlanOptions options;
-        options.frame = {16, 8};
-        Status status = executor.run_frame(graph, options);
-        ASSERT_FALSE(status.ok());
-        EXPECT_EQ(status.error().code, ErrorCode::Unsupported);
-        const std::string expected = "R8Unorm " + std::to_string(device_max + 1) + "x2, for wide.strip) is larger than "
-                                     "this device's limit of " + std::to_string(device_max) + " texels per side";
-        EXPECT_NE(status.error().message.find(expected), std::string::npos) << status.error().message;
-    }
-    EXPECT_EQ(device().resource_stats().textures, before.textures);
+    expect_refused_at_realisation("wide", "strip", fg::TextureSpec::of(Format::R8Unorm).with_size(device_max + 1, 2),
+                                  "R8Unorm " + std::to_string(device_max + 1) + "x2, for wide.strip) is larger than "
+                                  "this device's limit of " + std::to_string(device_max) + " texels per side");
 }
 
 TEST_P(ExecutionErrors, SampleCountsBeyondTheDevicesLimitNameTheirPorts) {
@@ -209,25 +218,9 @@ TEST_P(ExecutionErrors, SampleCountsBeyondTheDevicesLimitNameTheirPorts) {
     ASSERT_GE(device_max, 1u);
     ASSERT_GT(device().capabilities().max_texture_layers, 0u);
     if (device_max >= fg::kMaxTextureSamples) GTEST_SKIP() << "this device reaches loom's own limit";
-    fg::FrameGraph graph;
-    fg::Pass msaa("msaa");
-    msaa.output("color", fg::TextureSpec::of(Format::RGBA8Unorm).with_samples(device_max * 2));
-    msaa.on_execute([](fg::PassContext&) { return Status{}; });
-    ASSERT_TRUE(graph.add_pass(std::move(msaa)).ok());
-    LOOM_ASSERT_OK(graph.mark_output(fg::port("msaa", "color")));
-    const rhi::ResourceStats before = device().resource_stats();
-    {
-        fg::Executor executor(device());
-        fg::PlanOptions options;
-        options.frame = {16, 8};
-        Status status = executor.run_frame(graph, options);
-        ASSERT_FALSE(status.ok());
-        EXPECT_EQ(status.error().code, ErrorCode::Unsupported);
-        const std::string expected = "for msaa.color) has more samples than this device's limit of " + std::to_string(device_max);
-        EXPECT_NE(status.error().message.find(expected), std::string::npos) << status.error().message;
-        EXPECT_EQ(status.error().subjects, (std::vector<std::string>{"msaa.color"}));
-    }
-    EXPECT_EQ(device().resource_stats().textures, before.textures);
+    expect_refused_at_realisation("msaa", "color", fg::TextureSpec::of(Format::RGBA8Unorm).with_samples(device_max * 2),
+                                  "for msaa.color) has more samples than this device's limit of " +
+                                      std::to_string(device_max));
 }
 
 TEST_P(ExecutionErrors, PlanningErrorsNameThePort) {
