@@ -131,15 +131,15 @@ Status Executor::Impl::create_plan_resources() {
         // say so naming the ports, before the backend refuses a texture nobody asked for by name.
         const rhi::Capabilities& caps = device.capabilities();
         auto beyond = [&](const std::string& what) {
-            std::string ports;
+            std::vector<std::string> ports;
             for (uint32_t r : planned.resources) {
-                for (const std::string& port : p.resources[r].ports) ports += (ports.empty() ? "" : ", ") + port;
+                for (const std::string& port : p.resources[r].ports) ports.push_back(port);
             }
+            std::string listed;
+            for (const std::string& port : ports) listed += (listed.empty() ? "" : ", ") + port;
             Error error = make_error(ErrorCode::Unsupported, "executor: texture " + in_quotes(desc.name) + " (" +
-                                                                 describe_resolved(planned.spec) + ", for " + ports + ") " + what);
-            for (uint32_t r : planned.resources) {
-                for (const std::string& port : p.resources[r].ports) error.subjects.push_back(port);
-            }
+                                                                 describe_resolved(planned.spec) + ", for " + listed + ") " + what);
+            error.subjects = std::move(ports);
             return error;
         };
         if (caps.max_texture_size != 0 && (desc.width > caps.max_texture_size || desc.height > caps.max_texture_size)) {
