@@ -5,19 +5,15 @@
 
 #include "loom/rhi/checked_math.hpp"
 #include "gl_device.hpp"
+#include "loom/rhi/subresources.hpp"
+#include "loom/rhi/validation.hpp"
 
 namespace loom::gl {
 namespace {
 
 using rhi::ResourceState;
 
-std::string quote_name(const std::string& name) { return "'" + name + "'"; }
-
-uint32_t mip_extent(uint32_t size, uint32_t mip) { return std::max(1u, size >> mip); }
-
-uint32_t layer_count(const rhi::TextureDesc& d, uint32_t mip) {
-    return d.dimension == rhi::TextureDimension::Tex3D ? mip_extent(d.depth_or_layers, mip) : d.depth_or_layers;
-}
+using rhi::validation::in_quotes;
 
 std::string_view state_name(ResourceState s) {
     switch (s) {
@@ -103,11 +99,11 @@ void GlCommandList::begin(uint64_t frame_index) {
 
 std::vector<GlCommand> GlCommandList::finish() {
     if (pass_) {
-        fail(ErrorCode::InvalidState, "end_frame: render pass " + quote_name(pass_->label) + " was not ended");
+        fail(ErrorCode::InvalidState, "end_frame: render pass " + in_quotes(pass_->label) + " was not ended");
         end_render_pass();
     }
     if (open_timer_) {
-        fail(ErrorCode::InvalidState, "end_frame: timer " + quote_name(*open_timer_) + " was not ended");
+        fail(ErrorCode::InvalidState, "end_frame: timer " + in_quotes(*open_timer_) + " was not ended");
         end_timer();
     }
     if (debug_depth_ > 0) {
@@ -124,16 +120,16 @@ void GlCommandList::fail(ErrorCode code, std::string message) {
 
 std::string GlCommandList::where(std::string_view command) const {
     std::string out(command);
-    if (pass_) out += " in render pass " + quote_name(pass_->label);
+    if (pass_) out += " in render pass " + in_quotes(pass_->label);
     return out + ": ";
 }
 
 // ---- render passes ---------------------------------------------------------------------------
 
 void GlCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
-    const std::string what = "begin_render_pass " + quote_name(desc.label) + ": ";
+    const std::string what = "begin_render_pass " + in_quotes(desc.label) + ": ";
     if (pass_) {
-        fail(ErrorCode::InvalidState, what + "render pass " + quote_name(pass_->label) + " is still open");
+        fail(ErrorCode::InvalidState, what + "render pass " + in_quotes(pass_->label) + " is still open");
         return;
     }
     if (desc.colors.empty() && !desc.depth) {
@@ -157,18 +153,18 @@ void GlCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
             return nullptr;
         }
         GlTexture* t = *found;
-        const std::string tex = name + " (texture " + quote_name(t->desc.name) + ")";
+        const std::string tex = name + " (texture " + in_quotes(t->desc.name) + ")";
         const auto usage = depth ? rhi::TextureUsage::DepthStencilAttachment : rhi::TextureUsage::ColorAttachment;
         if (!rhi::has_any(t->desc.usage, usage)) {
             fail(ErrorCode::InvalidArgument, what + tex + " lacks usage " + (depth ? "DepthStencilAttachment" : "ColorAttachment"));
             return nullptr;
         }
-        if (mip >= t->desc.mip_levels || layer >= layer_count(t->desc, mip)) {
+        if (mip >= t->desc.mip_levels || layer >= rhi::mip_layers(t->desc, mip)) {
             fail(ErrorCode::InvalidArgument, what + tex + ": mip " + std::to_string(mip) + " / layer " + std::to_string(layer) +
                                                  " out of range");
             return nullptr;
         }
-        const uint32_t w = mip_extent(t->desc.width, mip), h = mip_extent(t->desc.height, mip);
+        const uint32_t w = rhi::mip_extent(t->desc, mip).width, h = rhi::mip_extent(t->desc, mip).height;
         if (!sized) {
             pass.width = w;
             pass.height = h;
@@ -311,7 +307,7 @@ void GlCommandList::set_pipeline(rhi::PipelineHandle pipeline) {
             for (auto f : p.color_formats) pipe_formats += std::string(pipe_formats.empty() ? "" : ", ") + std::string(rhi::format_name(f));
             pipeline_ = {};
             fail(ErrorCode::InvalidArgument,
-                 where("set_pipeline") + "pipeline " + quote_name(p.name) + " targets [" + pipe_formats + "] depth " +
+                 where("set_pipeline") + "pipeline " + in_quotes(p.name) + " targets [" + pipe_formats + "] depth " +
                      std::string(rhi::format_name(p.depth_format)) + " x" + std::to_string(p.samples) + ", the pass has [" +
                      pass_formats + "] depth " + std::string(rhi::format_name(pass_->depth_format)) + " x" +
                      std::to_string(pass_->samples));
@@ -332,7 +328,7 @@ GlPipeline* GlCommandList::current_pipeline(std::string_view command, bool compu
         return nullptr;
     }
     if (p->compute != compute) {
-        fail(ErrorCode::InvalidState, where(command) + "pipeline " + quote_name(p->name) + " is a " +
+        fail(ErrorCode::InvalidState, where(command) + "pipeline " + in_quotes(p->name) + " is a " +
                                           (p->compute ? "compute" : "graphics") + " pipeline");
         return nullptr;
     }
@@ -406,9 +402,9 @@ rhi::BufferBinding GlCommandList::transient_uniforms(std::span<const std::byte> 
 // ---- bindings --------------------------------------------------------------------------------
 
 bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view command, std::vector<ResolvedBinding>& out) {
-    const std::string prefix = where(command) + "pipeline " + quote_name(p.name) + ": ";
+    const std::string prefix = where(command) + "pipeline " + in_quotes(p.name) + ": ";
     for (const PipelineBinding& b : p.bindings) {
-        const std::string slot = "set " + std::to_string(b.set) + " binding " + std::to_string(b.binding) + " (" + quote_name(b.name) + ")";
+        const std::string slot = "set " + std::to_string(b.set) + " binding " + std::to_string(b.binding) + " (" + in_quotes(b.name) + ")";
         const rhi::BindingEntry* entry = nullptr;
         if (groups_[b.set]) {
             for (const rhi::BindingEntry& e : groups_[b.set]->entries) {
@@ -442,7 +438,7 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
                 const uint64_t size = range->size ? range->size : buf.desc.size - std::min(buf.desc.size, range->offset);
                 if (range->offset % alignment != 0 || !checked::range_fits(range->offset, size, buf.desc.size) || size == 0) {
                     fail(ErrorCode::InvalidArgument, prefix + slot + ": range " + std::to_string(range->offset) + "+" +
-                                                         std::to_string(size) + " of buffer " + quote_name(buf.desc.name) +
+                                                         std::to_string(size) + " of buffer " + in_quotes(buf.desc.name) +
                                                          " is out of bounds or not aligned to " + std::to_string(alignment));
                     return false;
                 }
@@ -472,13 +468,13 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
                 const bool readable = t.state == ResourceState::ShaderRead || (depth && t.state == ResourceState::DepthRead);
                 if (!readable) {
                     // Parity with Vulkan, where sampling needs the shader-read layout.
-                    fail(ErrorCode::InvalidState, prefix + "texture " + quote_name(t.desc.name) + " sampled at " + slot +
+                    fail(ErrorCode::InvalidState, prefix + "texture " + in_quotes(t.desc.name) + " sampled at " + slot +
                                                       " is in state " + std::string(state_name(t.state)) +
                                                       "; transition it to ShaderRead first");
                     return false;
                 }
                 if (!rhi::has_any(t.desc.usage, rhi::TextureUsage::Sampled)) {
-                    fail(ErrorCode::InvalidArgument, prefix + "texture " + quote_name(t.desc.name) + " lacks usage Sampled");
+                    fail(ErrorCode::InvalidArgument, prefix + "texture " + in_quotes(t.desc.name) + " lacks usage Sampled");
                     return false;
                 }
                 r.object = t.name;
@@ -498,11 +494,11 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
                 }
                 const GlTexture& t = **texture;
                 if (!rhi::has_any(t.desc.usage, rhi::TextureUsage::Storage)) {
-                    fail(ErrorCode::InvalidArgument, prefix + "texture " + quote_name(t.desc.name) + " lacks usage Storage");
+                    fail(ErrorCode::InvalidArgument, prefix + "texture " + in_quotes(t.desc.name) + " lacks usage Storage");
                     return false;
                 }
                 if (t.state != ResourceState::Storage) {
-                    fail(ErrorCode::InvalidState, prefix + "storage texture " + quote_name(t.desc.name) + " at " + slot +
+                    fail(ErrorCode::InvalidState, prefix + "storage texture " + in_quotes(t.desc.name) + " at " + slot +
                                                       " is in state " + std::string(state_name(t.state)) +
                                                       "; transition it to Storage first");
                     return false;
@@ -579,7 +575,7 @@ void GlCommandList::draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t off
     const GlBuffer& b = **found;
     constexpr uint64_t kCommandBytes = sizeof(rhi::DrawIndexedIndirectCommand);
     if (!rhi::has_all(b.desc.usage, rhi::BufferUsage::Indirect)) {
-        fail(ErrorCode::InvalidArgument, where(command) + "buffer " + quote_name(b.desc.name) + " lacks Indirect usage");
+        fail(ErrorCode::InvalidArgument, where(command) + "buffer " + in_quotes(b.desc.name) + " lacks Indirect usage");
         return;
     }
     if (offset % 4 != 0 || stride % 4 != 0 || stride < kCommandBytes) {
@@ -591,7 +587,7 @@ void GlCommandList::draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t off
     // At most (2^32 - 1)^2 + kCommandBytes bytes: the span itself cannot overflow; offset + span can.
     if (draw_count > 0 && !checked::range_fits(offset, uint64_t{draw_count - 1} * stride + kCommandBytes, b.desc.size)) {
         fail(ErrorCode::InvalidArgument, where(command) + std::to_string(draw_count) + " commands from offset " +
-                                             std::to_string(offset) + " run past the end of buffer " + quote_name(b.desc.name));
+                                             std::to_string(offset) + " run past the end of buffer " + in_quotes(b.desc.name));
         return;
     }
     if (index_buffer_.offset != 0) {
@@ -615,7 +611,7 @@ void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_
     if (indirect && p->base_instance_location >= 0) {
         // GL offsets gl_InstanceIndex by a uniform set per draw: one call cannot give each
         // command its own first instance (per-instance attributes are offset by GL itself).
-        fail(ErrorCode::Unsupported, where(command) + "pipeline " + quote_name(p->name) +
+        fail(ErrorCode::Unsupported, where(command) + "pipeline " + in_quotes(p->name) +
                                          " reads gl_InstanceIndex, which GL's indirect draws cannot offset by each "
                                          "command's first instance; use a per-instance vertex attribute");
         return;
@@ -636,7 +632,7 @@ void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_
         auto buffer = device_->buffers().get(vb.buffer);
         if (!buffer.ok()) {
             fail(ErrorCode::InvalidHandle, where(command) + "vertex buffer slot " + std::to_string(slot) + " of pipeline " +
-                                               quote_name(p->name) + ": " + buffer.error().message);
+                                               in_quotes(p->name) + ": " + buffer.error().message);
             return;
         }
         vertex.push_back({slot, (*buffer)->name, static_cast<GLintptr>(vb.offset), static_cast<GLsizei>(p->strides[slot])});
@@ -659,7 +655,7 @@ void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_
         if (!start || (!indirect && !checked::range_fits(*start, uint64_t{count} * index_bytes, (*buffer)->desc.size))) {
             fail(ErrorCode::InvalidArgument, where(command) + std::to_string(count) + " indices from index " +
                                                  std::to_string(first) + " run past the end of index buffer " +
-                                                 quote_name((*buffer)->desc.name));
+                                                 in_quotes((*buffer)->desc.name));
             return;
         }
         index_offset = static_cast<uintptr_t>(*start);
@@ -744,13 +740,13 @@ void GlCommandList::copy_buffer(rhi::BufferHandle src, uint64_t src_offset, rhi:
     const GlBuffer& db = **d;
     if (src_offset > sb.desc.size || size > sb.desc.size - src_offset || dst_offset > db.desc.size ||
         size > db.desc.size - dst_offset) {
-        fail(ErrorCode::InvalidArgument, "copy_buffer: " + std::to_string(size) + " bytes from " + quote_name(sb.desc.name) + "+" +
-                                             std::to_string(src_offset) + " to " + quote_name(db.desc.name) + "+" +
+        fail(ErrorCode::InvalidArgument, "copy_buffer: " + std::to_string(size) + " bytes from " + in_quotes(sb.desc.name) + "+" +
+                                             std::to_string(src_offset) + " to " + in_quotes(db.desc.name) + "+" +
                                              std::to_string(dst_offset) + " run past the end of a buffer");
         return;
     }
     if (sb.name == db.name && src_offset < dst_offset + size && dst_offset < src_offset + size) {
-        fail(ErrorCode::InvalidArgument, "copy_buffer: source and destination ranges of " + quote_name(sb.desc.name) + " overlap");
+        fail(ErrorCode::InvalidArgument, "copy_buffer: source and destination ranges of " + in_quotes(sb.desc.name) + " overlap");
         return;
     }
     if (size == 0) return;
@@ -779,7 +775,7 @@ void GlCommandList::copy_texture(const rhi::TextureCopy& copy) {
     }
     GlTexture& st = **s;
     GlTexture& dt = **d;
-    const std::string what = "copy_texture from " + quote_name(st.desc.name) + " to " + quote_name(dt.desc.name) + ": ";
+    const std::string what = "copy_texture from " + in_quotes(st.desc.name) + " to " + in_quotes(dt.desc.name) + ": ";
     if (rhi::format_info(st.desc.format).bytes_per_texel != rhi::format_info(dt.desc.format).bytes_per_texel ||
         rhi::format_info(st.desc.format).is_depth_stencil() != rhi::format_info(dt.desc.format).is_depth_stencil() ||
         (rhi::format_info(st.desc.format).is_depth_stencil() && st.desc.format != dt.desc.format)) {
@@ -799,8 +795,8 @@ void GlCommandList::copy_texture(const rhi::TextureCopy& copy) {
     }
     const bool s3d = st.desc.dimension == rhi::TextureDimension::Tex3D;
     const bool d3d = dt.desc.dimension == rhi::TextureDimension::Tex3D;
-    const uint32_t smw = mip_extent(st.desc.width, sr.mip), smh = mip_extent(st.desc.height, sr.mip);
-    const uint32_t dmw = mip_extent(dt.desc.width, dr.mip), dmh = mip_extent(dt.desc.height, dr.mip);
+    const uint32_t smw = rhi::mip_extent(st.desc, sr.mip).width, smh = rhi::mip_extent(st.desc, sr.mip).height;
+    const uint32_t dmw = rhi::mip_extent(dt.desc, dr.mip).width, dmh = rhi::mip_extent(dt.desc, dr.mip).height;
     const uint32_t w = sr.extent.width ? sr.extent.width : smw - std::min(smw, sr.origin.x);
     const uint32_t h = sr.extent.height ? sr.extent.height : smh - std::min(smh, sr.origin.y);
     const uint32_t depth = s3d ? (sr.extent.depth ? sr.extent.depth : 1) : 1;
@@ -808,7 +804,7 @@ void GlCommandList::copy_texture(const rhi::TextureCopy& copy) {
     const uint32_t dz = d3d ? dr.origin.z : dr.layer;
     const bool fits = w > 0 && h > 0 && uint64_t{sr.origin.x} + w <= smw && uint64_t{sr.origin.y} + h <= smh &&
                       uint64_t{dr.origin.x} + w <= dmw && uint64_t{dr.origin.y} + h <= dmh &&
-                      uint64_t{sz} + depth <= layer_count(st.desc, sr.mip) && uint64_t{dz} + depth <= layer_count(dt.desc, dr.mip);
+                      uint64_t{sz} + depth <= rhi::mip_layers(st.desc, sr.mip) && uint64_t{dz} + depth <= rhi::mip_layers(dt.desc, dr.mip);
     if (!fits) {
         fail(ErrorCode::InvalidArgument, what + "the " + std::to_string(w) + "x" + std::to_string(h) + "x" +
                                              std::to_string(depth) + " region does not fit the source or destination");
@@ -842,7 +838,7 @@ void GlCommandList::transition(rhi::TextureHandle texture, ResourceState state) 
     }
     GlTexture& t = **found;
     if (pass_) {
-        fail(ErrorCode::InvalidState, where("transition") + "texture " + quote_name(t.desc.name) +
+        fail(ErrorCode::InvalidState, where("transition") + "texture " + in_quotes(t.desc.name) +
                                           " cannot change state inside a render pass");
         return;
     }
@@ -867,7 +863,7 @@ void GlCommandList::transition(rhi::BufferHandle buffer, ResourceState state) {
     }
     GlBuffer& b = **found;
     if (pass_) {
-        fail(ErrorCode::InvalidState, where("transition") + "buffer " + quote_name(b.desc.name) +
+        fail(ErrorCode::InvalidState, where("transition") + "buffer " + in_quotes(b.desc.name) +
                                           " cannot change state inside a render pass");
         return;
     }
@@ -887,7 +883,7 @@ void GlCommandList::transition(rhi::BufferHandle buffer, ResourceState state) {
 
 void GlCommandList::begin_timer(std::string_view label) {
     if (open_timer_) {
-        fail(ErrorCode::InvalidState, "begin_timer " + quote_name(std::string(label)) + ": timer " + quote_name(*open_timer_) +
+        fail(ErrorCode::InvalidState, "begin_timer " + in_quotes(std::string(label)) + ": timer " + in_quotes(*open_timer_) +
                                           " is still open (timers do not nest)");
         return;
     }

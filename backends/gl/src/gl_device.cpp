@@ -1,5 +1,6 @@
 // GlDevice: creation, capabilities, the window, and the public factory.
 #include "gl_device.hpp"
+#include "loom/rhi/validation.hpp"
 
 #include <algorithm>
 
@@ -104,12 +105,10 @@ void GlDevice::init_capabilities() {
     caps_.storage_buffer_offset_alignment = std::max<uint32_t>(1, integer(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT));
     limits_.max_image_units = integer(GL_MAX_IMAGE_UNITS);
     limits_.max_storage_buffer_bindings = integer(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS);
-    limits_.max_samples = integer(GL_MAX_SAMPLES);
-    limits_.max_3d_texture_size = integer(GL_MAX_3D_TEXTURE_SIZE);
-    limits_.max_array_layers = integer(GL_MAX_ARRAY_TEXTURE_LAYERS);
-    limits_.max_cube_size = integer(GL_MAX_CUBE_MAP_TEXTURE_SIZE);
-    caps_.max_texture_layers = limits_.max_array_layers;
-    caps_.max_samples = std::max<uint32_t>(1, limits_.max_samples);
+    caps_.max_texture_size_3d = integer(GL_MAX_3D_TEXTURE_SIZE);
+    caps_.max_texture_size_cube = integer(GL_MAX_CUBE_MAP_TEXTURE_SIZE);
+    caps_.max_texture_layers = integer(GL_MAX_ARRAY_TEXTURE_LAYERS);
+    caps_.max_samples = std::max<uint32_t>(1, integer(GL_MAX_SAMPLES));
 }
 
 // Mesa 22.3's llvmpipe answers the first GL_TIME_ELAPSED query of a context that contains
@@ -170,13 +169,13 @@ GlDevice::~GlDevice() {
 }
 
 Result<rhi::HeapHandle> GlDevice::create_heap(const rhi::HeapDesc& desc) {
-    return Error{ErrorCode::Unsupported,
-                 "heap '" + desc.name + "': the OpenGL backend has no placed resources (Capabilities::placed_resources is false)"};
+    LOOM_TRY(rhi::validation::heap_desc(desc, caps_));  // refuses: no placed resources
+    return Error{ErrorCode::Unsupported, "heap " + rhi::validation::in_quotes(desc.name) + ": not created"};
 }
 
 Result<rhi::MemoryRequirements> GlDevice::texture_memory_requirements(const rhi::TextureDesc& desc) {
-    return Error{ErrorCode::Unsupported, "texture '" + desc.name +
-                                             "': memory requirements need placed resources, which the OpenGL backend lacks"};
+    LOOM_TRY(rhi::validation::texture_memory_query(desc, caps_));  // refuses: no placed resources
+    return Error{ErrorCode::Unsupported, "texture " + rhi::validation::in_quotes(desc.name) + ": no memory requirements"};
 }
 
 Status GlDevice::destroy(rhi::HeapHandle heap) {

@@ -225,10 +225,6 @@ public:
     struct Limits {
         uint32_t max_image_units = 8;
         uint32_t max_storage_buffer_bindings = 8;
-        uint32_t max_samples = 1;
-        uint32_t max_3d_texture_size = 0;
-        uint32_t max_array_layers = 0;
-        uint32_t max_cube_size = 0;
     };
     [[nodiscard]] const Limits& limits() const { return limits_; }
 
@@ -244,7 +240,6 @@ private:
     void forget_framebuffers_with(GLuint texture);
     Result<GLuint> vertex_array_for(const std::vector<rhi::VertexBufferLayout>& layout, std::vector<uint32_t>& key);
     void release_vertex_array(const std::vector<uint32_t>& key);
-    Status check_texture_desc(const rhi::TextureDesc& desc) const;
     Result<rhi::TextureHandle> create_texture_internal(const rhi::TextureDesc& desc, bool internal);
     void collect_timers(bool wait);
     void recycle_transient_chunks(bool wait);

@@ -1,11 +1,12 @@
 // Embedding: application textures as loom textures, GL names of loom textures, and showing a
 // loom texture in an application framebuffer (loom/gl/gl_embed.hpp).
 #include "gl_device.hpp"
+#include "loom/rhi/validation.hpp"
 
 namespace loom::gl {
 namespace {
 
-std::string quote_name(const std::string& name) { return "'" + name + "'"; }
+using rhi::validation::in_quotes;
 
 Result<GlDevice*> as_gl_device(rhi::Device& device, std::string_view what) {
     auto* gl = dynamic_cast<GlDevice*>(&device);
@@ -38,7 +39,7 @@ std::string hex(GLint value) {
 
 Result<rhi::TextureHandle> import_gl_texture(rhi::Device& device, uint32_t texture, const rhi::TextureDesc& desc,
                                              rhi::ResourceState state) {
-    auto gl = as_gl_device(device, "import_gl_texture of texture " + quote_name(desc.name));
+    auto gl = as_gl_device(device, "import_gl_texture of texture " + in_quotes(desc.name));
     if (!gl.ok()) return gl.take_error();
     return (*gl)->import_texture(texture, desc, state);
 }
@@ -60,10 +61,10 @@ Status blit_to_framebuffer(rhi::Device& device, rhi::TextureHandle texture, uint
 
 Result<rhi::TextureHandle> GlDevice::import_texture(GLuint name, const rhi::TextureDesc& desc, rhi::ResourceState state) {
     context_->make_current();
-    const std::string what = "import_gl_texture of GL texture " + std::to_string(name) + " as " + quote_name(desc.name) + ": ";
+    const std::string what = "import_gl_texture of GL texture " + std::to_string(name) + " as " + in_quotes(desc.name) + ": ";
     auto mismatch = [&](const std::string& message) { return Error{ErrorCode::InvalidArgument, what + message}; };
     if (name == 0 || glIsTexture(name) != GL_TRUE) return mismatch("not a texture of the current context");
-    LOOM_TRY(check_texture_desc(desc));
+    LOOM_TRY(rhi::validation::texture_desc(desc, caps_));
 
     const GLenum target = texture_target(desc);
     GLint actual_target = 0;
@@ -136,7 +137,7 @@ Status GlDevice::blit_to_framebuffer(rhi::TextureHandle texture, GLuint framebuf
     auto found = textures_.get(texture);
     if (!found.ok()) return found.take_error();
     const GlTexture& t = **found;
-    const std::string what = "blit_to_framebuffer of texture " + quote_name(t.desc.name) + ": ";
+    const std::string what = "blit_to_framebuffer of texture " + in_quotes(t.desc.name) + ": ";
     if (list_->recording()) {
         return Error{ErrorCode::InvalidState, what + "a frame is being recorded; its commands run at end_frame, blit after it"};
     }

@@ -126,6 +126,20 @@ GLenum attachment_point(rhi::Format format, uint32_t color_index) {
     return GL_COLOR_ATTACHMENT0 + color_index;
 }
 
+// The sample counts GL reports for multisampled 2D textures of `internal_format`, as bits.
+uint32_t multisample_counts(GLenum internal_format) {
+    GLint count = 0;
+    glGetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, internal_format, GL_NUM_SAMPLE_COUNTS, 1, &count);
+    if (count <= 0) return 0;
+    std::vector<GLint> samples(static_cast<std::size_t>(count));
+    glGetInternalformativ(GL_TEXTURE_2D_MULTISAMPLE, internal_format, GL_SAMPLES, count, samples.data());
+    uint32_t bits = 0;
+    for (GLint n : samples) {
+        if (n > 1 && n <= 64 && std::has_single_bit(static_cast<uint32_t>(n))) bits |= static_cast<uint32_t>(n);
+    }
+    return bits;
+}
+
 std::array<rhi::FormatCapabilities, rhi::kFormatCount> query_format_capabilities() {
     std::array<rhi::FormatCapabilities, rhi::kFormatCount> caps{};
     auto query = [](GLenum internal, GLenum pname) {
@@ -151,6 +165,7 @@ std::array<rhi::FormatCapabilities, rhi::kFormatCount> query_format_capabilities
         } else {
             c.depth_stencil_attachment = full(f, GL_FRAMEBUFFER_RENDERABLE);
         }
+        if (c.color_attachment || c.depth_stencil_attachment) c.sample_counts |= multisample_counts(f);
     }
     return caps;
 }

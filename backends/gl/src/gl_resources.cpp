@@ -5,22 +5,22 @@
 #include <set>
 
 #include "gl_device.hpp"
+#include "loom/rhi/subresources.hpp"
+#include "loom/rhi/validation.hpp"
 
 namespace loom::gl {
 namespace {
 
 using rhi::has_any;
 
-std::string quote_name(const std::string& name) { return "'" + name + "'"; }
-
-uint32_t mip_extent(uint32_t size, uint32_t mip) { return std::max(1u, size >> mip); }
+using rhi::validation::in_quotes;
 
 uint64_t texture_bytes(const rhi::TextureDesc& d) {
     uint64_t total = 0;
     const uint64_t bpt = rhi::format_info(d.format).bytes_per_texel;
     for (uint32_t m = 0; m < d.mip_levels; ++m) {
-        const uint64_t depth = d.dimension == rhi::TextureDimension::Tex3D ? mip_extent(d.depth_or_layers, m) : d.depth_or_layers;
-        total += uint64_t{mip_extent(d.width, m)} * mip_extent(d.height, m) * depth * bpt * d.samples;
+        const rhi::Extent3D e = rhi::mip_extent(d, m);
+        total += uint64_t{e.width} * e.height * rhi::mip_layers(d, m) * bpt * d.samples;
     }
     return total;
 }
@@ -159,86 +159,13 @@ GLenum texture_target(const rhi::TextureDesc& d) {
     return GL_TEXTURE_2D;
 }
 
-Status GlDevice::check_texture_desc(const rhi::TextureDesc& d) const {
-    const std::string what = "texture " + quote_name(d.name) + ": ";
-    auto invalid = [&](const std::string& message) { return Error{ErrorCode::InvalidArgument, what + message}; };
-    if (d.placement) {
-        return Error{ErrorCode::Unsupported, what + "placement in a heap needs placed resources, which the OpenGL backend lacks"};
-    }
-    if (d.format == rhi::Format::Undefined) return invalid("format is Undefined");
-    if (d.width == 0 || d.height == 0 || d.depth_or_layers == 0) {
-        return invalid("size " + std::to_string(d.width) + "x" + std::to_string(d.height) + "x" +
-                       std::to_string(d.depth_or_layers) + " has a zero dimension");
-    }
-    if (d.mip_levels == 0) return invalid("mip_levels is 0");
-    const uint32_t largest = std::max({d.width, d.height, d.dimension == rhi::TextureDimension::Tex3D ? d.depth_or_layers : 1u});
-    const uint32_t max_mips = static_cast<uint32_t>(std::bit_width(largest));
-    if (d.mip_levels > max_mips) {
-        return invalid("mip_levels " + std::to_string(d.mip_levels) + " exceeds the " + std::to_string(max_mips) +
-                       " levels of a " + std::to_string(largest) + "-texel texture");
-    }
-    const uint32_t max_size = d.dimension == rhi::TextureDimension::Tex3D ? limits_.max_3d_texture_size
-                              : d.dimension == rhi::TextureDimension::Cube ? limits_.max_cube_size
-                                                                           : caps_.max_texture_size;
-    if (d.width > max_size || d.height > max_size) {
-        return invalid("size " + std::to_string(d.width) + "x" + std::to_string(d.height) + " exceeds the limit " +
-                       std::to_string(max_size));
-    }
-    switch (d.dimension) {
-        case rhi::TextureDimension::Tex2D:
-            if (d.depth_or_layers != 1) return invalid("depth_or_layers must be 1 for a 2D texture");
-            break;
-        case rhi::TextureDimension::Tex2DArray:
-            if (d.depth_or_layers > limits_.max_array_layers) return invalid("too many layers");
-            break;
-        case rhi::TextureDimension::Tex3D:
-            if (d.depth_or_layers > limits_.max_3d_texture_size) return invalid("depth exceeds the 3D texture limit");
-            if (rhi::format_info(d.format).is_depth_stencil()) return invalid("a 3D texture cannot have a depth format");
-            break;
-        case rhi::TextureDimension::Cube:
-            if (d.depth_or_layers != 6) return invalid("a cube texture has depth_or_layers 6");
-            if (d.width != d.height) return invalid("cube faces must be square");
-            break;
-    }
-    if (d.samples == 0 || !std::has_single_bit(d.samples)) return invalid("samples must be a power of two");
-    if (d.samples > 1) {
-        if (d.dimension != rhi::TextureDimension::Tex2D) return invalid("only 2D textures can be multisampled");
-        if (d.mip_levels != 1) return invalid("a multisampled texture has exactly one mip level");
-        if (d.samples > limits_.max_samples) {
-            return Error{ErrorCode::Unsupported, what + std::to_string(d.samples) + " samples exceed the limit " +
-                                                     std::to_string(limits_.max_samples)};
-        }
-        if (has_any(d.usage, rhi::TextureUsage::Storage)) return invalid("a multisampled texture cannot be a storage image");
-    }
-    const rhi::FormatInfo& info = rhi::format_info(d.format);
-    const rhi::FormatCapabilities& fc = caps_.format(d.format);
-    const std::string format = std::string(rhi::format_name(d.format));
-    if (has_any(d.usage, rhi::TextureUsage::Sampled) && !fc.sampled) {
-        return Error{ErrorCode::Unsupported, what + format + " cannot be sampled on this device"};
-    }
-    if (has_any(d.usage, rhi::TextureUsage::ColorAttachment)) {
-        if (!info.is_color()) return invalid(format + " is not a colour format (usage ColorAttachment)");
-        if (!fc.color_attachment) return Error{ErrorCode::Unsupported, what + format + " cannot be rendered to on this device"};
-    }
-    if (has_any(d.usage, rhi::TextureUsage::DepthStencilAttachment)) {
-        if (!info.is_depth_stencil()) return invalid(format + " is not a depth/stencil format (usage DepthStencilAttachment)");
-        if (!fc.depth_stencil_attachment) {
-            return Error{ErrorCode::Unsupported, what + format + " cannot be a depth attachment on this device"};
-        }
-    }
-    if (has_any(d.usage, rhi::TextureUsage::Storage) && !fc.storage) {
-        return Error{ErrorCode::Unsupported, what + format + " cannot be a storage image on this device"};
-    }
-    return {};
-}
-
 Result<rhi::TextureHandle> GlDevice::create_texture(const rhi::TextureDesc& desc) {
     context_->make_current();
     return create_texture_internal(desc, false);
 }
 
 Result<rhi::TextureHandle> GlDevice::create_texture_internal(const rhi::TextureDesc& desc, bool internal) {
-    LOOM_TRY(check_texture_desc(desc));
+    LOOM_TRY(rhi::validation::texture_desc(desc, caps_));
     GlTexture t;
     t.desc = desc;
     t.target = texture_target(desc);
@@ -271,7 +198,7 @@ Status GlDevice::destroy(rhi::TextureHandle texture) {
     auto found = textures_.get(texture);
     if (!found.ok()) return found.take_error();
     if ((*found)->internal) {
-        return Error{ErrorCode::InvalidArgument, "texture " + quote_name((*found)->desc.name) + " belongs to the device"};
+        return Error{ErrorCode::InvalidArgument, "texture " + in_quotes((*found)->desc.name) + " belongs to the device"};
     }
     GlTexture t = std::move(*textures_.remove(texture));
     const GLuint name = t.name;
@@ -299,7 +226,7 @@ Result<rhi::TextureDesc> GlDevice::texture_desc(rhi::TextureHandle texture) {
 
 Result<rhi::BufferHandle> GlDevice::create_buffer(const rhi::BufferDesc& desc) {
     context_->make_current();
-    if (desc.size == 0) return Error{ErrorCode::InvalidArgument, "buffer " + quote_name(desc.name) + ": size is 0"};
+    LOOM_TRY(rhi::validation::buffer_desc(desc));
     GlBuffer b;
     b.desc = desc;
     glCreateBuffers(1, &b.name);
@@ -316,7 +243,7 @@ Status GlDevice::destroy(rhi::BufferHandle buffer) {
     auto found = buffers_.get(buffer);
     if (!found.ok()) return found.take_error();
     if ((*found)->internal) {
-        return Error{ErrorCode::InvalidArgument, "buffer " + quote_name((*found)->desc.name) + " belongs to the device"};
+        return Error{ErrorCode::InvalidArgument, "buffer " + in_quotes((*found)->desc.name) + " belongs to the device"};
     }
     GlBuffer b = std::move(*buffers_.remove(buffer));
     --stats_.buffers;
@@ -328,9 +255,7 @@ Status GlDevice::destroy(rhi::BufferHandle buffer) {
 
 Result<rhi::SamplerHandle> GlDevice::create_sampler(const rhi::SamplerDesc& desc) {
     context_->make_current();
-    const std::string what = "sampler " + quote_name(desc.name) + ": ";
-    if (!(desc.min_lod <= desc.max_lod)) return Error{ErrorCode::InvalidArgument, what + "min_lod is above max_lod"};
-    if (!(desc.max_anisotropy >= 1.0f)) return Error{ErrorCode::InvalidArgument, what + "max_anisotropy is below 1"};
+    LOOM_TRY(rhi::validation::sampler_desc(desc));
     GlSampler s;
     s.desc = desc;
     glCreateSamplers(1, &s.name);
@@ -376,7 +301,7 @@ Status GlDevice::destroy(rhi::SamplerHandle sampler) {
 
 Result<rhi::ShaderHandle> GlDevice::create_shader(const rhi::ShaderModule& module) {
     context_->make_current();
-    const std::string what = "shader " + quote_name(module.name) + " (" + std::string(rhi::shader_stage_name(module.stage)) + ")";
+    const std::string what = "shader " + in_quotes(module.name) + " (" + std::string(rhi::shader_stage_name(module.stage)) + ")";
     if (module.gl_source.empty()) return Error{ErrorCode::InvalidArgument, what + ": gl_source is empty"};
     const GLenum type = module.stage == rhi::ShaderStage::Vertex     ? GL_VERTEX_SHADER
                         : module.stage == rhi::ShaderStage::Fragment ? GL_FRAGMENT_SHADER
@@ -419,25 +344,25 @@ Result<GlPipeline> link_program(const std::string& pipeline_name, std::initializ
                                 const GlDevice::Limits& limits) {
     GlPipeline p;
     p.name = pipeline_name;
-    const std::string what = "pipeline " + quote_name(pipeline_name);
+    const std::string what = "pipeline " + in_quotes(pipeline_name);
     auto add_binding = [&](uint32_t set, uint32_t binding, BindingKind kind, const std::string& name,
                            const GlShader& shader, GLenum access) -> Status {
         if (set >= rhi::kMaxBindGroups || binding >= rhi::kMaxBindingsPerGroup) {
-            return Error{ErrorCode::Unsupported, what + ": shader " + quote_name(shader.name) + " uses set " +
+            return Error{ErrorCode::Unsupported, what + ": shader " + in_quotes(shader.name) + " uses set " +
                                                      std::to_string(set) + " binding " + std::to_string(binding) +
                                                      " beyond loom's " + std::to_string(rhi::kMaxBindGroups) + " sets of " +
                                                      std::to_string(rhi::kMaxBindingsPerGroup) + " bindings"};
         }
         const uint32_t point = rhi::gl_binding_point(set, binding);
         if (kind == BindingKind::StorageImage && point >= limits.max_image_units) {
-            return Error{ErrorCode::Unsupported, what + ": storage image " + quote_name(name) + " of shader " + quote_name(shader.name) +
+            return Error{ErrorCode::Unsupported, what + ": storage image " + in_quotes(name) + " of shader " + in_quotes(shader.name) +
                                                      " (set " + std::to_string(set) + ", binding " + std::to_string(binding) +
                                                      ") maps to GL image unit " + std::to_string(point) + " but the driver has " +
                                                      std::to_string(limits.max_image_units)};
         }
         if (kind == BindingKind::StorageBuffer && point >= limits.max_storage_buffer_bindings) {
-            return Error{ErrorCode::Unsupported, what + ": storage buffer " + quote_name(name) + " of shader " +
-                                                     quote_name(shader.name) + " (set " + std::to_string(set) + ", binding " +
+            return Error{ErrorCode::Unsupported, what + ": storage buffer " + in_quotes(name) + " of shader " +
+                                                     in_quotes(shader.name) + " (set " + std::to_string(set) + ", binding " +
                                                      std::to_string(binding) + ") maps to GL storage binding " +
                                                      std::to_string(point) + " but the driver has " +
                                                      std::to_string(limits.max_storage_buffer_bindings)};
@@ -479,7 +404,7 @@ Result<GlPipeline> link_program(const std::string& pipeline_name, std::initializ
         std::string log = info_log(p.program, true);
         glDeleteProgram(p.program);
         std::string names;
-        for (const GlShader* shader : shaders) names += (names.empty() ? "" : " + ") + quote_name(shader->name);
+        for (const GlShader* shader : shaders) names += (names.empty() ? "" : " + ") + in_quotes(shader->name);
         return Error{ErrorCode::ShaderLink, what + ": linking " + names + " failed:\n" + log};
     }
     set_label(GL_PROGRAM, p.program, pipeline_name);
@@ -491,14 +416,14 @@ Result<GlPipeline> link_program(const std::string& pipeline_name, std::initializ
 
 Result<rhi::PipelineHandle> GlDevice::create_graphics_pipeline(const rhi::GraphicsPipelineDesc& desc) {
     context_->make_current();
-    const std::string what = "pipeline " + quote_name(desc.name);
+    const std::string what = "pipeline " + in_quotes(desc.name);
     auto invalid = [&](const std::string& message) { return Error{ErrorCode::InvalidArgument, what + ": " + message}; };
     auto vs = shaders_.get(desc.vertex);
     if (!vs.ok()) return Error{ErrorCode::InvalidHandle, what + ": vertex shader: " + vs.error().message};
     auto fs = shaders_.get(desc.fragment);
     if (!fs.ok()) return Error{ErrorCode::InvalidHandle, what + ": fragment shader: " + fs.error().message};
-    if ((*vs)->stage != rhi::ShaderStage::Vertex) return invalid("shader " + quote_name((*vs)->name) + " is not a vertex shader");
-    if ((*fs)->stage != rhi::ShaderStage::Fragment) return invalid("shader " + quote_name((*fs)->name) + " is not a fragment shader");
+    if ((*vs)->stage != rhi::ShaderStage::Vertex) return invalid("shader " + in_quotes((*vs)->name) + " is not a vertex shader");
+    if ((*fs)->stage != rhi::ShaderStage::Fragment) return invalid("shader " + in_quotes((*fs)->name) + " is not a fragment shader");
     if (desc.color_formats.size() > caps_.max_color_attachments) {
         return invalid(std::to_string(desc.color_formats.size()) + " colour formats exceed the limit of " +
                        std::to_string(caps_.max_color_attachments));
@@ -538,8 +463,8 @@ Result<rhi::PipelineHandle> GlDevice::create_graphics_pipeline(const rhi::Graphi
     }
     for (const rhi::StageVariable& input : (*vs)->reflection.inputs) {
         if (!locations.contains(input.location)) {
-            return invalid("vertex input " + quote_name(input.name) + " (location " + std::to_string(input.location) +
-                           ") of shader " + quote_name((*vs)->name) + " is not fed by any vertex buffer");
+            return invalid("vertex input " + in_quotes(input.name) + " (location " + std::to_string(input.location) +
+                           ") of shader " + in_quotes((*vs)->name) + " is not fed by any vertex buffer");
         }
     }
 
@@ -593,11 +518,11 @@ Result<rhi::PipelineHandle> GlDevice::create_graphics_pipeline(const rhi::Graphi
 
 Result<rhi::PipelineHandle> GlDevice::create_compute_pipeline(const rhi::ComputePipelineDesc& desc) {
     context_->make_current();
-    const std::string what = "pipeline " + quote_name(desc.name);
+    const std::string what = "pipeline " + in_quotes(desc.name);
     auto cs = shaders_.get(desc.compute);
     if (!cs.ok()) return Error{ErrorCode::InvalidHandle, what + ": compute shader: " + cs.error().message};
     if ((*cs)->stage != rhi::ShaderStage::Compute) {
-        return Error{ErrorCode::InvalidArgument, what + ": shader " + quote_name((*cs)->name) + " is not a compute shader"};
+        return Error{ErrorCode::InvalidArgument, what + ": shader " + in_quotes((*cs)->name) + " is not a compute shader"};
     }
     auto linked = link_program(desc.name, {*cs}, limits_);
     if (!linked.ok()) return linked.take_error();

@@ -4,20 +4,13 @@
 #include <cstring>
 
 #include "gl_device.hpp"
+#include "loom/rhi/subresources.hpp"
+#include "loom/rhi/validation.hpp"
 
 namespace loom::gl {
 namespace {
 
-std::string quote_name(const std::string& name) { return "'" + name + "'"; }
-
-uint32_t mip_extent(uint32_t size, uint32_t mip) { return std::max(1u, size >> mip); }
-
 bool is_layered(const GlTexture& t) { return t.target != GL_TEXTURE_2D && t.target != GL_TEXTURE_2D_MULTISAMPLE; }
-
-/// Layers (or depth slices for 3D) of mip `mip`.
-uint32_t layer_count(const GlTexture& t, uint32_t mip) {
-    return t.desc.dimension == rhi::TextureDimension::Tex3D ? mip_extent(t.desc.depth_or_layers, mip) : t.desc.depth_or_layers;
-}
 
 }  // namespace
 
@@ -26,11 +19,7 @@ Status GlDevice::write_buffer(rhi::BufferHandle buffer, uint64_t offset, std::sp
     auto found = buffers_.get(buffer);
     if (!found.ok()) return found.take_error();
     GlBuffer& b = **found;
-    if (offset > b.desc.size || data.size() > b.desc.size - offset) {
-        return Error{ErrorCode::InvalidArgument, "write_buffer to buffer " + quote_name(b.desc.name) + ": " +
-                                                     std::to_string(data.size()) + " bytes at offset " + std::to_string(offset) +
-                                                     " exceed its size " + std::to_string(b.desc.size)};
-    }
+    LOOM_TRY(rhi::validation::buffer_write(b.desc, offset, data.size()));
     if (data.empty()) return {};
     glNamedBufferSubData(b.name, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(data.size()), data.data());
     count_upload(data.size());
@@ -42,11 +31,7 @@ Result<std::vector<std::byte>> GlDevice::read_buffer(rhi::BufferHandle buffer, u
     auto found = buffers_.get(buffer);
     if (!found.ok()) return found.take_error();
     GlBuffer& b = **found;
-    if (offset > b.desc.size || size > b.desc.size - offset) {
-        return Error{ErrorCode::InvalidArgument, "read_buffer of buffer " + quote_name(b.desc.name) + ": " + std::to_string(size) +
-                                                     " bytes at offset " + std::to_string(offset) + " exceed its size " +
-                                                     std::to_string(b.desc.size)};
-    }
+    LOOM_TRY(rhi::validation::buffer_read(b.desc, offset, size));
     // Shader writes become visible to buffer reads only after a barrier.
     if (b.state == rhi::ResourceState::Storage) glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<std::byte> out(size);
@@ -59,37 +44,12 @@ Status GlDevice::write_texture(rhi::TextureHandle texture, const rhi::TextureReg
     auto found = textures_.get(texture);
     if (!found.ok()) return found.take_error();
     GlTexture& t = **found;
-    const std::string what = "write_texture to texture " + quote_name(t.desc.name) + ": ";
-    auto invalid = [&](const std::string& message) { return Error{ErrorCode::InvalidArgument, what + message}; };
-    if (t.desc.samples > 1) return invalid("a multisampled texture cannot be uploaded to");
-    if (region.mip >= t.desc.mip_levels) {
-        return invalid("mip " + std::to_string(region.mip) + " out of range (" + std::to_string(t.desc.mip_levels) + " levels)");
-    }
-    const uint32_t mw = mip_extent(t.desc.width, region.mip), mh = mip_extent(t.desc.height, region.mip);
+    auto write = rhi::validation::texture_write(t.desc, region, data.size());
+    if (!write.ok()) return write.take_error();
+    // Arrays and cubes address layers as the z of glTextureSubImage3D, 3D textures depth slices.
     const bool is3d = t.desc.dimension == rhi::TextureDimension::Tex3D;
-    const uint32_t layers = layer_count(t, region.mip);
-    const uint32_t w = region.extent.width ? region.extent.width : mw - std::min(mw, region.origin.x);
-    const uint32_t h = region.extent.height ? region.extent.height : mh - std::min(mh, region.origin.y);
-    uint32_t z = 0, d = 1;
-    if (is3d) {
-        if (region.layer != 0) return invalid("a 3D texture has no layers; use origin.z");
-        z = region.origin.z;
-        d = region.extent.depth ? region.extent.depth : layers - std::min(layers, z);
-    } else {
-        if (region.origin.z != 0 || region.extent.depth > 1) return invalid("origin.z / extent.depth apply to 3D textures only");
-        z = region.layer;
-    }
-    if (uint64_t{region.origin.x} + w > mw || uint64_t{region.origin.y} + h > mh || uint64_t{z} + d > layers || w == 0 ||
-        h == 0 || d == 0) {
-        return invalid("region " + std::to_string(w) + "x" + std::to_string(h) + "x" + std::to_string(d) + " at (" +
-                       std::to_string(region.origin.x) + "," + std::to_string(region.origin.y) + "," + std::to_string(z) +
-                       ") does not fit mip " + std::to_string(region.mip) + " (" + std::to_string(mw) + "x" +
-                       std::to_string(mh) + "x" + std::to_string(layers) + ")");
-    }
-    const uint64_t expected = uint64_t{w} * h * d * rhi::format_info(t.desc.format).bytes_per_texel;
-    if (data.size() != expected) {
-        return invalid(std::to_string(data.size()) + " bytes given, the region needs " + std::to_string(expected));
-    }
+    const uint32_t w = write->extent.width, h = write->extent.height;
+    const uint32_t z = is3d ? write->origin.z : write->layer, d = write->extent.depth;
     std::vector<std::byte> converted(data.begin(), data.end());
     to_gl_layout(t.desc.format, converted);
     // Pixel-store state and buffer bindings of the application's context must not apply.
@@ -121,23 +81,14 @@ Result<rhi::Image> GlDevice::read_texture(rhi::TextureHandle texture, uint32_t m
 }
 
 Result<rhi::Image> GlDevice::read_texture_gl(GlTexture& t, uint32_t mip, uint32_t layer) {
-    const std::string what = "read_texture of texture " + quote_name(t.desc.name) + ": ";
-    if (mip >= t.desc.mip_levels) {
-        return Error{ErrorCode::InvalidArgument, what + "mip " + std::to_string(mip) + " out of range (" +
-                                                     std::to_string(t.desc.mip_levels) + " levels)"};
-    }
-    if (layer >= layer_count(t, mip)) {
-        return Error{ErrorCode::InvalidArgument, what + "layer " + std::to_string(layer) + " out of range (" +
-                                                     std::to_string(layer_count(t, mip)) + ")"};
-    }
-    const uint32_t w = mip_extent(t.desc.width, mip), h = mip_extent(t.desc.height, mip);
+    LOOM_TRY(rhi::validation::texture_read(t.desc, mip, layer));
+    const rhi::Extent3D size = rhi::mip_extent(t.desc, mip);
+    const uint32_t w = size.width, h = size.height;
     rhi::Image image(w, h, t.desc.format);
     if (t.state == rhi::ResourceState::Storage) glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
     if (t.desc.samples > 1) {
         // Resolve into a single-sampled texture first; GL cannot read multisampled texels back.
-        if (!rhi::format_info(t.desc.format).is_color()) {
-            return Error{ErrorCode::Unsupported, what + "multisampled depth/stencil textures cannot be read back"};
-        }
+        // (Only colour: the validation layer refuses multisampled depth/stencil readback.)
         GLuint resolved = 0, src_fbo = 0, dst_fbo = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &resolved);
         glTextureStorage2D(resolved, 1, t.format->internal_format, static_cast<GLsizei>(w), static_cast<GLsizei>(h));

@@ -6,6 +6,8 @@
 #include "formats.hpp"
 #include "loom/rhi/checked_math.hpp"
 #include "vulkan_device.hpp"
+#include "loom/rhi/subresources.hpp"
+#include "loom/rhi/validation.hpp"
 
 namespace loom::vulkan {
 
@@ -31,12 +33,8 @@ std::string state_name(ResourceState s) {
     return "?";
 }
 
-std::string in_quotes(const std::string& name) { return "'" + name + "'"; }
+using rhi::validation::in_quotes;
 
-rhi::Extent3D mip_extent(const rhi::TextureDesc& desc, uint32_t mip) {
-    return {std::max(1u, desc.width >> mip), std::max(1u, desc.height >> mip),
-            desc.dimension == rhi::TextureDimension::Tex3D ? std::max(1u, desc.depth_or_layers >> mip) : 1u};
-}
 
 }  // namespace
 
@@ -159,7 +157,7 @@ void VulkanCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
             fail(ErrorCode::Unsupported, pass + " " + what + ": rendering into 3D " + tex + " is not supported");
             return nullptr;
         }
-        const rhi::Extent3D e = mip_extent(t.desc, mip);
+        const rhi::Extent3D e = rhi::mip_extent(t.desc, mip);
         if (!size) {
             size = e;
             samples = t.desc.samples;
@@ -763,8 +761,8 @@ void VulkanCommandList::copy_texture(const rhi::TextureCopy& copy) {
     if (sr.mip >= s.desc.mip_levels || dr.mip >= d.desc.mip_levels || sr.layer >= s.array_layers || dr.layer >= d.array_layers) {
         return fail(ErrorCode::InvalidArgument, what + ": mip or layer out of range");
     }
-    const rhi::Extent3D se = mip_extent(s.desc, sr.mip);
-    const rhi::Extent3D de = mip_extent(d.desc, dr.mip);
+    const rhi::Extent3D se = rhi::mip_extent(s.desc, sr.mip);
+    const rhi::Extent3D de = rhi::mip_extent(d.desc, dr.mip);
     rhi::Extent3D extent = sr.extent;
     if (extent.width == 0) extent.width = se.width > sr.origin.x ? se.width - sr.origin.x : 0;
     if (extent.height == 0) extent.height = se.height > sr.origin.y ? se.height - sr.origin.y : 0;

@@ -3,6 +3,7 @@
 // (loom/vulkan/vulkan_embed.hpp).
 #include "formats.hpp"
 #include "vulkan_device.hpp"
+#include "loom/rhi/validation.hpp"
 
 namespace loom::vulkan {
 
@@ -10,7 +11,7 @@ using rhi::ResourceState;
 
 namespace {
 
-std::string in_quotes(const std::string& s) { return "'" + s + "'"; }
+using rhi::validation::in_quotes;
 
 loom::Result<VulkanDevice*> as_vulkan_device(rhi::Device& device, std::string_view what) {
     auto* vk = dynamic_cast<VulkanDevice*>(&device);
@@ -202,7 +203,7 @@ loom::Result<rhi::TextureHandle> VulkanDevice::import_image(const ExternalImage&
     t.desc.mip_levels = image.mip_levels;
     t.desc.samples = static_cast<uint32_t>(image.samples);
     t.desc.usage = usage_from_vk(image.usage);
-    LOOM_TRY(validate_texture_desc(t.desc));
+    LOOM_TRY(rhi::validation::texture_desc(t.desc, caps_));
     t.image = image.image;
     t.format = image.format;
     t.aspect = aspect_mask(image.format);

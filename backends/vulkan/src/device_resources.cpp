@@ -6,6 +6,7 @@
 #include "formats.hpp"
 #include "pipelines.hpp"
 #include "vulkan_device.hpp"
+#include "loom/rhi/validation.hpp"
 
 namespace loom::vulkan {
 
@@ -13,11 +14,7 @@ using rhi::ResourceState;
 
 namespace {
 
-std::string in_quotes(const std::string& s) { return "'" + s + "'"; }
-
-uint32_t full_mip_count(uint32_t w, uint32_t h, uint32_t d) {
-    return 1 + static_cast<uint32_t>(std::floor(std::log2(static_cast<double>(std::max({w, h, d, 1u})))));
-}
+using rhi::validation::in_quotes;
 
 uint64_t view_key(uint32_t kind, uint32_t mip, uint32_t layer) {
     return (uint64_t{kind} << 48) | (uint64_t{mip} << 24) | layer;
@@ -26,65 +23,6 @@ uint64_t view_key(uint32_t kind, uint32_t mip, uint32_t layer) {
 }  // namespace
 
 // ---- textures ----------------------------------------------------------------------------------
-
-loom::Status VulkanDevice::validate_texture_desc(const rhi::TextureDesc& d) const {
-    const std::string tex = "texture " + in_quotes(d.name);
-    const rhi::FormatInfo& info = rhi::format_info(d.format);
-    if (d.format == rhi::Format::Undefined) return Error{ErrorCode::InvalidArgument, tex + ": format is Undefined"};
-    if (d.width == 0 || d.height == 0 || d.depth_or_layers == 0) {
-        return Error{ErrorCode::InvalidArgument, tex + ": width, height and depth_or_layers must be at least 1"};
-    }
-    if (d.width > caps_.max_texture_size || d.height > caps_.max_texture_size) {
-        return Error{ErrorCode::InvalidArgument, tex + ": " + std::to_string(d.width) + "x" + std::to_string(d.height) +
-                                                     " exceeds the maximum size " + std::to_string(caps_.max_texture_size)};
-    }
-    const uint32_t depth = d.dimension == rhi::TextureDimension::Tex3D ? d.depth_or_layers : 1;
-    if (d.mip_levels == 0 || d.mip_levels > full_mip_count(d.width, d.height, depth)) {
-        return Error{ErrorCode::InvalidArgument, tex + ": mip_levels " + std::to_string(d.mip_levels) + " is not in 1.." +
-                                                     std::to_string(full_mip_count(d.width, d.height, depth))};
-    }
-    if (d.samples == 0 || (d.samples & (d.samples - 1)) != 0 || d.samples > 64) {
-        return Error{ErrorCode::InvalidArgument, tex + ": samples " + std::to_string(d.samples) + " is not a power of two"};
-    }
-    if (d.samples > 1 && (d.dimension != rhi::TextureDimension::Tex2D || d.mip_levels != 1)) {
-        return Error{ErrorCode::InvalidArgument, tex + ": multisampled textures must be 2D with one mip level"};
-    }
-    if (d.dimension == rhi::TextureDimension::Cube && (d.depth_or_layers != 6 || d.width != d.height)) {
-        return Error{ErrorCode::InvalidArgument, tex + ": a cube texture needs square faces and depth_or_layers = 6"};
-    }
-    if (d.dimension == rhi::TextureDimension::Tex2D && d.depth_or_layers != 1) {
-        return Error{ErrorCode::InvalidArgument, tex + ": a Tex2D texture has depth_or_layers = 1 (use Tex2DArray for layers)"};
-    }
-    const rhi::FormatCapabilities& fc = caps_.format(d.format);
-    auto unsupported = [&](const char* what) {
-        return Error{ErrorCode::Unsupported, tex + ": " + std::string(rhi::format_name(d.format)) + " cannot be " + what + " on " +
-                                                 caps_.device_name};
-    };
-    if (rhi::has_all(d.usage, rhi::TextureUsage::ColorAttachment)) {
-        if (!info.is_color()) return Error{ErrorCode::InvalidArgument, tex + ": ColorAttachment usage with depth/stencil format " +
-                                                                           std::string(rhi::format_name(d.format))};
-        if (!fc.color_attachment) return unsupported("a colour attachment");
-    }
-    if (rhi::has_all(d.usage, rhi::TextureUsage::DepthStencilAttachment)) {
-        if (!info.is_depth_stencil()) return Error{ErrorCode::InvalidArgument, tex + ": DepthStencilAttachment usage with colour format " +
-                                                                                   std::string(rhi::format_name(d.format))};
-        if (!fc.depth_stencil_attachment) return unsupported("a depth/stencil attachment");
-    }
-    if (rhi::has_all(d.usage, rhi::TextureUsage::Sampled) && !fc.sampled) return unsupported("sampled");
-    if (rhi::has_all(d.usage, rhi::TextureUsage::Storage) && !fc.storage) return unsupported("a storage image");
-    if (!fc.sampled && !fc.color_attachment && !fc.depth_stencil_attachment) return unsupported("used");
-    if (d.samples > 1) {
-        VkImageFormatProperties props{};
-        const VkImageCreateInfo ci = image_create_info(d);
-        if (vkGetPhysicalDeviceImageFormatProperties(context_->physical_device(), ci.format, ci.imageType, ci.tiling, ci.usage,
-                                                     ci.flags, &props) != VK_SUCCESS ||
-            !(props.sampleCounts & d.samples)) {
-            return Error{ErrorCode::Unsupported, tex + ": " + std::to_string(d.samples) + " samples are not supported for " +
-                                                     std::string(rhi::format_name(d.format))};
-        }
-    }
-    return {};
-}
 
 VkImageCreateInfo VulkanDevice::image_create_info(const rhi::TextureDesc& d) const {
     auto info = vk_init<VkImageCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO);
@@ -111,7 +49,7 @@ VkImageCreateInfo VulkanDevice::image_create_info(const rhi::TextureDesc& d) con
 }
 
 loom::Result<rhi::MemoryRequirements> VulkanDevice::texture_memory_requirements(const rhi::TextureDesc& desc) {
-    LOOM_TRY(validate_texture_desc(desc));
+    LOOM_TRY(rhi::validation::texture_memory_query(desc, caps_));
     const VkImageCreateInfo info = image_create_info(desc);
     auto query = vk_init<VkDeviceImageMemoryRequirements>(VK_STRUCTURE_TYPE_DEVICE_IMAGE_MEMORY_REQUIREMENTS);
     query.pCreateInfo = &info;
@@ -121,7 +59,7 @@ loom::Result<rhi::MemoryRequirements> VulkanDevice::texture_memory_requirements(
 }
 
 loom::Result<rhi::TextureHandle> VulkanDevice::create_texture(const rhi::TextureDesc& desc) {
-    LOOM_TRY(validate_texture_desc(desc));
+    LOOM_TRY(rhi::validation::texture_desc(desc, caps_));
     const std::string tex = "texture " + in_quotes(desc.name);
     VkDevice device = context_->device();
     Heap* heap = nullptr;
@@ -381,7 +319,7 @@ loom::Status VulkanDevice::destroy(rhi::TextureHandle handle) {
 // ---- heaps -------------------------------------------------------------------------------------
 
 loom::Result<rhi::HeapHandle> VulkanDevice::create_heap(const rhi::HeapDesc& desc) {
-    if (desc.size == 0) return Error{ErrorCode::InvalidArgument, "heap " + in_quotes(desc.name) + ": size is 0"};
+    LOOM_TRY(rhi::validation::heap_desc(desc, caps_));
     // A memory type every attachment and sampled image can live in: the intersection over
     // representative colour and depth images.
     uint32_t type_bits = ~0u;
@@ -441,8 +379,8 @@ loom::Status VulkanDevice::destroy(rhi::HeapHandle handle) {
 loom::Result<rhi::BufferHandle> VulkanDevice::create_buffer(const rhi::BufferDesc& desc) { return create_buffer_internal(desc, false); }
 
 loom::Result<rhi::BufferHandle> VulkanDevice::create_buffer_internal(const rhi::BufferDesc& desc, bool internal) {
+    LOOM_TRY(rhi::validation::buffer_desc(desc));
     const std::string buf = "buffer " + in_quotes(desc.name);
-    if (desc.size == 0) return Error{ErrorCode::InvalidArgument, buf + ": size is 0"};
     auto info = vk_init<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
     info.size = desc.size;
     info.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
@@ -513,9 +451,8 @@ loom::Status VulkanDevice::destroy(rhi::BufferHandle handle) {
 // ---- samplers and shaders ----------------------------------------------------------------------
 
 loom::Result<rhi::SamplerHandle> VulkanDevice::create_sampler(const rhi::SamplerDesc& d) {
+    LOOM_TRY(rhi::validation::sampler_desc(d));
     const std::string name = "sampler " + in_quotes(d.name);
-    if (d.max_anisotropy < 1.0f) return Error{ErrorCode::InvalidArgument, name + ": max_anisotropy must be at least 1"};
-    if (d.min_lod > d.max_lod) return Error{ErrorCode::InvalidArgument, name + ": min_lod is above max_lod"};
     auto info = vk_init<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
     info.magFilter = to_vk(d.mag_filter);
     info.minFilter = to_vk(d.min_filter);

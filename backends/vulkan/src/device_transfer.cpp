@@ -3,8 +3,9 @@
 // function that submits work to the queue.
 #include <cstring>
 
-#include "loom/rhi/checked_math.hpp"
 #include "vulkan_device.hpp"
+#include "loom/rhi/subresources.hpp"
+#include "loom/rhi/validation.hpp"
 
 namespace loom::vulkan {
 
@@ -12,7 +13,7 @@ using rhi::ResourceState;
 
 namespace {
 
-std::string in_quotes(const std::string& s) { return "'" + s + "'"; }
+using rhi::validation::in_quotes;
 
 constexpr VkDeviceSize kStagingAlignment = 16;
 
@@ -31,10 +32,6 @@ CopyLayout copy_layout(rhi::Format format) {
     }
 }
 
-rhi::Extent3D mip_extent(const rhi::TextureDesc& desc, uint32_t mip) {
-    return {std::max(1u, desc.width >> mip), std::max(1u, desc.height >> mip),
-            desc.dimension == rhi::TextureDimension::Tex3D ? std::max(1u, desc.depth_or_layers >> mip) : 1u};
-}
 
 // loom layout -> Vulkan depth part + stencil part (both tightly packed, stencil after depth).
 void split_depth_stencil(rhi::Format format, std::span<const std::byte> src, std::byte* depth, std::byte* stencil,
@@ -208,12 +205,8 @@ loom::Status VulkanDevice::write_buffer(rhi::BufferHandle handle, uint64_t offse
     auto b = buffers_.get(handle);
     if (!b.ok()) return b.take_error();
     Buffer& buffer = **b;
+    LOOM_TRY(rhi::validation::buffer_write(buffer.desc, offset, data.size()));
     if (data.empty()) return {};
-    if (!checked::range_fits(offset, data.size(), buffer.desc.size)) {
-        return Error{ErrorCode::InvalidArgument, "write_buffer: " + std::to_string(data.size()) + " bytes at offset " +
-                                                     std::to_string(offset) + " exceed buffer " + in_quotes(buffer.desc.name) + " (" +
-                                                     std::to_string(buffer.desc.size) + " bytes)"};
-    }
     auto span = staging(data.size());
     if (!span.ok()) return span.take_error();
     std::memcpy(span->data, data.data(), data.size());
@@ -234,11 +227,7 @@ loom::Result<std::vector<std::byte>> VulkanDevice::read_buffer(rhi::BufferHandle
     auto b = buffers_.get(handle);
     if (!b.ok()) return b.take_error();
     Buffer& buffer = **b;
-    if (!checked::range_fits(offset, size, buffer.desc.size)) {
-        return Error{ErrorCode::InvalidArgument, "read_buffer: range " + std::to_string(offset) + "+" + std::to_string(size) +
-                                                     " exceeds buffer " + in_quotes(buffer.desc.name) + " (" +
-                                                     std::to_string(buffer.desc.size) + " bytes)"};
-    }
+    LOOM_TRY(rhi::validation::buffer_read(buffer.desc, offset, size));
     if (size == 0) return std::vector<std::byte>{};
     if (recording_external_frame()) {
         return Error{ErrorCode::InvalidState, "read_buffer of " + in_quotes(buffer.desc.name) +
@@ -276,32 +265,17 @@ loom::Status VulkanDevice::write_texture(rhi::TextureHandle handle, const rhi::T
     auto tex = textures_.get(handle);
     if (!tex.ok()) return tex.take_error();
     Texture& t = **tex;
-    const std::string name = "write_texture to " + in_quotes(t.desc.name);
-    if (t.desc.samples > 1) return Error{ErrorCode::Unsupported, name + ": multisampled textures cannot be uploaded"};
+    auto write = rhi::validation::texture_write(t.desc, region, data.size());
+    if (!write.ok()) return write.take_error();
+    const std::string name = "write_texture to texture " + in_quotes(t.desc.name);
+    // The API's own rule for images the application made: copies need TRANSFER_DST.
     if (t.imported && !rhi::has_all(t.desc.usage, rhi::TextureUsage::CopyDst)) {
         return Error{ErrorCode::InvalidArgument, name + ": the application's image has no TRANSFER_DST usage"};
     }
-    const bool is3d = t.desc.dimension == rhi::TextureDimension::Tex3D;
-    if (region.mip >= t.desc.mip_levels || region.layer >= t.array_layers) {
-        return Error{ErrorCode::InvalidArgument, name + ": mip " + std::to_string(region.mip) + " layer " +
-                                                     std::to_string(region.layer) + " does not exist"};
-    }
-    const rhi::Extent3D full = mip_extent(t.desc, region.mip);
-    rhi::Extent3D e = region.extent;
-    if (e.width == 0) e.width = full.width > region.origin.x ? full.width - region.origin.x : 0;
-    if (e.height == 0) e.height = full.height > region.origin.y ? full.height - region.origin.y : 0;
-    if (e.depth == 0) e.depth = full.depth > region.origin.z ? full.depth - region.origin.z : 0;
-    if (e.width == 0 || e.height == 0 || e.depth == 0 || region.origin.x + e.width > full.width ||
-        region.origin.y + e.height > full.height || region.origin.z + e.depth > full.depth) {
-        return Error{ErrorCode::InvalidArgument, name + ": region is empty or outside mip " + std::to_string(region.mip) + " (" +
-                                                     std::to_string(full.width) + "x" + std::to_string(full.height) + ")"};
-    }
+    const rhi::Extent3D full = rhi::mip_extent(t.desc, region.mip);
+    const rhi::Extent3D e = write->extent;
     const std::size_t texels = std::size_t{e.width} * e.height * e.depth;
     const rhi::FormatInfo& info = rhi::format_info(t.desc.format);
-    if (data.size() != texels * info.bytes_per_texel) {
-        return Error{ErrorCode::InvalidArgument, name + ": " + std::to_string(data.size()) + " bytes given, the region needs " +
-                                                     std::to_string(texels * info.bytes_per_texel)};
-    }
     const CopyLayout layout = copy_layout(t.desc.format);
     const VkDeviceSize depth_size = VkDeviceSize{layout.depth_bytes} * texels;
     const VkDeviceSize stencil_offset = (depth_size + 3) & ~VkDeviceSize{3};
@@ -318,7 +292,7 @@ loom::Status VulkanDevice::write_texture(rhi::TextureHandle handle, const rhi::T
 
     VkCommandBuffer cmd = setup_commands();
     if (!cmd) return Error{ErrorCode::Backend, name + ": cannot allocate a command buffer"};
-    const uint32_t layer = is3d ? 0 : region.layer;
+    const uint32_t layer = write->layer;
     const bool whole = region.origin.x == 0 && region.origin.y == 0 && region.origin.z == 0 && e.width == full.width &&
                        e.height == full.height && e.depth == full.depth;
     BarrierBatch batch;
@@ -356,14 +330,12 @@ loom::Result<rhi::Image> VulkanDevice::read_texture(rhi::TextureHandle handle, u
     auto tex = textures_.get(handle);
     if (!tex.ok()) return tex.take_error();
     Texture& t = **tex;
-    const std::string name = "read_texture of " + in_quotes(t.desc.name);
-    if (t.desc.samples > 1) return Error{ErrorCode::Unsupported, name + ": multisampled textures cannot be read back"};
+    LOOM_TRY(rhi::validation::texture_read(t.desc, mip, layer));
+    const std::string name = "read_texture of texture " + in_quotes(t.desc.name);
+    // Not yet resolved here (GL resolves multisampled colour textures before reading them).
+    if (t.desc.samples > 1) return Error{ErrorCode::Unsupported, name + ": multisampled colour textures cannot be read back on Vulkan yet"};
     const bool is3d = t.desc.dimension == rhi::TextureDimension::Tex3D;
-    const rhi::Extent3D full = mip_extent(t.desc, mip);
-    if (mip >= t.desc.mip_levels || (is3d ? layer >= full.depth : layer >= t.array_layers)) {
-        return Error{ErrorCode::InvalidArgument, name + ": mip " + std::to_string(mip) + " layer " + std::to_string(layer) +
-                                                     " does not exist"};
-    }
+    const rhi::Extent3D full = rhi::mip_extent(t.desc, mip);
     if (t.imported && !rhi::has_all(t.desc.usage, rhi::TextureUsage::CopySrc)) {
         return Error{ErrorCode::InvalidArgument, name + ": the application's image has no TRANSFER_SRC usage"};
     }

@@ -67,6 +67,17 @@ void query_format_capabilities(VkPhysicalDevice physical_device, rhi::Capabiliti
         c.blendable = c.color_attachment && (features & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT);
         c.depth_stencil_attachment = features & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT;
         c.storage = features & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
+        if (c.color_attachment || c.depth_stencil_attachment) {
+            // The sample counts of a 2D attachment made the way image_create_info makes one.
+            VkImageUsageFlags usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+            usage |= c.color_attachment ? VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT : VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+            if (c.sampled) usage |= VK_IMAGE_USAGE_SAMPLED_BIT;
+            VkImageFormatProperties image{};
+            if (vkGetPhysicalDeviceImageFormatProperties(physical_device, to_vk_format(f), VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL,
+                                                         usage, 0, &image) == VK_SUCCESS) {
+                c.sample_counts = static_cast<uint32_t>(image.sampleCounts) & 127u;
+            }
+        }
     }
 }
 

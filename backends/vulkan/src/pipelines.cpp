@@ -5,6 +5,7 @@
 
 #include "formats.hpp"
 #include "loom/vulkan/context.hpp"
+#include "loom/rhi/validation.hpp"
 
 namespace loom::vulkan {
 namespace {
@@ -15,7 +16,7 @@ void append(std::string& key, const T& value) {
     key.append(reinterpret_cast<const char*>(&value), sizeof(T));
 }
 
-std::string in_quotes(const std::string& s) { return "'" + s + "'"; }
+using rhi::validation::in_quotes;
 
 }  // namespace
 

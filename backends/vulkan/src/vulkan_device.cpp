@@ -79,6 +79,8 @@ loom::Status VulkanDevice::init_device(const rhi::DeviceDesc& desc) {
     caps_.timestamps = context_->timestamp_valid_bits() > 0 && props.limits.timestampPeriod > 0.0f;
     caps_.max_texture_size = props.limits.maxImageDimension2D;
     caps_.max_texture_layers = props.limits.maxImageArrayLayers;
+    caps_.max_texture_size_3d = props.limits.maxImageDimension3D;
+    caps_.max_texture_size_cube = props.limits.maxImageDimensionCube;
     // The most samples both colour and depth attachments allow: the highest common bit.
     const VkSampleCountFlags counts =
         props.limits.framebufferColorSampleCounts & props.limits.framebufferDepthSampleCounts;

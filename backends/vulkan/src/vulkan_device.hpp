@@ -144,7 +144,6 @@ private:
     void destroy_everything();
 
     // resources (device_resources.cpp)
-    loom::Status validate_texture_desc(const rhi::TextureDesc& desc) const;
     VkImageCreateInfo image_create_info(const rhi::TextureDesc& desc) const;
     loom::Result<rhi::TextureHandle> wrap_swapchain_image(VkImage image, VkFormat format, uint32_t width, uint32_t height,
                                                           uint32_t index);

@@ -62,6 +62,9 @@ struct FormatCapabilities {
     bool blendable = false;
     bool depth_stencil_attachment = false;
     bool storage = false;
+    /// The sample counts a 2D texture of this format can have, one bit per count (bit value n
+    /// set: n samples; 1 is always set where the format is usable).
+    uint32_t sample_counts = 1;
 };
 
 /// What a device can do: per-format capabilities, limits and features. Plans may depend on them.
@@ -76,7 +79,12 @@ struct Capabilities {
     /// CommandList::draw_indexed_indirect is implemented (both built-in backends). Where it is
     /// false, draw each DrawIndexedIndirectCommand with draw_indexed instead.
     bool draw_indirect = false;
+    /// Width and height of a 2D or array texture.
     uint32_t max_texture_size = 0;
+    /// Width, height and depth of a 3D texture.
+    uint32_t max_texture_size_3d = 0;
+    /// Width (= height) of a cube texture's faces.
+    uint32_t max_texture_size_cube = 0;
     /// Layers of an array texture.
     uint32_t max_texture_layers = 0;
     /// Samples per texel of a multisampled colour or depth attachment (1: no multisampling).

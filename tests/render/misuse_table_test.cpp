@@ -1,0 +1,271 @@
+// The misuse table: every rule of the shared validation layer (loom/rhi/validation.hpp), broken
+// once on a real device of each backend, must give the same ErrorCode and the same message on
+// every backend. The expected message is written here in full; where it quotes a device limit
+// or depends on a device capability, the row computes it from the device's Capabilities, so the
+// same rule reads the same on two devices with the same limits.
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "loom/rhi/validation.hpp"
+#include "loom_test/render_fixture.hpp"
+#include "render_helpers.hpp"
+
+namespace loom::test {
+namespace {
+
+using rhi::Format;
+using rhi::TextureDimension;
+using rhi::TextureUsage;
+
+struct Expected {
+    ErrorCode code = ErrorCode::InvalidArgument;
+    std::string message;
+};
+
+struct Row {
+    std::string rule;
+    /// Whether the device can host this misuse at all (e.g. a multisampled depth texture).
+    std::function<bool(const rhi::Capabilities&)> applies;
+    /// The misuse; returns what the device said.
+    std::function<Status(rhi::Device&)> misuse;
+    std::function<Expected(const rhi::Capabilities&)> expected;
+};
+
+bool always(const rhi::Capabilities&) { return true; }
+
+std::function<Expected(const rhi::Capabilities&)> invalid(std::string message) {
+    return [message](const rhi::Capabilities&) { return Expected{ErrorCode::InvalidArgument, message}; };
+}
+std::function<Expected(const rhi::Capabilities&)> unsupported(std::string message) {
+    return [message](const rhi::Capabilities&) { return Expected{ErrorCode::Unsupported, message}; };
+}
+
+rhi::TextureDesc texture(const std::string& name, uint32_t width = 4, uint32_t height = 4) {
+    rhi::TextureDesc desc;
+    desc.name = name;
+    desc.width = width;
+    desc.height = height;
+    desc.usage = TextureUsage::Sampled;
+    return desc;
+}
+
+Status create(rhi::Device& device, const rhi::TextureDesc& desc) {
+    auto made = device.create_texture(desc);
+    if (!made.ok()) return made.take_error();
+    return device.destroy(*made);
+}
+
+// Runs `use` on a texture made from `desc`, then destroys it.
+Status with_texture(rhi::Device& device, const rhi::TextureDesc& desc, const std::function<Status(rhi::TextureHandle)>& use) {
+    auto made = device.create_texture(desc);
+    if (!made.ok()) return Error{ErrorCode::Backend, "setup: " + made.error().to_string()};
+    Status status = use(*made);
+    LOOM_TRY(device.destroy(*made));
+    return status;
+}
+
+Status with_buffer(rhi::Device& device, uint64_t size, const std::function<Status(rhi::BufferHandle)>& use) {
+    rhi::BufferDesc desc;
+    desc.name = "b";
+    desc.size = size;
+    auto made = device.create_buffer(desc);
+    if (!made.ok()) return Error{ErrorCode::Backend, "setup: " + made.error().to_string()};
+    Status status = use(*made);
+    LOOM_TRY(device.destroy(*made));
+    return status;
+}
+
+Status read(rhi::Device& device, rhi::TextureHandle t, uint32_t mip, uint32_t layer) {
+    auto image = device.read_texture(t, mip, layer);
+    return image.ok() ? Status{} : Status(image.take_error());
+}
+
+std::vector<Row> table() {
+    std::vector<Row> rows;
+    auto add = [&](std::string rule, std::function<Status(rhi::Device&)> misuse, std::function<Expected(const rhi::Capabilities&)> expected,
+                   std::function<bool(const rhi::Capabilities&)> applies = always) {
+        rows.push_back({std::move(rule), std::move(applies), std::move(misuse), std::move(expected)});
+    };
+
+    // ---- texture descriptions
+    add("format Undefined", [](rhi::Device& d) { auto t = texture("t"); t.format = Format::Undefined; return create(d, t); },
+        invalid("texture 't': format is Undefined"));
+    add("zero size", [](rhi::Device& d) { return create(d, texture("t", 0, 4)); },
+        invalid("texture 't': size 0x4x1 has a zero dimension"));
+    add("layers on Tex2D", [](rhi::Device& d) { auto t = texture("t"); t.depth_or_layers = 2; return create(d, t); },
+        invalid("texture 't': depth_or_layers is 2; a Tex2D texture has 1 (Tex2DArray has layers)"));
+    add("cube with 5 faces", [](rhi::Device& d) { auto t = texture("t"); t.dimension = TextureDimension::Cube; t.depth_or_layers = 5; return create(d, t); },
+        invalid("texture 't': depth_or_layers is 5; a Cube texture has 6"));
+    add("cube not square", [](rhi::Device& d) { auto t = texture("t", 8, 4); t.dimension = TextureDimension::Cube; t.depth_or_layers = 6; return create(d, t); },
+        invalid("texture 't': the faces of a Cube texture must be square, not 8x4"));
+    add("3D depth format", [](rhi::Device& d) { auto t = texture("t"); t.dimension = TextureDimension::Tex3D; t.format = Format::Depth32F; t.depth_or_layers = 4; return create(d, t); },
+        invalid("texture 't': a Tex3D texture cannot have the depth/stencil format Depth32F"));
+    add("mip_levels 0", [](rhi::Device& d) { auto t = texture("t"); t.mip_levels = 0; return create(d, t); },
+        invalid("texture 't': mip_levels 0 is not in 1..3 for a 4x4x1 texture"));
+    add("mip_levels past the chain", [](rhi::Device& d) { auto t = texture("t", 8, 2); t.mip_levels = 5; return create(d, t); },
+        invalid("texture 't': mip_levels 5 is not in 1..4 for a 8x2x1 texture"));
+    add("3D mips count depth", [](rhi::Device& d) { auto t = texture("t", 2, 2); t.dimension = TextureDimension::Tex3D; t.depth_or_layers = 16; t.mip_levels = 6; return create(d, t); },
+        invalid("texture 't': mip_levels 6 is not in 1..5 for a 2x2x16 texture"));
+    add("samples 3", [](rhi::Device& d) { auto t = texture("t"); t.samples = 3; return create(d, t); },
+        invalid("texture 't': samples 3 is not a power of two from 1 to 64"));
+    add("samples 128", [](rhi::Device& d) { auto t = texture("t"); t.samples = 128; return create(d, t); },
+        invalid("texture 't': samples 128 is not a power of two from 1 to 64"));
+    add("multisampled array", [](rhi::Device& d) { auto t = texture("t"); t.dimension = TextureDimension::Tex2DArray; t.depth_or_layers = 2; t.samples = 4; return create(d, t); },
+        invalid("texture 't': a multisampled texture is Tex2D, not Tex2DArray"));
+    add("multisampled mips", [](rhi::Device& d) { auto t = texture("t"); t.samples = 4; t.mip_levels = 2; return create(d, t); },
+        invalid("texture 't': a multisampled texture has one mip level, not 2"));
+    add("multisampled storage", [](rhi::Device& d) { auto t = texture("t"); t.samples = 4; t.usage = TextureUsage::Storage; return create(d, t); },
+        invalid("texture 't': a multisampled texture cannot have Storage usage"));
+    add("colour usage, depth format", [](rhi::Device& d) { auto t = texture("t"); t.format = Format::Depth32F; t.usage = TextureUsage::ColorAttachment; return create(d, t); },
+        invalid("texture 't': Depth32F is not a colour format (usage ColorAttachment)"));
+    add("depth usage, colour format", [](rhi::Device& d) { auto t = texture("t"); t.usage = TextureUsage::DepthStencilAttachment; return create(d, t); },
+        invalid("texture 't': RGBA8Unorm is not a depth/stencil format (usage DepthStencilAttachment)"));
+    add("2D size past the limit",
+        [](rhi::Device& d) { return create(d, texture("t", d.capabilities().max_texture_size + 1, 4)); },
+        [](const rhi::Capabilities& c) {
+            return Expected{ErrorCode::Unsupported, "texture 't': size " + std::to_string(c.max_texture_size + 1) +
+                                                        "x4x1 exceeds this device's limit of " + std::to_string(c.max_texture_size) +
+                                                        " texels for a Tex2D texture"};
+        });
+    add("3D depth past the limit",
+        [](rhi::Device& d) { auto t = texture("t"); t.dimension = TextureDimension::Tex3D; t.depth_or_layers = d.capabilities().max_texture_size_3d + 1; return create(d, t); },
+        [](const rhi::Capabilities& c) {
+            return Expected{ErrorCode::Unsupported, "texture 't': size 4x4x" + std::to_string(c.max_texture_size_3d + 1) +
+                                                        " exceeds this device's limit of " + std::to_string(c.max_texture_size_3d) +
+                                                        " texels for a Tex3D texture"};
+        });
+    add("cube past the limit",
+        [](rhi::Device& d) { const uint32_t n = d.capabilities().max_texture_size_cube + 1; auto t = texture("t", n, n); t.dimension = TextureDimension::Cube; t.depth_or_layers = 6; return create(d, t); },
+        [](const rhi::Capabilities& c) {
+            const std::string n = std::to_string(c.max_texture_size_cube + 1);
+            return Expected{ErrorCode::Unsupported, "texture 't': size " + n + "x" + n + "x1 exceeds this device's limit of " +
+                                                        std::to_string(c.max_texture_size_cube) + " texels for a Cube texture"};
+        });
+    add("array layers past the limit",
+        [](rhi::Device& d) { auto t = texture("t"); t.dimension = TextureDimension::Tex2DArray; t.depth_or_layers = d.capabilities().max_texture_layers + 1; return create(d, t); },
+        [](const rhi::Capabilities& c) {
+            return Expected{ErrorCode::Unsupported, "texture 't': " + std::to_string(c.max_texture_layers + 1) +
+                                                        " layers exceed this device's limit of " + std::to_string(c.max_texture_layers)};
+        });
+    add("storage usage on an sRGB format", [](rhi::Device& d) { auto t = texture("t"); t.format = Format::RGBA8Srgb; t.usage = TextureUsage::Storage; return create(d, t); },
+        unsupported("texture 't': RGBA8Srgb cannot be a storage image on this device"),
+        [](const rhi::Capabilities& c) { return !c.format(Format::RGBA8Srgb).storage && c.format(Format::RGBA8Srgb).sampled; });
+    add("placement without placed resources",
+        [](rhi::Device& d) { auto t = texture("t"); t.placement = rhi::TexturePlacement{}; return create(d, t); },
+        unsupported("texture 't': placement in a heap needs placed resources, which this device lacks"),
+        [](const rhi::Capabilities& c) { return !c.placed_resources; });
+    add("memory requirements of a bad description",
+        [](rhi::Device& d) { auto r = d.texture_memory_requirements(texture("t", 0, 4)); return r.ok() ? Status{} : Status(r.take_error()); },
+        [](const rhi::Capabilities& c) {
+            return c.placed_resources
+                       ? Expected{ErrorCode::InvalidArgument, "texture 't': size 0x4x1 has a zero dimension"}
+                       : Expected{ErrorCode::Unsupported, "texture 't': memory requirements need placed resources, which this device lacks"};
+        });
+
+    // ---- buffers, samplers, heaps
+    add("buffer size 0", [](rhi::Device& d) { rhi::BufferDesc b; b.name = "b"; auto r = d.create_buffer(b); return r.ok() ? Status{} : Status(r.take_error()); },
+        invalid("buffer 'b': size is 0"));
+    add("sampler LOD range", [](rhi::Device& d) { rhi::SamplerDesc s; s.name = "s"; s.min_lod = 2; s.max_lod = 1; auto r = d.create_sampler(s); return r.ok() ? Status{} : Status(r.take_error()); },
+        invalid("sampler 's': min_lod 2 is above max_lod 1"));
+    add("sampler anisotropy", [](rhi::Device& d) { rhi::SamplerDesc s; s.name = "s"; s.max_anisotropy = 0.5f; auto r = d.create_sampler(s); return r.ok() ? Status{} : Status(r.take_error()); },
+        invalid("sampler 's': max_anisotropy 0.5 is below 1"));
+    add("heap size 0", [](rhi::Device& d) { rhi::HeapDesc h; h.name = "h"; auto r = d.create_heap(h); return r.ok() ? Status{} : Status(r.take_error()); },
+        [](const rhi::Capabilities& c) {
+            return c.placed_resources ? Expected{ErrorCode::InvalidArgument, "heap 'h': size is 0"}
+                                      : Expected{ErrorCode::Unsupported, "heap 'h': heaps need placed resources, which this device lacks"};
+        });
+
+    // ---- buffer transfers
+    const std::vector<std::byte> eight(8);
+    add("write_buffer past the end", [eight](rhi::Device& d) { return with_buffer(d, 16, [&](rhi::BufferHandle b) { return d.write_buffer(b, 12, eight); }); },
+        invalid("write_buffer to buffer 'b': 8 bytes at offset 12 exceed its size 16"));
+    add("write_buffer offset wraps", [eight](rhi::Device& d) { return with_buffer(d, 16, [&](rhi::BufferHandle b) { return d.write_buffer(b, std::numeric_limits<uint64_t>::max() - 3, eight); }); },
+        invalid("write_buffer to buffer 'b': 8 bytes at offset 18446744073709551612 exceed its size 16"));
+    add("empty write_buffer past the end", [](rhi::Device& d) { return with_buffer(d, 16, [&](rhi::BufferHandle b) { return d.write_buffer(b, 17, {}); }); },
+        invalid("write_buffer to buffer 'b': 0 bytes at offset 17 exceed its size 16"));
+    add("read_buffer past the end", [](rhi::Device& d) {
+            return with_buffer(d, 16, [&](rhi::BufferHandle b) { auto r = d.read_buffer(b, 12, 8); return r.ok() ? Status{} : Status(r.take_error()); });
+        },
+        invalid("read_buffer of buffer 'b': 8 bytes at offset 12 exceed its size 16"));
+
+    // ---- texture transfers
+    const auto mipped = [] { auto t = texture("t"); t.mip_levels = 3; return t; }();
+    const auto array = [] { auto t = texture("t"); t.dimension = TextureDimension::Tex2DArray; t.depth_or_layers = 2; return t; }();
+    const auto volume = [] { auto t = texture("t"); t.dimension = TextureDimension::Tex3D; t.depth_or_layers = 4; return t; }();
+    auto write = [](rhi::TextureRegion region, std::size_t bytes) {
+        return [region, bytes](rhi::Device& d, rhi::TextureHandle t) { return d.write_texture(t, region, std::vector<std::byte>(bytes)); };
+    };
+    auto on = [](rhi::TextureDesc desc, std::function<Status(rhi::Device&, rhi::TextureHandle)> use) {
+        return [desc, use](rhi::Device& d) { return with_texture(d, desc, [&](rhi::TextureHandle t) { return use(d, t); }); };
+    };
+    add("write_texture mip", on(mipped, write({.mip = 3}, 4)), invalid("write_texture to texture 't': mip 3 does not exist (3 levels)"));
+    add("write_texture layer of a 2D texture", on(texture("t"), write({.layer = 1}, 64)),
+        invalid("write_texture to texture 't': layer 1 does not exist (1 layer)"));
+    add("write_texture layer of an array", on(array, write({.layer = 2}, 64)),
+        invalid("write_texture to texture 't': layer 2 does not exist (2 layers)"));
+    add("write_texture layer of a 3D texture", on(volume, write({.layer = 1}, 64)),
+        invalid("write_texture to texture 't': layer 1: a Tex3D texture has no layers (origin.z selects depth slices)"));
+    add("write_texture depth on a 2D texture", on(texture("t"), write({.origin = {0, 0, 1}}, 64)),
+        invalid("write_texture to texture 't': origin.z and extent.depth apply to Tex3D textures only"));
+    add("write_texture region outside", on(texture("t"), write({.origin = {2, 0, 0}, .extent = {4, 4, 1}}, 64)),
+        invalid("write_texture to texture 't': region 4x4x1 at (2,0,0) does not fit mip 0 (4x4x1)"));
+    add("write_texture region wraps", on(texture("t"), write({.origin = {4294967295u, 0, 0}, .extent = {2, 1, 1}}, 8)),
+        invalid("write_texture to texture 't': region 2x1x1 at (4294967295,0,0) does not fit mip 0 (4x4x1)"));
+    add("write_texture origin past the mip", on(mipped, write({.mip = 1, .origin = {2, 0, 0}}, 0)),
+        invalid("write_texture to texture 't': region 0x2x1 at (2,0,0) does not fit mip 1 (2x2x1)"));
+    add("write_texture byte count", on(texture("t"), write({}, 3)),
+        invalid("write_texture to texture 't': 3 bytes given, the region needs 64"));
+    add("write_texture 3D slices", on(volume, write({.origin = {0, 0, 1}}, 64)),
+        invalid("write_texture to texture 't': 64 bytes given, the region needs 192"));
+    add("write_texture multisampled",
+        on([] { auto t = texture("t"); t.samples = 4; t.usage = TextureUsage::ColorAttachment; return t; }(), write({}, 64)),
+        unsupported("write_texture to texture 't': a multisampled texture cannot be uploaded to"),
+        [](const rhi::Capabilities& c) { return (c.format(Format::RGBA8Unorm).sample_counts & 4u) != 0; });
+    add("read_texture mip", on(mipped, [](rhi::Device& d, rhi::TextureHandle t) { return read(d, t, 5, 0); }),
+        invalid("read_texture of texture 't': mip 5 does not exist (3 levels)"));
+    add("read_texture layer", on(array, [](rhi::Device& d, rhi::TextureHandle t) { return read(d, t, 0, 2); }),
+        invalid("read_texture of texture 't': layer 2 does not exist (2 layers)"));
+    add("read_texture 3D slice of a smaller mip",
+        on([] { auto t = texture("t"); t.dimension = TextureDimension::Tex3D; t.depth_or_layers = 4; t.mip_levels = 2; return t; }(),
+           [](rhi::Device& d, rhi::TextureHandle t) { return read(d, t, 1, 2); }),
+        invalid("read_texture of texture 't': depth slice 2 does not exist (2 depth slices in mip 1)"));
+    add("read_texture multisampled depth",
+        on([] { auto t = texture("t"); t.samples = 4; t.format = Format::Depth32F; t.usage = TextureUsage::DepthStencilAttachment; return t; }(),
+           [](rhi::Device& d, rhi::TextureHandle t) { return read(d, t, 0, 0); }),
+        unsupported("read_texture of texture 't': a multisampled depth/stencil texture cannot be read back"),
+        [](const rhi::Capabilities& c) { return (c.format(Format::Depth32F).sample_counts & 4u) != 0; });
+    return rows;
+}
+
+class MisuseTable : public RenderTest {};
+
+TEST_P(MisuseTable, EveryRuleGivesOneCodeAndMessageOnEveryBackend) {
+    const rhi::Capabilities& caps = device().capabilities();
+    int checked = 0;
+    for (const Row& row : table()) {
+        SCOPED_TRACE(row.rule);
+        if (!row.applies(caps)) continue;
+        const Expected expected = row.expected(caps);
+        // Refused before the API sees it: no debug or validation message may be logged (the
+        // fixture fails the test on one).
+        const Status status = row.misuse(device());
+        ASSERT_FALSE(status.ok()) << "accepted";
+        EXPECT_EQ(error_code_name(status.error().code), error_code_name(expected.code)) << status.error().message;
+        EXPECT_EQ(status.error().message, expected.message);
+        ++checked;
+    }
+    // Rows skipped for a capability are few; most rules are checked on every device.
+    EXPECT_GE(checked, 40);
+    // The device is still usable after every refusal.
+    LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "after", Format::RGBA8Unorm, 4, 4));
+    LOOM_ASSERT_OK(device().destroy(target));
+}
+
+}  // namespace
+
+LOOM_INSTANTIATE_RENDER_TEST(MisuseTable);
+
+}  // namespace loom::test
