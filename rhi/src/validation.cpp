@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "loom/rhi/checked_math.hpp"
 #include "loom/rhi/format.hpp"
+#include "loom/rhi/shader.hpp"
 #include "loom/rhi/subresources.hpp"
 
 namespace loom::rhi::validation {
@@ -243,6 +246,197 @@ Status texture_read(const TextureDesc& texture, uint32_t mip, uint32_t layer) {
     }
     if (texture.samples > 1 && !format_info(texture.format).is_color()) {
         return Error{ErrorCode::Unsupported, what + "a multisampled depth/stencil texture cannot be read back"};
+    }
+    return {};
+}
+
+// ---- commands ----------------------------------------------------------------------------------
+
+Result<RenderPassShape> render_pass(const RenderPassDesc& desc, const Capabilities& caps, const TextureLookup& lookup) {
+    const std::string what = "begin_render_pass " + in_quotes(desc.label) + ": ";
+    if (desc.colors.empty() && !desc.depth) return Error{ErrorCode::InvalidArgument, what + "no attachments"};
+    if (desc.colors.size() > caps.max_color_attachments) {
+        return Error{ErrorCode::Unsupported, what + std::to_string(desc.colors.size()) + " colour attachments exceed this device's limit of " +
+                                                 std::to_string(caps.max_color_attachments)};
+    }
+    std::optional<RenderPassShape> shape;
+    std::string first;  // the attachment that set the shape
+    auto check = [&](TextureHandle handle, uint32_t mip, uint32_t layer, bool depth, const std::string& name) -> Status {
+        auto found = lookup(handle);
+        if (!found.ok()) return Error{ErrorCode::InvalidHandle, what + name + ": " + found.error().message};
+        const TextureDesc& t = **found;
+        const std::string tex = name + " (texture " + in_quotes(t.name) + ")";
+        const FormatInfo& info = format_info(t.format);
+        const std::string format(format_name(t.format));
+        if (depth ? !info.is_depth_stencil() : !info.is_color()) {
+            return Error{ErrorCode::InvalidArgument, what + tex + ": " + format + " is not a " + (depth ? "depth/stencil" : "colour") + " format"};
+        }
+        const TextureUsage usage = depth ? TextureUsage::DepthStencilAttachment : TextureUsage::ColorAttachment;
+        if (!has_all(t.usage, usage)) {
+            return Error{ErrorCode::InvalidArgument, what + tex + " lacks usage " + (depth ? "DepthStencilAttachment" : "ColorAttachment")};
+        }
+        if (t.dimension == TextureDimension::Tex3D) {
+            return Error{ErrorCode::Unsupported, what + tex + ": rendering into a Tex3D texture is not supported"};
+        }
+        if (mip >= t.mip_levels || layer >= t.depth_or_layers) {
+            return Error{ErrorCode::InvalidArgument, what + tex + ": mip " + std::to_string(mip) + " layer " + std::to_string(layer) +
+                                                         " does not exist (" + count_of(t.mip_levels, "level") + ", " +
+                                                         count_of(t.depth_or_layers, "layer") + ")"};
+        }
+        const Extent3D e = mip_extent(t, mip);
+        if (!shape) {
+            shape = RenderPassShape{e.width, e.height, t.samples};
+            first = name;
+        } else if (e.width != shape->width || e.height != shape->height) {
+            return Error{ErrorCode::InvalidArgument, what + tex + " is " + std::to_string(e.width) + "x" + std::to_string(e.height) + " but " +
+                                                         first + " is " + std::to_string(shape->width) + "x" + std::to_string(shape->height)};
+        } else if (t.samples != shape->samples) {
+            return Error{ErrorCode::InvalidArgument, what + tex + " has " + count_of(t.samples, "sample") + " but " + first + " has " +
+                                                         std::to_string(shape->samples)};
+        }
+        return {};
+    };
+    for (std::size_t i = 0; i < desc.colors.size(); ++i) {
+        const ColorAttachment& c = desc.colors[i];
+        LOOM_TRY(check(c.texture, c.mip, c.layer, false, "colors[" + std::to_string(i) + "]"));
+    }
+    if (desc.depth) LOOM_TRY(check(desc.depth->texture, desc.depth->mip, desc.depth->layer, true, "depth"));
+    return *shape;
+}
+
+Result<TextureCopyRange> texture_copy(const TextureDesc& src, const TextureDesc& dst, bool same_texture, const TextureCopy& copy) {
+    const std::string what = "copy_texture from " + in_quotes(src.name) + " to " + in_quotes(dst.name) + ": ";
+    auto invalid = [&](const std::string& message) { return Error{ErrorCode::InvalidArgument, what + message}; };
+    const FormatInfo& si = format_info(src.format);
+    const FormatInfo& di = format_info(dst.format);
+    const bool compatible = src.format == dst.format || (si.is_color() && di.is_color() && si.bytes_per_texel == di.bytes_per_texel);
+    if (!compatible) {
+        return invalid("formats " + std::string(format_name(src.format)) + " and " + std::string(format_name(dst.format)) +
+                       " are not copy-compatible (equal, or colour formats of one texel size)");
+    }
+    if (src.samples != dst.samples) {
+        return invalid("sample counts differ (" + std::to_string(src.samples) + " and " + std::to_string(dst.samples) + ")");
+    }
+    const bool src3d = src.dimension == TextureDimension::Tex3D;
+    const bool dst3d = dst.dimension == TextureDimension::Tex3D;
+    if (src3d != dst3d) {
+        return Error{ErrorCode::Unsupported, what + "copies between a Tex3D texture and a " +
+                                                 std::string(dimension_name(src3d ? dst.dimension : src.dimension)) + " texture are not supported"};
+    }
+    // One side's region: the subresource exists and z is used only on 3D textures.
+    auto check_side = [&](const TextureDesc& t, const TextureRegion& r, const char* side) -> Status {
+        if (r.mip >= t.mip_levels) {
+            return invalid(std::string(side) + " mip " + std::to_string(r.mip) + " does not exist (" + count_of(t.mip_levels, "level") + ")");
+        }
+        if (t.dimension == TextureDimension::Tex3D) {
+            if (r.layer != 0) {
+                return invalid(std::string(side) + " layer " + std::to_string(r.layer) +
+                               ": a Tex3D texture has no layers (origin.z selects depth slices)");
+            }
+        } else {
+            if (r.origin.z != 0 || (&r == &copy.src_region && r.extent.depth > 1)) {
+                return invalid(std::string(side) + " origin.z and extent.depth apply to Tex3D textures only");
+            }
+            if (r.layer >= t.depth_or_layers) {
+                return invalid(std::string(side) + " layer " + std::to_string(r.layer) + " does not exist (" +
+                               count_of(t.depth_or_layers, "layer") + ")");
+            }
+        }
+        return {};
+    };
+    LOOM_TRY(check_side(src, copy.src_region, "source"));
+    LOOM_TRY(check_side(dst, copy.dst_region, "destination"));
+    const TextureRegion& sr = copy.src_region;
+    const TextureRegion& dr = copy.dst_region;
+    const Extent3D se = mip_extent(src, sr.mip);
+    const Extent3D de = mip_extent(dst, dr.mip);
+    auto rest = [](uint32_t size, uint32_t origin) { return size > origin ? size - origin : 0u; };
+    TextureCopyRange out;
+    out.src_mip = sr.mip;
+    out.src_layer = src3d ? 0 : sr.layer;
+    out.src_origin = sr.origin;
+    out.dst_mip = dr.mip;
+    out.dst_layer = dst3d ? 0 : dr.layer;
+    out.dst_origin = dr.origin;
+    out.extent = {sr.extent.width ? sr.extent.width : rest(se.width, sr.origin.x),
+                  sr.extent.height ? sr.extent.height : rest(se.height, sr.origin.y),
+                  sr.extent.depth ? sr.extent.depth : rest(se.depth, sr.origin.z)};
+    const Extent3D& e = out.extent;
+    auto fits = [&](const Origin3D& o, const Extent3D& mip) {
+        return checked::range_fits(o.x, e.width, mip.width) && checked::range_fits(o.y, e.height, mip.height) &&
+               checked::range_fits(o.z, e.depth, mip.depth);
+    };
+    auto where = [&](const Origin3D& o, uint32_t mip, const Extent3D& size, const char* side) {
+        return invalid("region " + size_text(e.width, e.height, e.depth) + " at (" + std::to_string(o.x) + "," + std::to_string(o.y) + "," +
+                       std::to_string(o.z) + ") does not fit " + side + " mip " + std::to_string(mip) + " (" +
+                       size_text(size.width, size.height, size.depth) + ")");
+    };
+    if (e.width == 0 || e.height == 0 || e.depth == 0 || !fits(sr.origin, se)) return where(sr.origin, sr.mip, se, "source");
+    if (!fits(dr.origin, de)) return where(dr.origin, dr.mip, de, "destination");
+    if (same_texture && out.src_mip == out.dst_mip && out.src_layer == out.dst_layer) {
+        return invalid("source and destination are one subresource (mip " + std::to_string(out.src_mip) + ", layer " +
+                       std::to_string(out.src_layer) + ")");
+    }
+    return out;
+}
+
+Status buffer_copy(const BufferDesc& src, uint64_t src_offset, const BufferDesc& dst, uint64_t dst_offset, uint64_t size,
+                   bool same_buffer) {
+    const std::string what = "copy_buffer from " + in_quotes(src.name) + " to " + in_quotes(dst.name) + ": ";
+    if (!checked::range_fits(src_offset, size, src.size)) {
+        return Error{ErrorCode::InvalidArgument, what + std::to_string(size) + " bytes at source offset " + std::to_string(src_offset) +
+                                                     " exceed its size " + std::to_string(src.size)};
+    }
+    if (!checked::range_fits(dst_offset, size, dst.size)) {
+        return Error{ErrorCode::InvalidArgument, what + std::to_string(size) + " bytes at destination offset " +
+                                                     std::to_string(dst_offset) + " exceed its size " + std::to_string(dst.size)};
+    }
+    // Both ranges are inside one buffer here, so the sums cannot wrap.
+    if (same_buffer && size > 0 && src_offset < dst_offset + size && dst_offset < src_offset + size) {
+        return Error{ErrorCode::InvalidArgument, what + "the ranges at " + std::to_string(src_offset) + " and " + std::to_string(dst_offset) +
+                                                     " overlap (" + std::to_string(size) + " bytes each)"};
+    }
+    return {};
+}
+
+Status viewport(const Viewport& v) {
+    const bool ok = v.width > 0.0f && v.height > 0.0f && v.min_depth >= 0.0f && v.max_depth <= 1.0f && v.min_depth <= 1.0f &&
+                    v.max_depth >= 0.0f && !std::isnan(v.x) && !std::isnan(v.y);
+    if (!ok) {
+        return Error{ErrorCode::InvalidArgument, "set_viewport: " + number(v.width) + "x" + number(v.height) + " at (" + number(v.x) + "," +
+                                                     number(v.y) + ") with depths " + number(v.min_depth) + ".." + number(v.max_depth) +
+                                                     ": the size must be positive and the depths within 0..1"};
+    }
+    return {};
+}
+
+Status push_constants(uint64_t offset, uint64_t size) {
+    if (!checked::range_fits(offset, size, kMaxPushConstantBytes)) {
+        return Error{ErrorCode::InvalidArgument, "push_constants: " + std::to_string(size) + " bytes at offset " + std::to_string(offset) +
+                                                     " exceed the " + std::to_string(kMaxPushConstantBytes) + " bytes loom supports"};
+    }
+    return {};
+}
+
+Status bind_group(uint32_t set, const BindGroup& group) {
+    if (set >= kMaxBindGroups) {
+        return Error{ErrorCode::InvalidArgument, "set_bind_group: set " + std::to_string(set) + " is beyond the " +
+                                                     std::to_string(kMaxBindGroups) + " sets loom supports"};
+    }
+    for (const BindingEntry& e : group.entries) {
+        if (e.binding >= kMaxBindingsPerGroup) {
+            return Error{ErrorCode::InvalidArgument, "set_bind_group: set " + std::to_string(set) + " binding " + std::to_string(e.binding) +
+                                                         " is beyond the " + std::to_string(kMaxBindingsPerGroup) +
+                                                         " bindings per set loom supports"};
+        }
+    }
+    return {};
+}
+
+Status vertex_buffer_slot(uint32_t slot) {
+    if (slot >= kMaxVertexBuffers) {
+        return Error{ErrorCode::InvalidArgument, "set_vertex_buffer: slot " + std::to_string(slot) + " is beyond the " +
+                                                     std::to_string(kMaxVertexBuffers) + " slots loom supports"};
     }
     return {};
 }

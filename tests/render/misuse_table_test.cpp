@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,9 @@ bool always(const rhi::Capabilities&) { return true; }
 
 std::function<Expected(const rhi::Capabilities&)> invalid(std::string message) {
     return [message](const rhi::Capabilities&) { return Expected{ErrorCode::InvalidArgument, message}; };
+}
+std::function<Expected(const rhi::Capabilities&)> expect(Expected expected) {
+    return [expected](const rhi::Capabilities&) { return expected; };
 }
 std::function<Expected(const rhi::Capabilities&)> unsupported(std::string message) {
     return [message](const rhi::Capabilities&) { return Expected{ErrorCode::Unsupported, message}; };
@@ -237,6 +241,140 @@ std::vector<Row> table() {
            [](rhi::Device& d, rhi::TextureHandle t) { return read(d, t, 0, 0); }),
         unsupported("read_texture of texture 't': a multisampled depth/stencil texture cannot be read back"),
         [](const rhi::Capabilities& c) { return (c.format(Format::Depth32F).sample_counts & 4u) != 0; });
+
+    // ---- commands (reported by end_frame)
+    auto frame = [](std::function<void(rhi::Device&, rhi::CommandList&)> record) {
+        return [record](rhi::Device& d) { return run_frame(d, [&](rhi::CommandList& list) { record(d, list); }); };
+    };
+    // Runs `record` with textures made from `descs`, then destroys them.
+    auto with_textures = [](std::vector<rhi::TextureDesc> descs, std::function<void(rhi::CommandList&, const std::vector<rhi::TextureHandle>&)> record) {
+        return [descs, record](rhi::Device& d) -> Status {
+            std::vector<rhi::TextureHandle> made;
+            for (const rhi::TextureDesc& desc : descs) {
+                auto t = d.create_texture(desc);
+                if (!t.ok()) return Error{ErrorCode::Backend, "setup: " + t.error().to_string()};
+                made.push_back(*t);
+            }
+            Status status = run_frame(d, [&](rhi::CommandList& list) { record(list, made); });
+            for (rhi::TextureHandle t : made) LOOM_TRY(d.destroy(t));
+            return status;
+        };
+    };
+    auto target = [](const std::string& name, uint32_t size = 4, Format format = Format::RGBA8Unorm) {
+        auto t = texture(name, size, size);
+        t.format = format;
+        t.usage = format_info(format).is_color() ? TextureUsage::ColorAttachment | TextureUsage::Sampled
+                                                 : TextureUsage::DepthStencilAttachment | TextureUsage::Sampled;
+        return t;
+    };
+    auto pass_with = [](std::vector<rhi::TextureHandle> colors, rhi::TextureHandle depth = {}, uint32_t layer = 0) {
+        rhi::RenderPassDesc desc;
+        desc.label = "p";
+        for (rhi::TextureHandle c : colors) desc.colors.push_back({.texture = c, .layer = layer});
+        if (!depth.is_null()) desc.depth = rhi::DepthAttachment{.texture = depth};
+        return desc;
+    };
+    auto begin = [pass_with](std::vector<std::size_t> colors, std::optional<std::size_t> depth = std::nullopt, uint32_t layer = 0) {
+        return [=](rhi::CommandList& list, const std::vector<rhi::TextureHandle>& t) {
+            std::vector<rhi::TextureHandle> handles;
+            for (std::size_t i : colors) handles.push_back(t[i]);
+            list.begin_render_pass(pass_with(handles, depth ? t[*depth] : rhi::TextureHandle{}, layer));
+            list.end_render_pass();
+        };
+    };
+    add("render pass without attachments", frame([](rhi::Device&, rhi::CommandList& list) {
+            rhi::RenderPassDesc empty;
+            empty.label = "p";
+            list.begin_render_pass(empty);
+            list.end_render_pass();
+        }),
+        invalid("begin_render_pass 'p': no attachments"));
+    add("render pass with too many colour attachments", [target](rhi::Device& d) {
+            return with_texture(d, target("t"), [&](rhi::TextureHandle t) {
+                rhi::RenderPassDesc desc;
+                desc.label = "p";
+                desc.colors.resize(d.capabilities().max_color_attachments + 1, rhi::ColorAttachment{.texture = t});
+                return run_frame(d, [&](rhi::CommandList& list) {
+                    list.begin_render_pass(desc);
+                    list.end_render_pass();
+                });
+            });
+        },
+        [](const rhi::Capabilities& c) {
+            return Expected{ErrorCode::Unsupported, "begin_render_pass 'p': " + std::to_string(c.max_color_attachments + 1) +
+                                                        " colour attachments exceed this device's limit of " + std::to_string(c.max_color_attachments)};
+        });
+    add("render pass with a null attachment", frame([pass_with](rhi::Device&, rhi::CommandList& list) {
+            list.begin_render_pass(pass_with({rhi::TextureHandle{}}));
+            list.end_render_pass();
+        }),
+        expect({ErrorCode::InvalidHandle, "begin_render_pass 'p': colors[0]: texture handle is null"}));
+    add("depth format as colour attachment", with_textures({target("d", 4, Format::Depth32F)}, begin({0})),
+        invalid("begin_render_pass 'p': colors[0] (texture 'd'): Depth32F is not a colour format"));
+    add("colour format as depth attachment", with_textures({target("c"), target("c2")}, begin({0}, 1)),
+        invalid("begin_render_pass 'p': depth (texture 'c2'): RGBA8Unorm is not a depth/stencil format"));
+    add("attachment without the usage", with_textures({texture("t")}, begin({0})),
+        invalid("begin_render_pass 'p': colors[0] (texture 't') lacks usage ColorAttachment"));
+    add("3D attachment", with_textures({[] { auto t = texture("v"); t.dimension = TextureDimension::Tex3D; t.depth_or_layers = 2; t.usage = TextureUsage::ColorAttachment; return t; }()}, begin({0})),
+        unsupported("begin_render_pass 'p': colors[0] (texture 'v'): rendering into a Tex3D texture is not supported"));
+    add("attachment layer", with_textures({target("t")}, begin({0}, std::nullopt, 1)),
+        invalid("begin_render_pass 'p': colors[0] (texture 't'): mip 0 layer 1 does not exist (1 level, 1 layer)"));
+    add("attachments of two sizes", with_textures({target("small"), target("large", 8)}, begin({0, 1})),
+        invalid("begin_render_pass 'p': colors[1] (texture 'large') is 8x8 but colors[0] is 4x4"));
+    add("attachments of two sample counts",
+        with_textures({target("c"), [&] { auto t = target("d", 4, Format::Depth32F); t.samples = 4; t.usage = TextureUsage::DepthStencilAttachment; return t; }()}, begin({0}, 1)),
+        invalid("begin_render_pass 'p': depth (texture 'd') has 4 samples but colors[0] has 1"),
+        [](const rhi::Capabilities& c) { return (c.format(Format::Depth32F).sample_counts & 4u) != 0; });
+
+    auto copy_buffer = [](uint64_t src_offset, uint64_t dst_offset, uint64_t size) {
+        return [=](rhi::Device& d) {
+            return with_buffer(d, 16, [&](rhi::BufferHandle b) {
+                return run_frame(d, [&](rhi::CommandList& list) { list.copy_buffer(b, src_offset, b, dst_offset, size); });
+            });
+        };
+    };
+    add("copy_buffer source range", copy_buffer(12, 0, 8), invalid("copy_buffer from 'b' to 'b': 8 bytes at source offset 12 exceed its size 16"));
+    add("copy_buffer destination range", copy_buffer(0, 18446744073709551615ull, 8),
+        invalid("copy_buffer from 'b' to 'b': 8 bytes at destination offset 18446744073709551615 exceed its size 16"));
+    add("copy_buffer overlap", copy_buffer(0, 4, 8), invalid("copy_buffer from 'b' to 'b': the ranges at 0 and 4 overlap (8 bytes each)"));
+
+    auto copy = [](rhi::TextureRegion src, rhi::TextureRegion dst, std::size_t to = 1) {
+        return [=](rhi::CommandList& list, const std::vector<rhi::TextureHandle>& t) {
+            list.copy_texture(rhi::TextureCopy{t[0], src, t[to], dst});
+        };
+    };
+    add("copy_texture formats", with_textures({target("a"), target("b", 4, Format::RGBA16Float)}, copy({}, {})),
+        invalid("copy_texture from 'a' to 'b': formats RGBA8Unorm and RGBA16Float are not copy-compatible (equal, or colour formats of one texel size)"));
+    add("copy_texture depth formats", with_textures({target("a", 4, Format::Depth32F), target("b", 4, Format::R32Float)}, copy({}, {})),
+        invalid("copy_texture from 'a' to 'b': formats Depth32F and R32Float are not copy-compatible (equal, or colour formats of one texel size)"));
+    add("copy_texture sample counts", with_textures({target("a"), [&] { auto t = target("b"); t.samples = 4; t.usage = TextureUsage::ColorAttachment; return t; }()}, copy({}, {})),
+        invalid("copy_texture from 'a' to 'b': sample counts differ (1 and 4)"),
+        [](const rhi::Capabilities& c) { return (c.format(Format::RGBA8Unorm).sample_counts & 4u) != 0; });
+    add("copy_texture 3D to 2D", with_textures({volume, target("b")}, copy({}, {})),
+        unsupported("copy_texture from 't' to 'b': copies between a Tex3D texture and a Tex2D texture are not supported"));
+    add("copy_texture source mip", with_textures({target("a"), target("b")}, copy({.mip = 3}, {})),
+        invalid("copy_texture from 'a' to 'b': source mip 3 does not exist (1 level)"));
+    add("copy_texture destination layer", with_textures({target("a"), array}, copy({}, {.layer = 2})),
+        invalid("copy_texture from 'a' to 't': destination layer 2 does not exist (2 layers)"));
+    add("copy_texture region past the destination", with_textures({target("a", 8), target("b")}, copy({}, {})),
+        invalid("copy_texture from 'a' to 'b': region 8x8x1 at (0,0,0) does not fit destination mip 0 (4x4x1)"));
+    add("copy_texture region past the source", with_textures({target("a"), target("b")}, copy({.origin = {3, 0, 0}, .extent = {2, 1, 1}}, {})),
+        invalid("copy_texture from 'a' to 'b': region 2x1x1 at (3,0,0) does not fit source mip 0 (4x4x1)"));
+    add("copy_texture onto itself", with_textures({target("a")}, copy({}, {}, 0)),
+        invalid("copy_texture from 'a' to 'a': source and destination are one subresource (mip 0, layer 0)"));
+
+    add("viewport without area", frame([](rhi::Device&, rhi::CommandList& list) { list.set_viewport({0, 0, 0, 4, 0, 1}); }),
+        invalid("set_viewport: 0x4 at (0,0) with depths 0..1: the size must be positive and the depths within 0..1"));
+    add("viewport depth", frame([](rhi::Device&, rhi::CommandList& list) { list.set_viewport({0, 0, 4, 4, 0, 2}); }),
+        invalid("set_viewport: 4x4 at (0,0) with depths 0..2: the size must be positive and the depths within 0..1"));
+    add("push constants past 256 bytes", frame([](rhi::Device&, rhi::CommandList& list) { list.push_constants(std::vector<std::byte>(16), 250); }),
+        invalid("push_constants: 16 bytes at offset 250 exceed the 256 bytes loom supports"));
+    add("bind group set", frame([](rhi::Device&, rhi::CommandList& list) { list.set_bind_group(4, {}); }),
+        invalid("set_bind_group: set 4 is beyond the 4 sets loom supports"));
+    add("bind group binding", frame([](rhi::Device&, rhi::CommandList& list) { list.set_bind_group(1, rhi::BindGroup{}.buffer(16, rhi::BufferHandle{})); }),
+        invalid("set_bind_group: set 1 binding 16 is beyond the 16 bindings per set loom supports"));
+    add("vertex buffer slot", frame([](rhi::Device&, rhi::CommandList& list) { list.set_vertex_buffer(16, {}); }),
+        invalid("set_vertex_buffer: slot 16 is beyond the 16 slots loom supports"));
     return rows;
 }
 
@@ -258,7 +396,7 @@ TEST_P(MisuseTable, EveryRuleGivesOneCodeAndMessageOnEveryBackend) {
         ++checked;
     }
     // Rows skipped for a capability are few; most rules are checked on every device.
-    EXPECT_GE(checked, 40);
+    EXPECT_GE(checked, 70);
     // The device is still usable after every refusal.
     LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "after", Format::RGBA8Unorm, 4, 4));
     LOOM_ASSERT_OK(device().destroy(target));

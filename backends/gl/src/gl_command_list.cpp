@@ -132,70 +132,32 @@ void GlCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
         fail(ErrorCode::InvalidState, what + "render pass " + in_quotes(pass_->label) + " is still open");
         return;
     }
-    if (desc.colors.empty() && !desc.depth) {
-        fail(ErrorCode::InvalidArgument, what + "no attachments");
-        return;
-    }
-    if (desc.colors.size() > device_->capabilities().max_color_attachments) {
-        fail(ErrorCode::InvalidArgument, what + std::to_string(desc.colors.size()) + " colour attachments exceed the limit of " +
-                                             std::to_string(device_->capabilities().max_color_attachments));
+    auto shape = rhi::validation::render_pass(desc, device_->capabilities(), [this](rhi::TextureHandle h) -> Result<const rhi::TextureDesc*> {
+        auto found = device_->textures().get(h);
+        if (!found.ok()) return found.take_error();
+        return &(*found)->desc;
+    });
+    if (!shape.ok()) {
+        fail(shape.error().code, shape.error().message);
         return;
     }
     PassState pass;
     pass.label = desc.label;
-    bool sized = false;
-    // Checks one attachment; returns the texture or nullptr after recording an error.
-    auto check = [&](rhi::TextureHandle handle, uint32_t mip, uint32_t layer, const std::string& name,
-                     bool depth) -> GlTexture* {
-        auto found = device_->textures().get(handle);
-        if (!found.ok()) {
-            fail(ErrorCode::InvalidHandle, what + name + ": " + found.error().message);
-            return nullptr;
-        }
-        GlTexture* t = *found;
-        const std::string tex = name + " (texture " + in_quotes(t->desc.name) + ")";
-        const auto usage = depth ? rhi::TextureUsage::DepthStencilAttachment : rhi::TextureUsage::ColorAttachment;
-        if (!rhi::has_any(t->desc.usage, usage)) {
-            fail(ErrorCode::InvalidArgument, what + tex + " lacks usage " + (depth ? "DepthStencilAttachment" : "ColorAttachment"));
-            return nullptr;
-        }
-        if (mip >= t->desc.mip_levels || layer >= rhi::mip_layers(t->desc, mip)) {
-            fail(ErrorCode::InvalidArgument, what + tex + ": mip " + std::to_string(mip) + " / layer " + std::to_string(layer) +
-                                                 " out of range");
-            return nullptr;
-        }
-        const uint32_t w = rhi::mip_extent(t->desc, mip).width, h = rhi::mip_extent(t->desc, mip).height;
-        if (!sized) {
-            pass.width = w;
-            pass.height = h;
-            pass.samples = t->desc.samples;
-            sized = true;
-        } else if (w != pass.width || h != pass.height) {
-            fail(ErrorCode::InvalidArgument, what + "attachments differ in size: " + tex + " is " + std::to_string(w) + "x" +
-                                                 std::to_string(h) + ", earlier ones " + std::to_string(pass.width) + "x" +
-                                                 std::to_string(pass.height));
-            return nullptr;
-        } else if (t->desc.samples != pass.samples) {
-            fail(ErrorCode::InvalidArgument, what + "attachments differ in sample count: " + tex + " has " +
-                                                 std::to_string(t->desc.samples));
-            return nullptr;
-        }
-        return t;
-    };
+    pass.width = shape->width;
+    pass.height = shape->height;
+    pass.samples = shape->samples;
+    // Every handle was found by the validation above.
     std::vector<std::pair<const GlTexture*, std::array<uint32_t, 2>>> colors;
     std::vector<GlTexture*> color_textures;
-    for (std::size_t i = 0; i < desc.colors.size(); ++i) {
-        const rhi::ColorAttachment& a = desc.colors[i];
-        GlTexture* t = check(a.texture, a.mip, a.layer, "colors[" + std::to_string(i) + "]", false);
-        if (!t) return;
+    for (const rhi::ColorAttachment& a : desc.colors) {
+        GlTexture* t = *device_->textures().get(a.texture);
         colors.push_back({t, {a.mip, a.layer}});
         color_textures.push_back(t);
         pass.color_formats.push_back(t->desc.format);
     }
     GlTexture* depth = nullptr;
     if (desc.depth) {
-        depth = check(desc.depth->texture, desc.depth->mip, desc.depth->layer, "depth", true);
-        if (!depth) return;
+        depth = *device_->textures().get(desc.depth->texture);
         pass.depth_format = depth->desc.format;
     }
     const GLuint fbo = device_->framebuffer_for(colors, depth, desc.depth ? std::array<uint32_t, 2>{desc.depth->mip, desc.depth->layer}
@@ -336,10 +298,7 @@ GlPipeline* GlCommandList::current_pipeline(std::string_view command, bool compu
 }
 
 void GlCommandList::set_viewport(const rhi::Viewport& v) {
-    if (!(v.width > 0.0f) || !(v.height > 0.0f) || v.min_depth < 0.0f || v.max_depth > 1.0f) {
-        fail(ErrorCode::InvalidArgument, where("set_viewport") + "size must be positive and depths within 0..1");
-        return;
-    }
+    if (Status valid = rhi::validation::viewport(v); !valid) return fail(valid.error().code, valid.error().message);
     // With the upper-left origin, GL window y runs down from row 0, exactly like loom's
     // top-left viewport rectangles: no flip.
     record([v](GlStateCache& cache) { cache.viewport(v.x, v.y, v.width, v.height, v.min_depth, v.max_depth); });
@@ -352,38 +311,19 @@ void GlCommandList::set_scissor(const rhi::Rect& r) {
 }
 
 void GlCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
-    if (set >= rhi::kMaxBindGroups) {
-        fail(ErrorCode::InvalidArgument, where("set_bind_group") + "set " + std::to_string(set) + " beyond the " +
-                                             std::to_string(rhi::kMaxBindGroups) + " supported");
-        return;
-    }
-    for (const rhi::BindingEntry& e : group.entries) {
-        if (e.binding >= rhi::kMaxBindingsPerGroup) {
-            fail(ErrorCode::InvalidArgument, where("set_bind_group") + "set " + std::to_string(set) + " binding " +
-                                                 std::to_string(e.binding) + " beyond the " +
-                                                 std::to_string(rhi::kMaxBindingsPerGroup) + " supported");
-            return;
-        }
-    }
+    if (Status valid = rhi::validation::bind_group(set, group); !valid) return fail(valid.error().code, valid.error().message);
     groups_[set] = group;
 }
 
 void GlCommandList::push_constants(std::span<const std::byte> data, uint32_t offset) {
-    if (offset > kMaxPushConstantBytes || data.size() > kMaxPushConstantBytes - offset) {
-        fail(ErrorCode::InvalidArgument, where("push_constants") + std::to_string(data.size()) + " bytes at offset " +
-                                             std::to_string(offset) + " exceed " + std::to_string(kMaxPushConstantBytes));
-        return;
-    }
+    if (Status valid = rhi::validation::push_constants(offset, data.size()); !valid) return fail(valid.error().code, valid.error().message);
     std::copy(data.begin(), data.end(), push_data_.begin() + offset);
     push_size_ = std::max(push_size_, offset + static_cast<uint32_t>(data.size()));
     push_dirty_ = true;
 }
 
 void GlCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, uint64_t offset) {
-    if (slot >= vertex_buffers_.size()) {
-        fail(ErrorCode::InvalidArgument, where("set_vertex_buffer") + "slot " + std::to_string(slot) + " beyond 16");
-        return;
-    }
+    if (Status valid = rhi::validation::vertex_buffer_slot(slot); !valid) return fail(valid.error().code, valid.error().message);
     vertex_buffers_[slot] = {buffer, offset};
 }
 
@@ -738,16 +678,8 @@ void GlCommandList::copy_buffer(rhi::BufferHandle src, uint64_t src_offset, rhi:
     }
     const GlBuffer& sb = **s;
     const GlBuffer& db = **d;
-    if (src_offset > sb.desc.size || size > sb.desc.size - src_offset || dst_offset > db.desc.size ||
-        size > db.desc.size - dst_offset) {
-        fail(ErrorCode::InvalidArgument, "copy_buffer: " + std::to_string(size) + " bytes from " + in_quotes(sb.desc.name) + "+" +
-                                             std::to_string(src_offset) + " to " + in_quotes(db.desc.name) + "+" +
-                                             std::to_string(dst_offset) + " run past the end of a buffer");
-        return;
-    }
-    if (sb.name == db.name && src_offset < dst_offset + size && dst_offset < src_offset + size) {
-        fail(ErrorCode::InvalidArgument, "copy_buffer: source and destination ranges of " + in_quotes(sb.desc.name) + " overlap");
-        return;
+    if (Status valid = rhi::validation::buffer_copy(sb.desc, src_offset, db.desc, dst_offset, size, &sb == &db); !valid) {
+        return fail(valid.error().code, valid.error().message);
     }
     if (size == 0) return;
     const GLuint from = sb.name, to = db.name;
@@ -775,41 +707,14 @@ void GlCommandList::copy_texture(const rhi::TextureCopy& copy) {
     }
     GlTexture& st = **s;
     GlTexture& dt = **d;
-    const std::string what = "copy_texture from " + in_quotes(st.desc.name) + " to " + in_quotes(dt.desc.name) + ": ";
-    if (rhi::format_info(st.desc.format).bytes_per_texel != rhi::format_info(dt.desc.format).bytes_per_texel ||
-        rhi::format_info(st.desc.format).is_depth_stencil() != rhi::format_info(dt.desc.format).is_depth_stencil() ||
-        (rhi::format_info(st.desc.format).is_depth_stencil() && st.desc.format != dt.desc.format)) {
-        fail(ErrorCode::InvalidArgument, what + "formats " + std::string(rhi::format_name(st.desc.format)) + " and " +
-                                             std::string(rhi::format_name(dt.desc.format)) + " are not copy-compatible");
-        return;
-    }
-    if (st.desc.samples != dt.desc.samples) {
-        fail(ErrorCode::InvalidArgument, what + "sample counts differ");
-        return;
-    }
-    const rhi::TextureRegion& sr = copy.src_region;
-    const rhi::TextureRegion& dr = copy.dst_region;
-    if (sr.mip >= st.desc.mip_levels || dr.mip >= dt.desc.mip_levels) {
-        fail(ErrorCode::InvalidArgument, what + "mip out of range");
-        return;
-    }
-    const bool s3d = st.desc.dimension == rhi::TextureDimension::Tex3D;
-    const bool d3d = dt.desc.dimension == rhi::TextureDimension::Tex3D;
-    const uint32_t smw = rhi::mip_extent(st.desc, sr.mip).width, smh = rhi::mip_extent(st.desc, sr.mip).height;
-    const uint32_t dmw = rhi::mip_extent(dt.desc, dr.mip).width, dmh = rhi::mip_extent(dt.desc, dr.mip).height;
-    const uint32_t w = sr.extent.width ? sr.extent.width : smw - std::min(smw, sr.origin.x);
-    const uint32_t h = sr.extent.height ? sr.extent.height : smh - std::min(smh, sr.origin.y);
-    const uint32_t depth = s3d ? (sr.extent.depth ? sr.extent.depth : 1) : 1;
-    const uint32_t sz = s3d ? sr.origin.z : sr.layer;
-    const uint32_t dz = d3d ? dr.origin.z : dr.layer;
-    const bool fits = w > 0 && h > 0 && uint64_t{sr.origin.x} + w <= smw && uint64_t{sr.origin.y} + h <= smh &&
-                      uint64_t{dr.origin.x} + w <= dmw && uint64_t{dr.origin.y} + h <= dmh &&
-                      uint64_t{sz} + depth <= rhi::mip_layers(st.desc, sr.mip) && uint64_t{dz} + depth <= rhi::mip_layers(dt.desc, dr.mip);
-    if (!fits) {
-        fail(ErrorCode::InvalidArgument, what + "the " + std::to_string(w) + "x" + std::to_string(h) + "x" +
-                                             std::to_string(depth) + " region does not fit the source or destination");
-        return;
-    }
+    auto range = rhi::validation::texture_copy(st.desc, dt.desc, &st == &dt, copy);
+    if (!range.ok()) return fail(range.error().code, range.error().message);
+    // Layers of arrays and cubes are the z of glCopyImageSubData, as are depth slices of 3D textures.
+    const bool is3d = st.desc.dimension == rhi::TextureDimension::Tex3D;
+    const rhi::Origin3D so = range->src_origin, dso = range->dst_origin;
+    const uint32_t sz = is3d ? so.z : range->src_layer, dz = is3d ? dso.z : range->dst_layer;
+    const uint32_t w = range->extent.width, h = range->extent.height, depth = range->extent.depth;
+    const uint32_t src_mip = range->src_mip, dst_mip = range->dst_mip;
     if (st.state == ResourceState::Storage || dt.state == ResourceState::Storage) {
         const GLbitfield bits = barrier_after_storage(ResourceState::CopySrc);
         record([bits](GlStateCache& cache) {
@@ -822,9 +727,9 @@ void GlCommandList::copy_texture(const rhi::TextureCopy& copy) {
     const GLuint from = st.name, to = dt.name;
     const GLenum from_target = st.target, to_target = dt.target;
     record([=](GlStateCache& cache) {
-        glCopyImageSubData(from, from_target, static_cast<GLint>(sr.mip), static_cast<GLint>(sr.origin.x),
-                           static_cast<GLint>(sr.origin.y), static_cast<GLint>(sz), to, to_target, static_cast<GLint>(dr.mip),
-                           static_cast<GLint>(dr.origin.x), static_cast<GLint>(dr.origin.y), static_cast<GLint>(dz),
+        glCopyImageSubData(from, from_target, static_cast<GLint>(src_mip), static_cast<GLint>(so.x), static_cast<GLint>(so.y),
+                           static_cast<GLint>(sz), to, to_target, static_cast<GLint>(dst_mip), static_cast<GLint>(dso.x),
+                           static_cast<GLint>(dso.y), static_cast<GLint>(dz),
                            static_cast<GLsizei>(w), static_cast<GLsizei>(h), static_cast<GLsizei>(depth));
         cache.count_call();
     });

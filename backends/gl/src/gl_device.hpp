@@ -33,8 +33,7 @@ class GlDevice;
 /// A recorded GL command, run against the state cache at end_frame().
 using GlCommand = std::function<void(GlStateCache&)>;
 
-/// Largest push-constant block supported (Vulkan guarantees 128 bytes; lavapipe has 256).
-inline constexpr uint32_t kMaxPushConstantBytes = 256;
+using rhi::kMaxPushConstantBytes;
 
 class GlCommandList final : public rhi::CommandList {
 public:
@@ -138,7 +137,7 @@ private:
     std::optional<PassState> pass_;
     rhi::PipelineHandle pipeline_;
     std::array<std::optional<rhi::BindGroup>, rhi::kMaxBindGroups> groups_;
-    std::array<VertexBufferSlot, 16> vertex_buffers_{};
+    std::array<VertexBufferSlot, rhi::kMaxVertexBuffers> vertex_buffers_{};
     IndexBufferState index_buffer_;
     std::array<std::byte, kMaxPushConstantBytes> push_data_{};
     uint32_t push_size_ = 0;  ///< bytes written so far (high-water mark)

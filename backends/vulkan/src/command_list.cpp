@@ -120,71 +120,16 @@ void VulkanCommandList::finish() {
 void VulkanCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
     const std::string pass = "render pass " + in_quotes(desc.label);
     if (!require_outside_pass("begin_render_pass(" + in_quotes(desc.label) + ")")) return;
-    if (desc.colors.empty() && !desc.depth) {
-        fail(ErrorCode::InvalidArgument, pass + " has no attachments");
-        return;
-    }
-    std::optional<rhi::Extent3D> size;
-    uint32_t samples = 0;
+    auto shape = rhi::validation::render_pass(desc, device_.capabilities(), [this](rhi::TextureHandle h) -> loom::Result<const rhi::TextureDesc*> {
+        auto found = device_.textures().get(h);
+        if (!found.ok()) return found.take_error();
+        return &(*found)->desc;
+    });
+    if (!shape.ok()) return fail(shape.error().code, shape.error().message);
+    // Every handle was found by the validation above.
     std::vector<Texture*> color_textures;
-    auto check_attachment = [&](rhi::TextureHandle handle, uint32_t mip, uint32_t layer, bool depth,
-                                const std::string& what) -> Texture* {
-        auto texture = device_.textures().get(handle);
-        if (!texture.ok()) {
-            fail(ErrorCode::InvalidHandle, pass + " " + what + ": " + texture.error().message);
-            return nullptr;
-        }
-        Texture& t = **texture;
-        const std::string tex = "texture " + in_quotes(t.desc.name);
-        const rhi::FormatInfo& info = rhi::format_info(t.desc.format);
-        if (depth ? !info.is_depth_stencil() : !info.is_color()) {
-            fail(ErrorCode::InvalidArgument, pass + " " + what + ": " + tex + " has format " + std::string(rhi::format_name(t.desc.format)) +
-                                                 ", not a " + (depth ? "depth/stencil" : "colour") + " format");
-            return nullptr;
-        }
-        const rhi::TextureUsage needed = depth ? rhi::TextureUsage::DepthStencilAttachment : rhi::TextureUsage::ColorAttachment;
-        if (!rhi::has_all(t.desc.usage, needed)) {
-            fail(ErrorCode::InvalidArgument, pass + " " + what + ": " + tex + " was not created with " +
-                                                 (depth ? "DepthStencilAttachment" : "ColorAttachment") + " usage");
-            return nullptr;
-        }
-        if (mip >= t.desc.mip_levels || layer >= t.array_layers) {
-            fail(ErrorCode::InvalidArgument, pass + " " + what + ": " + tex + " has no mip " + std::to_string(mip) + " layer " +
-                                                 std::to_string(layer));
-            return nullptr;
-        }
-        if (t.desc.dimension == rhi::TextureDimension::Tex3D) {
-            fail(ErrorCode::Unsupported, pass + " " + what + ": rendering into 3D " + tex + " is not supported");
-            return nullptr;
-        }
-        const rhi::Extent3D e = rhi::mip_extent(t.desc, mip);
-        if (!size) {
-            size = e;
-            samples = t.desc.samples;
-        } else if (size->width != e.width || size->height != e.height) {
-            fail(ErrorCode::InvalidArgument, pass + " " + what + ": " + tex + " is " + std::to_string(e.width) + "x" +
-                                                 std::to_string(e.height) + " but the other attachments are " +
-                                                 std::to_string(size->width) + "x" + std::to_string(size->height));
-            return nullptr;
-        } else if (samples != t.desc.samples) {
-            fail(ErrorCode::InvalidArgument, pass + " " + what + ": " + tex + " has " + std::to_string(t.desc.samples) +
-                                                 " samples but the other attachments have " + std::to_string(samples));
-            return nullptr;
-        }
-        return &t;
-    };
-
-    for (std::size_t i = 0; i < desc.colors.size(); ++i) {
-        const rhi::ColorAttachment& c = desc.colors[i];
-        Texture* t = check_attachment(c.texture, c.mip, c.layer, false, "colour attachment " + std::to_string(i));
-        if (!t) return;
-        color_textures.push_back(t);
-    }
-    Texture* depth_texture = nullptr;
-    if (desc.depth) {
-        depth_texture = check_attachment(desc.depth->texture, desc.depth->mip, desc.depth->layer, true, "depth attachment");
-        if (!depth_texture) return;
-    }
+    for (const rhi::ColorAttachment& c : desc.colors) color_textures.push_back(*device_.textures().get(c.texture));
+    Texture* depth_texture = desc.depth ? *device_.textures().get(desc.depth->texture) : nullptr;
 
     // Attachments move into attachment layouts; with a load op other than Load the old
     // contents are not needed, which is also the hand-over point for aliased (placed) images.
@@ -241,7 +186,7 @@ void VulkanCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
         if (format.has_depth()) info.pDepthAttachment = &depth;
         if (format.has_stencil()) info.pStencilAttachment = &stencil;
     }
-    info.renderArea = {{0, 0}, {size->width, size->height}};
+    info.renderArea = {{0, 0}, {shape->width, shape->height}};
     info.layerCount = 1;
     info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
     info.pColorAttachments = colors.data();
@@ -252,12 +197,12 @@ void VulkanCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
     pass_color_formats_.clear();
     for (const Texture* t : color_textures) pass_color_formats_.push_back(t->desc.format);
     pass_depth_format_ = depth_texture ? depth_texture->desc.format : rhi::Format::Undefined;
-    pass_samples_ = samples;
-    pass_extent_ = {size->width, size->height};
+    pass_samples_ = shape->samples;
+    pass_extent_ = {shape->width, shape->height};
     ++stats_.render_passes;
     ++stats_.api_calls;
-    set_viewport({0.0f, 0.0f, static_cast<float>(size->width), static_cast<float>(size->height), 0.0f, 1.0f});
-    set_scissor({0, 0, size->width, size->height});
+    set_viewport({0.0f, 0.0f, static_cast<float>(shape->width), static_cast<float>(shape->height), 0.0f, 1.0f});
+    set_scissor({0, 0, shape->width, shape->height});
 }
 
 void VulkanCommandList::end_render_pass() {
@@ -309,10 +254,7 @@ std::string VulkanCommandList::pass_mismatch(const Pipeline& p) const {
 }
 
 void VulkanCommandList::set_viewport(const rhi::Viewport& v) {
-    if (!(v.width > 0.0f) || !(v.height > 0.0f) || v.min_depth < 0.0f || v.max_depth > 1.0f) {
-        fail(ErrorCode::InvalidArgument, "set_viewport: size must be positive and depths within 0..1");
-        return;
-    }
+    if (Status valid = rhi::validation::viewport(v); !valid) return fail(valid.error().code, valid.error().message);
     // Outside a pass there is nothing to set: begin_render_pass resets viewport and scissor.
     if (!in_render_pass_) return;
     // Negative height: NDC y up, row 0 at the top (docs/architecture.md, "Conventions that make
@@ -335,17 +277,9 @@ void VulkanCommandList::set_scissor(const rhi::Rect& r) {
 }
 
 void VulkanCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
-    if (set >= rhi::kMaxBindGroups) {
-        fail(ErrorCode::InvalidArgument, "set_bind_group: set " + std::to_string(set) + " is beyond the " +
-                                             std::to_string(rhi::kMaxBindGroups) + " sets loom supports");
-        return;
-    }
+    if (Status valid = rhi::validation::bind_group(set, group); !valid) return fail(valid.error().code, valid.error().message);
     for (const rhi::BindingEntry& e : group.entries) {
         const std::string where = "set_bind_group(" + std::to_string(set) + "), binding " + std::to_string(e.binding) + ": ";
-        if (e.binding >= rhi::kMaxBindingsPerGroup) {
-            return fail(ErrorCode::InvalidArgument, where + "beyond the " + std::to_string(rhi::kMaxBindingsPerGroup) +
-                                                        " bindings per set loom supports");
-        }
         if (const auto* b = std::get_if<rhi::BufferBinding>(&e.resource)) {
             if (auto r = device_.buffers().get(b->buffer); !r.ok()) return fail(ErrorCode::InvalidHandle, where + r.error().message);
         } else if (const auto* t = std::get_if<rhi::TextureBinding>(&e.resource)) {
@@ -360,21 +294,14 @@ void VulkanCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group
 }
 
 void VulkanCommandList::push_constants(std::span<const std::byte> data, uint32_t offset) {
-    if (offset + data.size() > push_data_.size()) {
-        fail(ErrorCode::InvalidArgument, "push_constants: " + std::to_string(offset + data.size()) +
-                                             " bytes exceed the 256 bytes loom supports");
-        return;
-    }
+    if (Status valid = rhi::validation::push_constants(offset, data.size()); !valid) return fail(valid.error().code, valid.error().message);
     std::memcpy(push_data_.data() + offset, data.data(), data.size());
     push_size_ = std::max(push_size_, static_cast<uint32_t>(offset + data.size()));
     push_dirty_ = true;
 }
 
 void VulkanCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle handle, uint64_t offset) {
-    if (slot >= vertex_buffers_.size()) {
-        fail(ErrorCode::InvalidArgument, "set_vertex_buffer: slot " + std::to_string(slot) + " is beyond 16");
-        return;
-    }
+    if (Status valid = rhi::validation::vertex_buffer_slot(slot); !valid) return fail(valid.error().code, valid.error().message);
     auto buffer = device_.buffers().get(handle);
     if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, "set_vertex_buffer: " + buffer.error().message);
     if (!rhi::has_all((*buffer)->desc.usage, rhi::BufferUsage::Vertex)) {
@@ -711,14 +638,8 @@ void VulkanCommandList::copy_buffer(rhi::BufferHandle src_handle, uint64_t src_o
     if (!dst.ok()) return fail(ErrorCode::InvalidHandle, "copy_buffer destination: " + dst.error().message);
     Buffer& s = **src;
     Buffer& d = **dst;
-    if (src_offset > s.desc.size || size > s.desc.size - src_offset || dst_offset > d.desc.size ||
-        size > d.desc.size - dst_offset) {
-        return fail(ErrorCode::InvalidArgument, "copy_buffer: " + std::to_string(size) + " bytes from " + in_quotes(s.desc.name) + "+" +
-                                                    std::to_string(src_offset) + " to " + in_quotes(d.desc.name) + "+" +
-                                                    std::to_string(dst_offset) + " run past the end of a buffer");
-    }
-    if (&s == &d && src_offset < dst_offset + size && dst_offset < src_offset + size) {
-        return fail(ErrorCode::InvalidArgument, "copy_buffer: source and destination ranges of " + in_quotes(s.desc.name) + " overlap");
+    if (Status valid = rhi::validation::buffer_copy(s.desc, src_offset, d.desc, dst_offset, size, &s == &d); !valid) {
+        return fail(valid.error().code, valid.error().message);
     }
     if (size == 0) return;
     BarrierBatch batch;
@@ -751,37 +672,21 @@ void VulkanCommandList::copy_texture(const rhi::TextureCopy& copy) {
     if (!dst.ok()) return fail(ErrorCode::InvalidHandle, "copy_texture destination: " + dst.error().message);
     Texture& s = **src;
     Texture& d = **dst;
-    const std::string what = "copy_texture from " + in_quotes(s.desc.name) + " to " + in_quotes(d.desc.name);
-    if (&s == &d) return fail(ErrorCode::InvalidArgument, what + ": source and destination are the same texture");
-    if (s.desc.format != d.desc.format || s.desc.samples != d.desc.samples) {
-        return fail(ErrorCode::InvalidArgument, what + ": formats or sample counts differ");
-    }
-    const rhi::TextureRegion& sr = copy.src_region;
-    const rhi::TextureRegion& dr = copy.dst_region;
-    if (sr.mip >= s.desc.mip_levels || dr.mip >= d.desc.mip_levels || sr.layer >= s.array_layers || dr.layer >= d.array_layers) {
-        return fail(ErrorCode::InvalidArgument, what + ": mip or layer out of range");
-    }
-    const rhi::Extent3D se = rhi::mip_extent(s.desc, sr.mip);
-    const rhi::Extent3D de = rhi::mip_extent(d.desc, dr.mip);
-    rhi::Extent3D extent = sr.extent;
-    if (extent.width == 0) extent.width = se.width > sr.origin.x ? se.width - sr.origin.x : 0;
-    if (extent.height == 0) extent.height = se.height > sr.origin.y ? se.height - sr.origin.y : 0;
-    if (extent.depth == 0) extent.depth = se.depth > sr.origin.z ? se.depth - sr.origin.z : 0;
-    if (extent.width == 0 || extent.height == 0 || extent.depth == 0 || sr.origin.x + extent.width > se.width ||
-        sr.origin.y + extent.height > se.height || sr.origin.z + extent.depth > se.depth ||
-        dr.origin.x + extent.width > de.width || dr.origin.y + extent.height > de.height || dr.origin.z + extent.depth > de.depth) {
-        return fail(ErrorCode::InvalidArgument, what + ": region out of range");
-    }
+    auto range = rhi::validation::texture_copy(s.desc, d.desc, &s == &d, copy);
+    if (!range.ok()) return fail(range.error().code, range.error().message);
+    const rhi::Extent3D extent = range->extent;
     // Like the GL backend, a copy leaves the source in CopySrc and the destination in CopyDst.
     BarrierBatch batch;
-    device_.transition_texture(batch, s, sr.mip, 1, sr.layer, 1, ResourceState::CopySrc, Stream::Frame);
-    device_.transition_texture(batch, d, dr.mip, 1, dr.layer, 1, ResourceState::CopyDst, Stream::Frame);
+    device_.transition_texture(batch, s, range->src_mip, 1, range->src_layer, 1, ResourceState::CopySrc, Stream::Frame);
+    device_.transition_texture(batch, d, range->dst_mip, 1, range->dst_layer, 1, ResourceState::CopyDst, Stream::Frame);
     stats_.api_calls += batch.flush(cmd_);
     VkImageCopy region{};
-    region.srcSubresource = {s.aspect, sr.mip, sr.layer, 1};
-    region.srcOffset = {static_cast<int32_t>(sr.origin.x), static_cast<int32_t>(sr.origin.y), static_cast<int32_t>(sr.origin.z)};
-    region.dstSubresource = {d.aspect, dr.mip, dr.layer, 1};
-    region.dstOffset = {static_cast<int32_t>(dr.origin.x), static_cast<int32_t>(dr.origin.y), static_cast<int32_t>(dr.origin.z)};
+    const rhi::Origin3D& so = range->src_origin;
+    const rhi::Origin3D& dso = range->dst_origin;
+    region.srcSubresource = {s.aspect, range->src_mip, range->src_layer, 1};
+    region.srcOffset = {static_cast<int32_t>(so.x), static_cast<int32_t>(so.y), static_cast<int32_t>(so.z)};
+    region.dstSubresource = {d.aspect, range->dst_mip, range->dst_layer, 1};
+    region.dstOffset = {static_cast<int32_t>(dso.x), static_cast<int32_t>(dso.y), static_cast<int32_t>(dso.z)};
     region.extent = {extent.width, extent.height, extent.depth};
     vkCmdCopyImage(cmd_, s.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     ++stats_.api_calls;

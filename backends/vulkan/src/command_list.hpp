@@ -101,14 +101,14 @@ private:
     };
     std::array<GroupState, rhi::kMaxBindGroups> groups_{};
     VkPipelineLayout bound_layout_ = VK_NULL_HANDLE;
-    std::array<std::byte, 256> push_data_{};
+    std::array<std::byte, rhi::kMaxPushConstantBytes> push_data_{};
     uint32_t push_size_ = 0;  ///< bytes of push_data_ set so far
     bool push_dirty_ = false;
     struct VertexBinding {
         rhi::BufferHandle buffer;
         uint64_t offset = 0;
     };
-    std::array<VertexBinding, 16> vertex_buffers_{};
+    std::array<VertexBinding, rhi::kMaxVertexBuffers> vertex_buffers_{};
     rhi::BufferHandle index_buffer_;
     rhi::IndexType index_type_ = rhi::IndexType::Uint32;
     uint64_t index_offset_ = 0;

@@ -190,6 +190,9 @@ struct VertexAttribute {
     uint32_t offset = 0;
 };
 
+/// Vertex buffer slots (CommandList::set_vertex_buffer, GraphicsPipelineDesc::vertex_buffers).
+inline constexpr uint32_t kMaxVertexBuffers = 16;
+
 /// One vertex buffer slot: its stride and the attributes read from it.
 struct VertexBufferLayout {
     uint32_t stride = 0;

@@ -117,6 +117,9 @@ struct ShaderReflection {
 /// Number of descriptor sets and bindings per set loom supports on every backend.
 inline constexpr uint32_t kMaxBindGroups = 4;
 inline constexpr uint32_t kMaxBindingsPerGroup = 16;
+/// Bytes of push constants (CommandList::push_constants) on every backend (Vulkan guarantees
+/// only 128; lavapipe and the desktop drivers loom runs on have 256).
+inline constexpr uint32_t kMaxPushConstantBytes = 256;
 
 /// The GL binding point of Vulkan-style (set, binding): the one place where that mapping is
 /// defined. GL has a separate binding namespace per resource kind (uniform buffers, texture

@@ -11,6 +11,7 @@
 // field at fault: "texture 'albedo': mip_levels 9 is not in 1..8 for a 64x64x1 texture".
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -55,5 +56,55 @@ struct TextureWrite {
 Result<TextureWrite> texture_write(const TextureDesc& texture, const TextureRegion& region, uint64_t data_size);
 /// Device::read_texture of mip `mip`, layer `layer` (depth slice on a 3D texture).
 Status texture_read(const TextureDesc& texture, uint32_t mip, uint32_t layer);
+
+// ---- commands ------------------------------------------------------------------------------
+// What a CommandList checks before it records a command (the first error of a frame comes
+// back from end_frame). State rules (inside or outside a render pass, a bound pipeline) stay
+// with the command lists for now.
+
+/// The description of a texture by handle, on the device being validated; an InvalidHandle
+/// error (HandlePool's message) for a null, stale or foreign handle.
+using TextureLookup = std::function<Result<const TextureDesc*>(TextureHandle)>;
+
+/// The size and sample count every attachment of a render pass shares.
+struct RenderPassShape {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    uint32_t samples = 1;
+};
+/// CommandList::begin_render_pass: at least one attachment, at most the device's colour
+/// attachments; each one a live texture of the right kind of format, with the attachment usage,
+/// an existing mip and layer, not 3D; all of one size and sample count.
+Result<RenderPassShape> render_pass(const RenderPassDesc& desc, const Capabilities& caps, const TextureLookup& lookup);
+
+/// The texels one CommandList::copy_texture call copies, the zeros of the source region's
+/// extent resolved to "the rest of the source mip level".
+struct TextureCopyRange {
+    uint32_t src_mip = 0, src_layer = 0;
+    Origin3D src_origin{};
+    uint32_t dst_mip = 0, dst_layer = 0;
+    Origin3D dst_origin{};
+    /// extent.depth counts depth slices of 3D textures (1 otherwise).
+    Extent3D extent{};
+};
+/// CommandList::copy_texture between textures described by `src` and `dst` (`same_texture`
+/// when they are one texture): copy-compatible formats (equal, or colour formats of the same
+/// texel size), equal sample counts, both 3D or neither, existing subresources, a region that
+/// fits both, and not one subresource copied onto itself.
+Result<TextureCopyRange> texture_copy(const TextureDesc& src, const TextureDesc& dst, bool same_texture, const TextureCopy& copy);
+
+/// CommandList::copy_buffer: both ranges inside their buffers, and not overlapping when the
+/// buffers are one (`same_buffer`).
+Status buffer_copy(const BufferDesc& src, uint64_t src_offset, const BufferDesc& dst, uint64_t dst_offset, uint64_t size,
+                   bool same_buffer);
+
+/// CommandList::set_viewport: a positive size, depths within 0..1, nothing NaN.
+Status viewport(const Viewport& viewport);
+/// CommandList::push_constants: the bytes fit kMaxPushConstantBytes.
+Status push_constants(uint64_t offset, uint64_t size);
+/// CommandList::set_bind_group: set and bindings within kMaxBindGroups / kMaxBindingsPerGroup.
+Status bind_group(uint32_t set, const BindGroup& group);
+/// CommandList::set_vertex_buffer: the slot is below kMaxVertexBuffers.
+Status vertex_buffer_slot(uint32_t slot);
 
 }  // namespace loom::rhi::validation
