@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <vector>
 
 #include "loom/rhi/checked_math.hpp"
 #include "loom/rhi/format.hpp"
@@ -78,6 +79,14 @@ Status usage_supported(const TextureDesc& d, const Capabilities& caps, const std
         return Error{ErrorCode::Unsupported, what + std::to_string(d.samples) + " samples of " + format + " are not supported on this device"};
     }
     return {};
+}
+
+// "<what>: N bytes at [side ]offset O exceed its size S" when [offset, offset + size) leaves a
+// buffer of `capacity` bytes (decided without overflow).
+Status bytes_within(const std::string& what, std::string_view side, uint64_t offset, uint64_t size, uint64_t capacity) {
+    if (checked::range_fits(offset, size, capacity)) return {};
+    return Error{ErrorCode::InvalidArgument, what + ": " + std::to_string(size) + " bytes at " + std::string(side) + "offset " +
+                                                 std::to_string(offset) + " exceed its size " + std::to_string(capacity)};
 }
 
 }  // namespace
@@ -172,21 +181,11 @@ Status heap_desc(const HeapDesc& desc, const Capabilities& caps) {
 }
 
 Status buffer_write(const BufferDesc& buffer, uint64_t offset, uint64_t size) {
-    if (!checked::range_fits(offset, size, buffer.size)) {
-        return Error{ErrorCode::InvalidArgument, "write_buffer to buffer " + in_quotes(buffer.name) + ": " + std::to_string(size) +
-                                                     " bytes at offset " + std::to_string(offset) + " exceed its size " +
-                                                     std::to_string(buffer.size)};
-    }
-    return {};
+    return bytes_within("write_buffer to buffer " + in_quotes(buffer.name), "", offset, size, buffer.size);
 }
 
 Status buffer_read(const BufferDesc& buffer, uint64_t offset, uint64_t size) {
-    if (!checked::range_fits(offset, size, buffer.size)) {
-        return Error{ErrorCode::InvalidArgument, "read_buffer of buffer " + in_quotes(buffer.name) + ": " + std::to_string(size) +
-                                                     " bytes at offset " + std::to_string(offset) + " exceed its size " +
-                                                     std::to_string(buffer.size)};
-    }
-    return {};
+    return bytes_within("read_buffer of buffer " + in_quotes(buffer.name), "", offset, size, buffer.size);
 }
 
 Result<TextureWrite> texture_write(const TextureDesc& texture, const TextureRegion& region, uint64_t data_size) {
@@ -248,6 +247,116 @@ Status texture_read(const TextureDesc& texture, uint32_t mip, uint32_t layer) {
         return Error{ErrorCode::Unsupported, what + "a multisampled depth/stencil texture cannot be read back"};
     }
     return {};
+}
+
+// ---- pipelines ---------------------------------------------------------------------------------
+
+namespace {
+
+std::string_view stage_article_name(ShaderStage stage) {
+    switch (stage) {
+        case ShaderStage::Vertex: return "a vertex";
+        case ShaderStage::Fragment: return "a fragment";
+        case ShaderStage::Compute: return "a compute";
+    }
+    return "an unknown";
+}
+
+// The shader at `handle`, of `stage`; `role` names it in messages ("vertex shader").
+Result<ShaderFacts> shader_of_stage(const ShaderLookup& lookup, ShaderHandle handle, ShaderStage stage, const std::string& what,
+                                    const std::string& role) {
+    auto facts = lookup(handle);
+    if (!facts.ok()) return Error{ErrorCode::InvalidHandle, what + role + ": " + facts.error().message};
+    if (facts->stage != stage) {
+        return Error{ErrorCode::InvalidArgument, what + role + " " + in_quotes(facts->name) + " is " +
+                                                     std::string(stage_article_name(facts->stage)) + " shader"};
+    }
+    return facts;
+}
+
+}  // namespace
+
+Status graphics_pipeline(const GraphicsPipelineDesc& d, const Capabilities& caps, const ShaderLookup& lookup) {
+    const std::string what = "pipeline " + in_quotes(d.name) + ": ";
+    auto invalid = [&](const std::string& message) { return Error{ErrorCode::InvalidArgument, what + message}; };
+    auto unsupported = [&](const std::string& message) { return Error{ErrorCode::Unsupported, what + message}; };
+    auto vs = shader_of_stage(lookup, d.vertex, ShaderStage::Vertex, what, "vertex shader");
+    if (!vs.ok()) return vs.take_error();
+    auto fs = shader_of_stage(lookup, d.fragment, ShaderStage::Fragment, what, "fragment shader");
+    if (!fs.ok()) return fs.take_error();
+    if (d.color_formats.empty() && d.depth_format == Format::Undefined) return invalid("no colour formats and no depth format");
+    if (d.samples == 0 || d.samples > 64 || !std::has_single_bit(d.samples)) {
+        return invalid("samples " + std::to_string(d.samples) + " is not a power of two from 1 to 64");
+    }
+    if (d.color_formats.size() > caps.max_color_attachments) {
+        return unsupported(std::to_string(d.color_formats.size()) + " colour formats exceed this device's limit of " +
+                           std::to_string(caps.max_color_attachments) + " colour attachments");
+    }
+    if (d.blend.size() > d.color_formats.size()) {
+        return invalid(std::to_string(d.blend.size()) + " blend states for " + count_of(d.color_formats.size(), "colour format"));
+    }
+    auto samples_supported = [&](Format f, const std::string& field) -> Status {
+        if (d.samples > 1 && (caps.format(f).sample_counts & d.samples) == 0) {
+            return unsupported(field + " " + std::string(format_name(f)) + " cannot have " + std::to_string(d.samples) +
+                               " samples on this device");
+        }
+        return {};
+    };
+    for (std::size_t i = 0; i < d.color_formats.size(); ++i) {
+        const Format f = d.color_formats[i];
+        const std::string field = "color_formats[" + std::to_string(i) + "]";
+        if (f == Format::Undefined || !format_info(f).is_color()) {
+            return invalid(field + " " + std::string(format_name(f)) + " is not a colour format");
+        }
+        if (!caps.format(f).color_attachment) {
+            return unsupported(field + " " + std::string(format_name(f)) + " cannot be a colour attachment on this device");
+        }
+        if (i < d.blend.size() && d.blend[i].enabled && !caps.format(f).blendable) {
+            return unsupported("blend[" + std::to_string(i) + "] is enabled but " + std::string(format_name(f)) +
+                               " cannot be blended on this device");
+        }
+        LOOM_TRY(samples_supported(f, field));
+    }
+    if (d.depth_format != Format::Undefined) {
+        const std::string format(format_name(d.depth_format));
+        if (!format_info(d.depth_format).is_depth_stencil()) return invalid("depth_format " + format + " is not a depth/stencil format");
+        if (!caps.format(d.depth_format).depth_stencil_attachment) {
+            return unsupported("depth_format " + format + " cannot be a depth/stencil attachment on this device");
+        }
+        LOOM_TRY(samples_supported(d.depth_format, "depth_format"));
+    } else if (d.depth.test || d.depth.write) {
+        return invalid("depth test or write enabled without a depth_format");
+    }
+    if (d.raster.polygon == PolygonMode::Line && !caps.polygon_mode_line) {
+        return unsupported("PolygonMode::Line needs polygon_mode_line, which this device lacks");
+    }
+    if (d.raster.depth_clamp && !caps.depth_clamp) return unsupported("depth_clamp needs depth clamping, which this device lacks");
+    if (d.vertex_buffers.size() > kMaxVertexBuffers) {
+        return invalid(std::to_string(d.vertex_buffers.size()) + " vertex buffers exceed the " + std::to_string(kMaxVertexBuffers) +
+                       " slots loom supports");
+    }
+    std::vector<uint32_t> locations;
+    for (std::size_t slot = 0; slot < d.vertex_buffers.size(); ++slot) {
+        for (const VertexAttribute& a : d.vertex_buffers[slot].attributes) {
+            if (std::find(locations.begin(), locations.end(), a.location) != locations.end()) {
+                return invalid("vertex attribute location " + std::to_string(a.location) + " is given twice (again in slot " +
+                               std::to_string(slot) + ")");
+            }
+            locations.push_back(a.location);
+        }
+    }
+    for (const StageVariable& input : vs->reflection->inputs) {
+        if (std::find(locations.begin(), locations.end(), input.location) == locations.end()) {
+            return invalid("vertex shader " + in_quotes(vs->name) + " reads " + in_quotes(input.name) + " at location " +
+                           std::to_string(input.location) + " but no vertex attribute provides it");
+        }
+    }
+    return {};
+}
+
+Status compute_pipeline(const ComputePipelineDesc& desc, const ShaderLookup& lookup) {
+    auto cs = shader_of_stage(lookup, desc.compute, ShaderStage::Compute, "pipeline " + in_quotes(desc.name) + ": ", "compute shader");
+    return cs.ok() ? Status{} : Status(cs.take_error());
 }
 
 // ---- commands ----------------------------------------------------------------------------------
@@ -382,15 +491,10 @@ Result<TextureCopyRange> texture_copy(const TextureDesc& src, const TextureDesc&
 
 Status buffer_copy(const BufferDesc& src, uint64_t src_offset, const BufferDesc& dst, uint64_t dst_offset, uint64_t size,
                    bool same_buffer) {
-    const std::string what = "copy_buffer from " + in_quotes(src.name) + " to " + in_quotes(dst.name) + ": ";
-    if (!checked::range_fits(src_offset, size, src.size)) {
-        return Error{ErrorCode::InvalidArgument, what + std::to_string(size) + " bytes at source offset " + std::to_string(src_offset) +
-                                                     " exceed its size " + std::to_string(src.size)};
-    }
-    if (!checked::range_fits(dst_offset, size, dst.size)) {
-        return Error{ErrorCode::InvalidArgument, what + std::to_string(size) + " bytes at destination offset " +
-                                                     std::to_string(dst_offset) + " exceed its size " + std::to_string(dst.size)};
-    }
+    const std::string command = "copy_buffer from " + in_quotes(src.name) + " to " + in_quotes(dst.name);
+    const std::string what = command + ": ";
+    LOOM_TRY(bytes_within(command, "source ", src_offset, size, src.size));
+    LOOM_TRY(bytes_within(command, "destination ", dst_offset, size, dst.size));
     // Both ranges are inside one buffer here, so the sums cannot wrap.
     if (same_buffer && size > 0 && src_offset < dst_offset + size && dst_offset < src_offset + size) {
         return Error{ErrorCode::InvalidArgument, what + "the ranges at " + std::to_string(src_offset) + " and " + std::to_string(dst_offset) +

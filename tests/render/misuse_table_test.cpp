@@ -242,6 +242,74 @@ std::vector<Row> table() {
         unsupported("read_texture of texture 't': a multisampled depth/stencil texture cannot be read back"),
         [](const rhi::Capabilities& c) { return (c.format(Format::Depth32F).sample_counts & 4u) != 0; });
 
+    // ---- pipelines
+    // Creates pipeline `desc` (its shaders filled in from the compiled vertex and fragment
+    // shaders, unless `keep_shaders`), then destroys what it made.
+    auto pipeline = [](std::function<void(rhi::GraphicsPipelineDesc&, rhi::ShaderHandle vs, rhi::ShaderHandle fs)> edit) {
+        return [edit](rhi::Device& d) -> Status {
+            auto vs = make_shader(d, rhi::ShaderStage::Vertex, "v", kPositionVert);
+            auto fs = make_shader(d, rhi::ShaderStage::Fragment, "f", kPushColorFrag);
+            if (!vs.ok() || !fs.ok()) return Error{ErrorCode::Backend, "setup: shaders"};
+            rhi::GraphicsPipelineDesc desc;
+            desc.name = "p";
+            desc.vertex = *vs;
+            desc.fragment = *fs;
+            desc.color_formats = {Format::RGBA8Unorm};
+            desc.vertex_buffers = {rhi::VertexBufferLayout{12, rhi::VertexStepMode::PerVertex, {{0, rhi::VertexFormat::Float3, 0}}}};
+            edit(desc, *vs, *fs);
+            auto made = d.create_graphics_pipeline(desc);
+            if (made.ok()) LOOM_TRY(d.destroy(*made));
+            LOOM_TRY(d.destroy(*vs));
+            LOOM_TRY(d.destroy(*fs));
+            return made.ok() ? Status{} : Status(made.take_error());
+        };
+    };
+    add("pipeline with a null vertex shader", pipeline([](auto& p, auto, auto) { p.vertex = {}; }),
+        expect({ErrorCode::InvalidHandle, "pipeline 'p': vertex shader: shader handle is null"}));
+    add("pipeline with stages swapped", pipeline([](auto& p, auto vs, auto fs) { p.vertex = fs; p.fragment = vs; }),
+        invalid("pipeline 'p': vertex shader 'f' is a fragment shader"));
+    add("pipeline without attachments", pipeline([](auto& p, auto, auto) { p.color_formats.clear(); }),
+        invalid("pipeline 'p': no colour formats and no depth format"));
+    add("pipeline samples", pipeline([](auto& p, auto, auto) { p.samples = 3; }),
+        invalid("pipeline 'p': samples 3 is not a power of two from 1 to 64"));
+    add("pipeline with too many colour formats", [pipeline](rhi::Device& d) {
+            const std::size_t n = d.capabilities().max_color_attachments + 1;
+            return pipeline([n](auto& p, auto, auto) { p.color_formats.assign(n, Format::RGBA8Unorm); })(d);
+        },
+        [](const rhi::Capabilities& c) {
+            return Expected{ErrorCode::Unsupported, "pipeline 'p': " + std::to_string(c.max_color_attachments + 1) +
+                                                        " colour formats exceed this device's limit of " +
+                                                        std::to_string(c.max_color_attachments) + " colour attachments"};
+        });
+    add("pipeline with more blend states than colours", pipeline([](auto& p, auto, auto) { p.blend.resize(2); }),
+        invalid("pipeline 'p': 2 blend states for 1 colour format"));
+    add("pipeline colour format", pipeline([](auto& p, auto, auto) { p.color_formats = {Format::Depth32F}; }),
+        invalid("pipeline 'p': color_formats[0] Depth32F is not a colour format"));
+    add("pipeline depth format", pipeline([](auto& p, auto, auto) { p.depth_format = Format::RGBA8Unorm; }),
+        invalid("pipeline 'p': depth_format RGBA8Unorm is not a depth/stencil format"));
+    add("pipeline depth test without depth", pipeline([](auto& p, auto, auto) { p.depth.test = true; }),
+        invalid("pipeline 'p': depth test or write enabled without a depth_format"));
+    add("pipeline blending an integer format", pipeline([](auto& p, auto, auto) { p.color_formats = {Format::R32Uint}; p.blend = {rhi::BlendState{.enabled = true}}; }),
+        unsupported("pipeline 'p': blend[0] is enabled but R32Uint cannot be blended on this device"),
+        [](const rhi::Capabilities& c) { return c.format(Format::R32Uint).color_attachment && !c.format(Format::R32Uint).blendable; });
+    add("pipeline samples a format lacks", pipeline([](auto& p, auto, auto) { p.samples = 64; }),
+        unsupported("pipeline 'p': color_formats[0] RGBA8Unorm cannot have 64 samples on this device"),
+        [](const rhi::Capabilities& c) { return (c.format(Format::RGBA8Unorm).sample_counts & 64u) == 0; });
+    add("pipeline attribute location twice", pipeline([](auto& p, auto, auto) { p.vertex_buffers.push_back(p.vertex_buffers[0]); }),
+        invalid("pipeline 'p': vertex attribute location 0 is given twice (again in slot 1)"));
+    add("pipeline vertex input not fed", pipeline([](auto& p, auto, auto) { p.vertex_buffers.clear(); }),
+        invalid("pipeline 'p': vertex shader 'v' reads 'position' at location 0 but no vertex attribute provides it"));
+    add("pipeline vertex buffers", pipeline([](auto& p, auto, auto) { p.vertex_buffers.resize(17); }),
+        invalid("pipeline 'p': 17 vertex buffers exceed the 16 slots loom supports"));
+    add("compute pipeline of a vertex shader", [](rhi::Device& d) -> Status {
+            auto vs = make_shader(d, rhi::ShaderStage::Vertex, "v", kPositionVert);
+            if (!vs.ok()) return Error{ErrorCode::Backend, "setup: shader"};
+            auto made = d.create_compute_pipeline({"p", *vs});
+            LOOM_TRY(d.destroy(*vs));
+            return made.ok() ? Status{} : Status(made.take_error());
+        },
+        invalid("pipeline 'p': compute shader 'v' is a vertex shader"));
+
     // ---- commands (reported by end_frame)
     auto frame = [](std::function<void(rhi::Device&, rhi::CommandList&)> record) {
         return [record](rhi::Device& d) { return run_frame(d, [&](rhi::CommandList& list) { record(d, list); }); };
@@ -396,7 +464,7 @@ TEST_P(MisuseTable, EveryRuleGivesOneCodeAndMessageOnEveryBackend) {
         ++checked;
     }
     // Rows skipped for a capability are few; most rules are checked on every device.
-    EXPECT_GE(checked, 70);
+    EXPECT_GE(checked, 85);
     // The device is still usable after every refusal.
     LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "after", Format::RGBA8Unorm, 4, 4));
     LOOM_ASSERT_OK(device().destroy(target));

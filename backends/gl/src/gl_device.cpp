@@ -94,6 +94,8 @@ void GlDevice::init_capabilities() {
     caps_.formats = query_format_capabilities();
     caps_.placed_resources = false;
     caps_.draw_indirect = true;  // glMultiDrawElementsIndirect: core since GL 4.3
+    caps_.polygon_mode_line = true;  // glPolygonMode: core
+    caps_.depth_clamp = true;        // GL_DEPTH_CLAMP: core since GL 3.2
     GLint timer_bits = 0;
     glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &timer_bits);
     caps_.timestamps = timer_bits > 0;

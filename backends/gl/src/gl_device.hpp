@@ -25,6 +25,7 @@
 #include "loom/gl/gl_device.hpp"
 #include "loom/gl/gl_embed.hpp"
 #include "loom/rhi/handle_pool.hpp"
+#include "loom/rhi/validation.hpp"
 
 namespace loom::gl {
 
@@ -240,6 +241,8 @@ private:
     Result<GLuint> vertex_array_for(const std::vector<rhi::VertexBufferLayout>& layout, std::vector<uint32_t>& key);
     void release_vertex_array(const std::vector<uint32_t>& key);
     Result<rhi::TextureHandle> create_texture_internal(const rhi::TextureDesc& desc, bool internal);
+    /// The shaders of this device as the validation layer sees them.
+    rhi::validation::ShaderLookup shader_lookup();
     void collect_timers(bool wait);
     void recycle_transient_chunks(bool wait);
     void ensure_backbuffer();

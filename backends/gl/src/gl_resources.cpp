@@ -2,7 +2,6 @@
 // framebuffer-object and vertex-array caches.
 #include <algorithm>
 #include <bit>
-#include <set>
 
 #include "gl_device.hpp"
 #include "loom/rhi/subresources.hpp"
@@ -414,61 +413,21 @@ Result<GlPipeline> link_program(const std::string& pipeline_name, std::initializ
 
 }  // namespace
 
+rhi::validation::ShaderLookup GlDevice::shader_lookup() {
+    return [this](rhi::ShaderHandle handle) -> Result<rhi::validation::ShaderFacts> {
+        auto found = shaders_.get(handle);
+        if (!found.ok()) return found.take_error();
+        return rhi::validation::ShaderFacts{(*found)->name, (*found)->stage, &(*found)->reflection};
+    };
+}
+
 Result<rhi::PipelineHandle> GlDevice::create_graphics_pipeline(const rhi::GraphicsPipelineDesc& desc) {
     context_->make_current();
-    const std::string what = "pipeline " + in_quotes(desc.name);
-    auto invalid = [&](const std::string& message) { return Error{ErrorCode::InvalidArgument, what + ": " + message}; };
-    auto vs = shaders_.get(desc.vertex);
-    if (!vs.ok()) return Error{ErrorCode::InvalidHandle, what + ": vertex shader: " + vs.error().message};
-    auto fs = shaders_.get(desc.fragment);
-    if (!fs.ok()) return Error{ErrorCode::InvalidHandle, what + ": fragment shader: " + fs.error().message};
-    if ((*vs)->stage != rhi::ShaderStage::Vertex) return invalid("shader " + in_quotes((*vs)->name) + " is not a vertex shader");
-    if ((*fs)->stage != rhi::ShaderStage::Fragment) return invalid("shader " + in_quotes((*fs)->name) + " is not a fragment shader");
-    if (desc.color_formats.size() > caps_.max_color_attachments) {
-        return invalid(std::to_string(desc.color_formats.size()) + " colour formats exceed the limit of " +
-                       std::to_string(caps_.max_color_attachments));
-    }
-    for (std::size_t i = 0; i < desc.color_formats.size(); ++i) {
-        const rhi::Format f = desc.color_formats[i];
-        if (!rhi::format_info(f).is_color() || !caps_.format(f).color_attachment) {
-            return invalid("color_formats[" + std::to_string(i) + "] " + std::string(rhi::format_name(f)) +
-                           " is not a renderable colour format");
-        }
-    }
-    if (desc.depth_format != rhi::Format::Undefined && !rhi::format_info(desc.depth_format).is_depth_stencil()) {
-        return invalid("depth_format " + std::string(rhi::format_name(desc.depth_format)) + " is not a depth format");
-    }
-    if (desc.color_formats.empty() && desc.depth_format == rhi::Format::Undefined) {
-        return invalid("no colour formats and no depth format");
-    }
-    if (!desc.blend.empty() && desc.blend.size() != desc.color_formats.size()) {
-        return invalid("blend has " + std::to_string(desc.blend.size()) + " entries for " +
-                       std::to_string(desc.color_formats.size()) + " colour formats");
-    }
-    for (std::size_t i = 0; i < desc.blend.size(); ++i) {
-        if (desc.blend[i].enabled && !caps_.format(desc.color_formats[i]).blendable) {
-            return invalid("blend[" + std::to_string(i) + "] is enabled but " +
-                           std::string(rhi::format_name(desc.color_formats[i])) + " cannot be blended");
-        }
-    }
-    if (desc.samples == 0 || !std::has_single_bit(desc.samples)) return invalid("samples must be a power of two");
-    if (desc.vertex_buffers.size() > 16) return invalid("more than 16 vertex buffers");
-    std::set<uint32_t> locations;
-    for (std::size_t slot = 0; slot < desc.vertex_buffers.size(); ++slot) {
-        for (const rhi::VertexAttribute& a : desc.vertex_buffers[slot].attributes) {
-            if (!locations.insert(a.location).second) {
-                return invalid("vertex attribute location " + std::to_string(a.location) + " is given twice");
-            }
-        }
-    }
-    for (const rhi::StageVariable& input : (*vs)->reflection.inputs) {
-        if (!locations.contains(input.location)) {
-            return invalid("vertex input " + in_quotes(input.name) + " (location " + std::to_string(input.location) +
-                           ") of shader " + in_quotes((*vs)->name) + " is not fed by any vertex buffer");
-        }
-    }
-
-    auto linked = link_program(desc.name, {*vs, *fs}, limits_);
+    LOOM_TRY(rhi::validation::graphics_pipeline(desc, caps_, shader_lookup()));
+    // Both shaders were found by the validation above.
+    const GlShader* vs = *shaders_.get(desc.vertex);
+    const GlShader* fs = *shaders_.get(desc.fragment);
+    auto linked = link_program(desc.name, {vs, fs}, limits_);
     if (!linked.ok()) return linked.take_error();
     GlPipeline p = std::move(*linked);
     auto vao = vertex_array_for(desc.vertex_buffers, p.vao_key);
@@ -518,13 +477,8 @@ Result<rhi::PipelineHandle> GlDevice::create_graphics_pipeline(const rhi::Graphi
 
 Result<rhi::PipelineHandle> GlDevice::create_compute_pipeline(const rhi::ComputePipelineDesc& desc) {
     context_->make_current();
-    const std::string what = "pipeline " + in_quotes(desc.name);
-    auto cs = shaders_.get(desc.compute);
-    if (!cs.ok()) return Error{ErrorCode::InvalidHandle, what + ": compute shader: " + cs.error().message};
-    if ((*cs)->stage != rhi::ShaderStage::Compute) {
-        return Error{ErrorCode::InvalidArgument, what + ": shader " + in_quotes((*cs)->name) + " is not a compute shader"};
-    }
-    auto linked = link_program(desc.name, {*cs}, limits_);
+    LOOM_TRY(rhi::validation::compute_pipeline(desc, shader_lookup()));
+    auto linked = link_program(desc.name, {*shaders_.get(desc.compute)}, limits_);
     if (!linked.ok()) return linked.take_error();
     linked->compute = true;
     ++stats_.pipelines;

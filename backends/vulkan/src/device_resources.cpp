@@ -517,13 +517,20 @@ loom::Status VulkanDevice::destroy(rhi::ShaderHandle handle) {
 
 // ---- pipelines ---------------------------------------------------------------------------------
 
+rhi::validation::ShaderLookup VulkanDevice::shader_lookup() {
+    return [this](rhi::ShaderHandle handle) -> loom::Result<rhi::validation::ShaderFacts> {
+        auto found = shaders_.get(handle);
+        if (!found.ok()) return found.take_error();
+        const rhi::ShaderModule& module = (*found)->module;
+        return rhi::validation::ShaderFacts{module.name, module.stage, &module.reflection};
+    };
+}
+
 loom::Result<rhi::PipelineHandle> VulkanDevice::create_graphics_pipeline(const rhi::GraphicsPipelineDesc& desc) {
-    const std::string pipe = "pipeline " + in_quotes(desc.name);
+    LOOM_TRY(rhi::validation::graphics_pipeline(desc, caps_, shader_lookup()));
+    // Both shaders were found by the validation above.
     auto vs = shaders_.get(desc.vertex);
-    if (!vs.ok()) return Error{ErrorCode::InvalidHandle, pipe + ": vertex shader: " + vs.error().message};
     auto fs = shaders_.get(desc.fragment);
-    if (!fs.ok()) return Error{ErrorCode::InvalidHandle, pipe + ": fragment shader: " + fs.error().message};
-    LOOM_TRY(validate_graphics_pipeline(*context_, caps_, desc, **vs, **fs));
     const StageReflection stages[] = {{&(*vs)->module, VK_SHADER_STAGE_VERTEX_BIT}, {&(*fs)->module, VK_SHADER_STAGE_FRAGMENT_BIT}};
     auto layout = layouts_->get(stages, desc.name);
     if (!layout.ok()) return layout.take_error();
@@ -552,12 +559,8 @@ loom::Result<rhi::PipelineHandle> VulkanDevice::create_graphics_pipeline(const r
 }
 
 loom::Result<rhi::PipelineHandle> VulkanDevice::create_compute_pipeline(const rhi::ComputePipelineDesc& desc) {
-    const std::string pipe = "pipeline " + in_quotes(desc.name);
+    LOOM_TRY(rhi::validation::compute_pipeline(desc, shader_lookup()));
     auto cs = shaders_.get(desc.compute);
-    if (!cs.ok()) return Error{ErrorCode::InvalidHandle, pipe + ": compute shader: " + cs.error().message};
-    if ((*cs)->module.stage != rhi::ShaderStage::Compute) {
-        return Error{ErrorCode::InvalidArgument, pipe + ": shader " + in_quotes((*cs)->module.name) + " is not a compute shader"};
-    }
     const StageReflection stages[] = {{&(*cs)->module, VK_SHADER_STAGE_COMPUTE_BIT}};
     auto layout = layouts_->get(stages, desc.name);
     if (!layout.ok()) return layout.take_error();

@@ -332,10 +332,6 @@ loom::Result<rhi::Image> VulkanDevice::read_texture(rhi::TextureHandle handle, u
     Texture& t = **tex;
     LOOM_TRY(rhi::validation::texture_read(t.desc, mip, layer));
     const std::string name = "read_texture of texture " + in_quotes(t.desc.name);
-    // Not yet resolved here (GL resolves multisampled colour textures before reading them).
-    if (t.desc.samples > 1) return Error{ErrorCode::Unsupported, name + ": multisampled colour textures cannot be read back on Vulkan yet"};
-    const bool is3d = t.desc.dimension == rhi::TextureDimension::Tex3D;
-    const rhi::Extent3D full = rhi::mip_extent(t.desc, mip);
     if (t.imported && !rhi::has_all(t.desc.usage, rhi::TextureUsage::CopySrc)) {
         return Error{ErrorCode::InvalidArgument, name + ": the application's image has no TRANSFER_SRC usage"};
     }
@@ -347,6 +343,50 @@ loom::Result<rhi::Image> VulkanDevice::read_texture(rhi::TextureHandle handle, u
         if (command_list_->inside_render_pass()) return Error{ErrorCode::InvalidState, name + " inside a render pass"};
         LOOM_TRY(split_frame());
     }
+    if (t.desc.samples > 1) return read_resolved(handle);
+    return read_subresource(t, mip, layer);
+}
+
+loom::Result<rhi::Image> VulkanDevice::read_resolved(rhi::TextureHandle handle) {
+    // Multisampled (colour, single mip and layer: the validation layer's rules) textures are
+    // resolved into a temporary single-sampled one first, as GL's read_texture does with a blit.
+    rhi::TextureDesc single = (*textures_.get(handle))->desc;
+    single.name += " (resolved for read_texture)";
+    single.samples = 1;
+    single.usage = rhi::TextureUsage::CopySrc | rhi::TextureUsage::CopyDst;
+    single.placement.reset();
+    auto made = create_texture(single);
+    if (!made.ok()) return made.take_error();
+    // Looked up after create_texture, which may move the pool's textures.
+    Texture& t = **textures_.get(handle);
+    Texture& resolved = **textures_.get(*made);
+    VkCommandBuffer cmd = setup_commands();
+    if (!cmd) {
+        (void)destroy(*made);
+        return Error{ErrorCode::Backend, "read_texture of texture " + in_quotes(t.desc.name) + ": cannot allocate a command buffer"};
+    }
+    const ResourceState before = tracked_state(t, t.subresource(0, 0), Stream::Setup);
+    BarrierBatch batch;
+    transition_texture(batch, t, 0, 1, 0, 1, ResourceState::CopySrc, Stream::Setup);
+    transition_texture(batch, resolved, 0, 1, 0, 1, ResourceState::CopyDst, Stream::Setup, true);
+    batch.flush(cmd);
+    VkImageResolve region{};
+    region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.extent = {t.desc.width, t.desc.height, 1};
+    vkCmdResolveImage(cmd, t.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, resolved.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                      &region);
+    if (before != ResourceState::Undefined) transition_texture(batch, t, 0, 1, 0, 1, before, Stream::Setup);
+    batch.flush(cmd);
+    auto image = read_subresource(resolved, 0, 0);
+    LOOM_TRY(destroy(*made));
+    return image;
+}
+
+loom::Result<rhi::Image> VulkanDevice::read_subresource(Texture& t, uint32_t mip, uint32_t layer) {
+    const std::string name = "read_texture of texture " + in_quotes(t.desc.name);
+    const bool is3d = t.desc.dimension == rhi::TextureDimension::Tex3D;
+    const rhi::Extent3D full = rhi::mip_extent(t.desc, mip);
     const std::size_t texels = std::size_t{full.width} * full.height;
     const CopyLayout layout = copy_layout(t.desc.format);
     const VkDeviceSize depth_size = VkDeviceSize{layout.depth_bytes} * texels;

@@ -69,66 +69,6 @@ std::string compute_pipeline_key(const rhi::ComputePipelineDesc& d) {
     return key;
 }
 
-loom::Status validate_graphics_pipeline(const VulkanContext& context, const rhi::Capabilities& caps,
-                                        const rhi::GraphicsPipelineDesc& d, const Shader& vertex, const Shader& fragment) {
-    const std::string pipe = "pipeline " + in_quotes(d.name);
-    if (vertex.module.stage != rhi::ShaderStage::Vertex) {
-        return Error{ErrorCode::InvalidArgument, pipe + ": vertex shader " + in_quotes(vertex.module.name) + " is not a vertex shader"};
-    }
-    if (fragment.module.stage != rhi::ShaderStage::Fragment) {
-        return Error{ErrorCode::InvalidArgument, pipe + ": fragment shader " + in_quotes(fragment.module.name) + " is not a fragment shader"};
-    }
-    if (d.color_formats.size() > caps.max_color_attachments) {
-        return Error{ErrorCode::Unsupported, pipe + ": " + std::to_string(d.color_formats.size()) + " colour attachments, the device has " +
-                                                 std::to_string(caps.max_color_attachments)};
-    }
-    for (std::size_t i = 0; i < d.color_formats.size(); ++i) {
-        const rhi::Format f = d.color_formats[i];
-        if (!rhi::format_info(f).is_color() || !caps.format(f).color_attachment) {
-            return Error{ErrorCode::InvalidArgument, pipe + ": color_formats[" + std::to_string(i) + "] " +
-                                                         std::string(rhi::format_name(f)) + " is not a renderable colour format"};
-        }
-        if (i < d.blend.size() && d.blend[i].enabled && !caps.format(f).blendable) {
-            return Error{ErrorCode::InvalidArgument, pipe + ": blend[" + std::to_string(i) + "] is enabled but " +
-                                                         std::string(rhi::format_name(f)) + " cannot be blended"};
-        }
-    }
-    if (d.blend.size() > d.color_formats.size()) {
-        return Error{ErrorCode::InvalidArgument, pipe + ": " + std::to_string(d.blend.size()) + " blend states for " +
-                                                     std::to_string(d.color_formats.size()) + " colour attachments"};
-    }
-    if (d.depth_format != rhi::Format::Undefined &&
-        (!rhi::format_info(d.depth_format).is_depth_stencil() || !caps.format(d.depth_format).depth_stencil_attachment)) {
-        return Error{ErrorCode::InvalidArgument, pipe + ": depth_format " + std::string(rhi::format_name(d.depth_format)) +
-                                                     " is not a supported depth/stencil format"};
-    }
-    if ((d.depth.test || d.depth.write) && d.depth_format == rhi::Format::Undefined) {
-        return Error{ErrorCode::InvalidArgument, pipe + ": depth test/write enabled without a depth_format"};
-    }
-    if (d.samples == 0 || (d.samples & (d.samples - 1)) != 0 || d.samples > 64) {
-        return Error{ErrorCode::InvalidArgument, pipe + ": samples " + std::to_string(d.samples) + " is not a power of two"};
-    }
-    if (d.raster.polygon == rhi::PolygonMode::Line && !context.fill_mode_non_solid()) {
-        return Error{ErrorCode::Unsupported, pipe + ": PolygonMode::Line needs fillModeNonSolid"};
-    }
-    if (d.raster.depth_clamp && !context.depth_clamp()) {
-        return Error{ErrorCode::Unsupported, pipe + ": depth_clamp needs the depthClamp feature"};
-    }
-    // Every vertex input of the shader must come from an attribute.
-    for (const rhi::StageVariable& input : vertex.module.reflection.inputs) {
-        bool found = false;
-        for (const auto& vb : d.vertex_buffers) {
-            for (const auto& a : vb.attributes) found = found || a.location == input.location;
-        }
-        if (!found) {
-            return Error{ErrorCode::InvalidArgument, pipe + ": vertex shader " + in_quotes(vertex.module.name) + " reads '" + input.name +
-                                                         "' at location " + std::to_string(input.location) +
-                                                         " but no vertex attribute provides it"};
-        }
-    }
-    return {};
-}
-
 loom::Result<VkPipeline> build_graphics_pipeline(const VulkanContext& context, VkPipelineCache cache,
                                                  const rhi::GraphicsPipelineDesc& d, const Shader& vertex,
                                                  const Shader& fragment, const PipelineLayout& layout) {

@@ -20,11 +20,6 @@ class VulkanContext;
 std::string graphics_pipeline_key(const rhi::GraphicsPipelineDesc& desc);
 std::string compute_pipeline_key(const rhi::ComputePipelineDesc& desc);
 
-/// Checks `desc` against the shaders and the device (InvalidArgument/ShaderLink/Unsupported
-/// naming the pipeline and the field).
-loom::Status validate_graphics_pipeline(const VulkanContext& context, const rhi::Capabilities& caps,
-                                        const rhi::GraphicsPipelineDesc& desc, const Shader& vertex, const Shader& fragment);
-
 loom::Result<VkPipeline> build_graphics_pipeline(const VulkanContext& context, VkPipelineCache cache,
                                                  const rhi::GraphicsPipelineDesc& desc, const Shader& vertex,
                                                  const Shader& fragment, const PipelineLayout& layout);

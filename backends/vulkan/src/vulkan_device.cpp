@@ -77,6 +77,8 @@ loom::Status VulkanDevice::init_device(const rhi::DeviceDesc& desc) {
     // Indirect draws whose instances start past 0 need drawIndirectFirstInstance.
     caps_.draw_indirect = context_->draw_indirect_first_instance();
     caps_.timestamps = context_->timestamp_valid_bits() > 0 && props.limits.timestampPeriod > 0.0f;
+    caps_.polygon_mode_line = context_->fill_mode_non_solid();
+    caps_.depth_clamp = context_->depth_clamp();
     caps_.max_texture_size = props.limits.maxImageDimension2D;
     caps_.max_texture_layers = props.limits.maxImageArrayLayers;
     caps_.max_texture_size_3d = props.limits.maxImageDimension3D;

@@ -12,6 +12,7 @@
 #include "descriptors.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/handle_pool.hpp"
+#include "loom/rhi/validation.hpp"
 #include "loom/vulkan/context.hpp"
 #include "loom/vulkan/memory_allocator.hpp"
 #include "loom/vulkan/resource_states.hpp"
@@ -145,6 +146,8 @@ private:
 
     // resources (device_resources.cpp)
     VkImageCreateInfo image_create_info(const rhi::TextureDesc& desc) const;
+    /// The shaders of this device as the validation layer sees them.
+    rhi::validation::ShaderLookup shader_lookup();
     loom::Result<rhi::TextureHandle> wrap_swapchain_image(VkImage image, VkFormat format, uint32_t width, uint32_t height,
                                                           uint32_t index);
     void release_texture(Texture& texture);
@@ -157,6 +160,10 @@ private:
     /// for requests larger than the ring, a temporary buffer destroyed after use.
     loom::Result<StagingRing::Span> staging(VkDeviceSize size);
     loom::Status flush_setup();
+    /// read_texture after its checks: copies one subresource out through staging.
+    loom::Result<rhi::Image> read_subresource(Texture& texture, uint32_t mip, uint32_t layer);
+    /// read_texture of a multisampled colour texture: resolves it into a temporary texture first.
+    loom::Result<rhi::Image> read_resolved(rhi::TextureHandle texture);
     loom::Status submit(std::span<const VkCommandBuffer> frame_commands, bool frame_part, VkSemaphore signal);
     void recycle_setup_buffers();
 

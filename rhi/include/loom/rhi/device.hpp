@@ -76,6 +76,10 @@ struct Capabilities {
     /// Textures can be placed at offsets inside heaps (memory aliasing); Vulkan yes, GL no.
     bool placed_resources = false;
     bool timestamps = false;
+    /// RasterState::polygon = PolygonMode::Line (GL always; Vulkan with fillModeNonSolid).
+    bool polygon_mode_line = false;
+    /// RasterState::depth_clamp (GL always; Vulkan with the depthClamp feature).
+    bool depth_clamp = false;
     /// CommandList::draw_indexed_indirect is implemented (both built-in backends). Where it is
     /// false, draw each DrawIndexedIndirectCommand with draw_indexed instead.
     bool draw_indirect = false;
@@ -265,7 +269,9 @@ public:
     /// `data` holds the region's rows top-first, tightly packed, in the texture's format.
     virtual Status write_texture(TextureHandle texture, const TextureRegion& region,
                                  std::span<const std::byte> data) = 0;
-    /// Reads one mip level / layer back (waits for the GPU). Rows top-first.
+    /// Reads one mip level / layer (a depth slice of a 3D texture) back, waiting for the GPU.
+    /// Rows top-first. A multisampled colour texture is resolved first (samples averaged, or one
+    /// sample taken for integer formats); a multisampled depth/stencil one is Unsupported.
     virtual Result<Image> read_texture(TextureHandle texture, uint32_t mip = 0, uint32_t layer = 0) = 0;
     /// Reads `size` bytes of a buffer from `offset` (waits for the GPU).
     virtual Result<std::vector<std::byte>> read_buffer(BufferHandle buffer, uint64_t offset, uint64_t size) = 0;

@@ -18,6 +18,7 @@
 #include "loom/rhi/descriptions.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/result.hpp"
+#include "loom/rhi/shader.hpp"
 
 namespace loom::rhi::validation {
 
@@ -56,6 +57,29 @@ struct TextureWrite {
 Result<TextureWrite> texture_write(const TextureDesc& texture, const TextureRegion& region, uint64_t data_size);
 /// Device::read_texture of mip `mip`, layer `layer` (depth slice on a 3D texture).
 Status texture_read(const TextureDesc& texture, uint32_t mip, uint32_t layer);
+
+// ---- pipelines -----------------------------------------------------------------------------
+
+/// What the validation layer needs of a shader the device holds.
+struct ShaderFacts {
+    std::string_view name;
+    ShaderStage stage = ShaderStage::Vertex;
+    const ShaderReflection* reflection = nullptr;
+};
+/// The facts of a shader by handle, on the device being validated; an InvalidHandle error
+/// (HandlePool's message) for a null, stale or foreign handle.
+using ShaderLookup = std::function<Result<ShaderFacts>(ShaderHandle)>;
+
+/// Device::create_graphics_pipeline: live vertex and fragment shaders of those stages; at least
+/// one attachment format; colour formats that are colour formats the device renders to (at most
+/// its colour attachments), a depth format it renders depth to; at most one blend state per
+/// colour format, enabled only where the format blends; a depth test or write only with a depth
+/// format; a sample count every format has; at most kMaxVertexBuffers vertex buffers, no
+/// attribute location twice, every vertex input fed; line polygons and depth clamping only where
+/// the device has them.
+Status graphics_pipeline(const GraphicsPipelineDesc& desc, const Capabilities& caps, const ShaderLookup& lookup);
+/// Device::create_compute_pipeline: a live compute shader.
+Status compute_pipeline(const ComputePipelineDesc& desc, const ShaderLookup& lookup);
 
 // ---- commands ------------------------------------------------------------------------------
 // What a CommandList checks before it records a command (the first error of a frame comes
