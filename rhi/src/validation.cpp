@@ -545,4 +545,54 @@ Status vertex_buffer_slot(uint32_t slot) {
     return {};
 }
 
+Status vertex_buffer(uint32_t slot, const BufferDesc& buffer, uint64_t offset) {
+    const std::string what = "set_vertex_buffer: slot " + std::to_string(slot) + ": buffer " + in_quotes(buffer.name);
+    if (!has_all(buffer.usage, BufferUsage::Vertex)) return Error{ErrorCode::InvalidArgument, what + " lacks usage Vertex"};
+    if (offset >= buffer.size) {
+        return Error{ErrorCode::InvalidArgument, what + ": offset " + std::to_string(offset) + " is not inside its " +
+                                                     std::to_string(buffer.size) + " bytes"};
+    }
+    return {};
+}
+
+Status index_buffer(const BufferDesc& buffer, IndexType type, uint64_t offset) {
+    const std::string what = "set_index_buffer: buffer " + in_quotes(buffer.name);
+    if (!has_all(buffer.usage, BufferUsage::Index)) return Error{ErrorCode::InvalidArgument, what + " lacks usage Index"};
+    const uint64_t index_bytes = type == IndexType::Uint16 ? 2 : 4;
+    if (offset >= buffer.size || offset % index_bytes != 0) {
+        return Error{ErrorCode::InvalidArgument, what + ": offset " + std::to_string(offset) + " is not inside its " +
+                                                     std::to_string(buffer.size) + " bytes or not a multiple of the index size " +
+                                                     std::to_string(index_bytes)};
+    }
+    return {};
+}
+
+Status index_range(const BufferDesc& buffer, IndexType type, uint64_t offset, uint32_t first_index, uint32_t index_count) {
+    const uint64_t index_bytes = type == IndexType::Uint16 ? 2 : 4;
+    const auto start = checked::add<uint64_t>(offset, uint64_t{first_index} * index_bytes);
+    if (!start || !checked::range_fits(*start, uint64_t{index_count} * index_bytes, buffer.size)) {
+        return Error{ErrorCode::InvalidArgument, "draw_indexed: " + std::to_string(index_count) + " indices from index " +
+                                                     std::to_string(first_index) + " run past the end of index buffer " +
+                                                     in_quotes(buffer.name) + " (" + std::to_string(buffer.size) + " bytes from offset " +
+                                                     std::to_string(offset) + ")"};
+    }
+    return {};
+}
+
+Status indirect_draws(const BufferDesc& buffer, uint64_t offset, uint32_t draw_count, uint32_t stride) {
+    const std::string what = "draw_indexed_indirect: buffer " + in_quotes(buffer.name);
+    constexpr uint64_t kCommandBytes = sizeof(DrawIndexedIndirectCommand);
+    if (!has_all(buffer.usage, BufferUsage::Indirect)) return Error{ErrorCode::InvalidArgument, what + " lacks usage Indirect"};
+    if (offset % 4 != 0 || stride % 4 != 0 || stride < kCommandBytes) {
+        return Error{ErrorCode::InvalidArgument, what + ": offset " + std::to_string(offset) + " and stride " + std::to_string(stride) +
+                                                     " must be multiples of 4, the stride at least " + std::to_string(kCommandBytes)};
+    }
+    // At most (2^32 - 1)^2 + kCommandBytes bytes: the span itself cannot overflow; offset + span can.
+    if (draw_count > 0 && !checked::range_fits(offset, uint64_t{draw_count - 1} * stride + kCommandBytes, buffer.size)) {
+        return Error{ErrorCode::InvalidArgument, what + ": " + count_of(draw_count, "command") + " from offset " + std::to_string(offset) +
+                                                     " run past its end (" + std::to_string(buffer.size) + " bytes)"};
+    }
+    return {};
+}
+
 }  // namespace loom::rhi::validation

@@ -71,10 +71,12 @@ Status with_texture(rhi::Device& device, const rhi::TextureDesc& desc, const std
     return status;
 }
 
-Status with_buffer(rhi::Device& device, uint64_t size, const std::function<Status(rhi::BufferHandle)>& use) {
+Status with_buffer(rhi::Device& device, uint64_t size, const std::function<Status(rhi::BufferHandle)>& use,
+                   rhi::BufferUsage usage = rhi::BufferUsage::Vertex) {
     rhi::BufferDesc desc;
     desc.name = "b";
     desc.size = size;
+    desc.usage = usage;
     auto made = device.create_buffer(desc);
     if (!made.ok()) return Error{ErrorCode::Backend, "setup: " + made.error().to_string()};
     Status status = use(*made);
@@ -431,6 +433,54 @@ std::vector<Row> table() {
     add("copy_texture onto itself", with_textures({target("a")}, copy({}, {}, 0)),
         invalid("copy_texture from 'a' to 'a': source and destination are one subresource (mip 0, layer 0)"));
 
+    // Records `record` with buffer 'b' (16 bytes of `usage`).
+    auto with_b = [](rhi::BufferUsage usage, std::function<void(rhi::CommandList&, rhi::BufferHandle)> record) {
+        return [usage, record](rhi::Device& d) {
+            return with_buffer(d, 16, [&](rhi::BufferHandle b) { return run_frame(d, [&](rhi::CommandList& list) { record(list, b); }); }, usage);
+        };
+    };
+    add("vertex buffer handle", frame([](rhi::Device&, rhi::CommandList& list) { list.set_vertex_buffer(0, {}); }),
+        expect({ErrorCode::InvalidHandle, "set_vertex_buffer: buffer handle is null"}));
+    add("vertex buffer usage", with_b(rhi::BufferUsage::Index, [](rhi::CommandList& list, rhi::BufferHandle b) { list.set_vertex_buffer(0, b); }),
+        invalid("set_vertex_buffer: slot 0: buffer 'b' lacks usage Vertex"));
+    add("vertex buffer offset", with_b(rhi::BufferUsage::Vertex, [](rhi::CommandList& list, rhi::BufferHandle b) { list.set_vertex_buffer(2, b, 16); }),
+        invalid("set_vertex_buffer: slot 2: buffer 'b': offset 16 is not inside its 16 bytes"));
+    add("index buffer usage", with_b(rhi::BufferUsage::Vertex, [](rhi::CommandList& list, rhi::BufferHandle b) { list.set_index_buffer(b, rhi::IndexType::Uint16); }),
+        invalid("set_index_buffer: buffer 'b' lacks usage Index"));
+    add("index buffer offset", with_b(rhi::BufferUsage::Index, [](rhi::CommandList& list, rhi::BufferHandle b) { list.set_index_buffer(b, rhi::IndexType::Uint16, 3); }),
+        invalid("set_index_buffer: buffer 'b': offset 3 is not inside its 16 bytes or not a multiple of the index size 2"));
+    add("indirect usage", with_b(rhi::BufferUsage::Vertex, [](rhi::CommandList& list, rhi::BufferHandle b) { list.draw_indexed_indirect(b, 0, 1); }),
+        invalid("draw_indexed_indirect: buffer 'b' lacks usage Indirect"));
+    add("indirect stride", with_b(rhi::BufferUsage::Indirect, [](rhi::CommandList& list, rhi::BufferHandle b) { list.draw_indexed_indirect(b, 0, 1, 8); }),
+        invalid("draw_indexed_indirect: buffer 'b': offset 0 and stride 8 must be multiples of 4, the stride at least 20"));
+    add("indirect range", [](rhi::Device& d) {
+            return with_buffer(d, 32, [&](rhi::BufferHandle b) {
+                return run_frame(d, [&](rhi::CommandList& list) { list.draw_indexed_indirect(b, 4, 2); });
+            }, rhi::BufferUsage::Indirect);
+        },
+        invalid("draw_indexed_indirect: buffer 'b': 2 commands from offset 4 run past its end (32 bytes)"));
+    add("index range of a draw", [](rhi::Device& d) -> Status {
+            auto color = make_target(d, "t", Format::RGBA8Unorm, 4, 4);
+            auto solid = make_solid_pipeline(d, Format::RGBA8Unorm);
+            auto vertices = make_buffer_of(d, "v", rhi::BufferUsage::Vertex, std::vector<float>(9, 0.0f));
+            auto indices = make_buffer_of(d, "i", rhi::BufferUsage::Index, std::vector<uint16_t>{0, 1, 2, 0});
+            if (!color.ok() || !solid.ok() || !vertices.ok() || !indices.ok()) return Error{ErrorCode::Backend, "setup"};
+            Status status = run_frame(d, [&](rhi::CommandList& list) {
+                list.begin_render_pass(clear_pass("p", *color, {0, 0, 0, 1}));
+                list.set_pipeline(*solid);
+                list.set_vertex_buffer(0, *vertices);
+                list.set_index_buffer(*indices, rhi::IndexType::Uint16, 2);
+                list.push_constants_of(std::array<float, 4>{1, 1, 1, 1});
+                list.draw_indexed(3, 1, 1);
+                list.end_render_pass();
+            });
+            LOOM_TRY(d.destroy(*solid));
+            LOOM_TRY(d.destroy(*vertices));
+            LOOM_TRY(d.destroy(*indices));
+            LOOM_TRY(d.destroy(*color));
+            return status;
+        },
+        invalid("draw_indexed: 3 indices from index 1 run past the end of index buffer 'i' (8 bytes from offset 2)"));
     add("viewport without area", frame([](rhi::Device&, rhi::CommandList& list) { list.set_viewport({0, 0, 0, 4, 0, 1}); }),
         invalid("set_viewport: 0x4 at (0,0) with depths 0..1: the size must be positive and the depths within 0..1"));
     add("viewport depth", frame([](rhi::Device&, rhi::CommandList& list) { list.set_viewport({0, 0, 4, 4, 0, 2}); }),
@@ -464,7 +514,7 @@ TEST_P(MisuseTable, EveryRuleGivesOneCodeAndMessageOnEveryBackend) {
         ++checked;
     }
     // Rows skipped for a capability are few; most rules are checked on every device.
-    EXPECT_GE(checked, 85);
+    EXPECT_GE(checked, 95);
     // The device is still usable after every refusal.
     LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "after", Format::RGBA8Unorm, 4, 4));
     LOOM_ASSERT_OK(device().destroy(target));

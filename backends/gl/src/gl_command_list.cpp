@@ -324,10 +324,20 @@ void GlCommandList::push_constants(std::span<const std::byte> data, uint32_t off
 
 void GlCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, uint64_t offset) {
     if (Status valid = rhi::validation::vertex_buffer_slot(slot); !valid) return fail(valid.error().code, valid.error().message);
+    auto found = device_->buffers().get(buffer);
+    if (!found.ok()) return fail(ErrorCode::InvalidHandle, "set_vertex_buffer: " + found.error().message);
+    if (Status valid = rhi::validation::vertex_buffer(slot, (*found)->desc, offset); !valid) {
+        return fail(valid.error().code, valid.error().message);
+    }
     vertex_buffers_[slot] = {buffer, offset};
 }
 
 void GlCommandList::set_index_buffer(rhi::BufferHandle buffer, rhi::IndexType type, uint64_t offset) {
+    auto found = device_->buffers().get(buffer);
+    if (!found.ok()) return fail(ErrorCode::InvalidHandle, "set_index_buffer: " + found.error().message);
+    if (Status valid = rhi::validation::index_buffer((*found)->desc, type, offset); !valid) {
+        return fail(valid.error().code, valid.error().message);
+    }
     index_buffer_ = {buffer, type, offset};
 }
 
@@ -508,27 +518,10 @@ void GlCommandList::draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t off
                                           uint32_t stride) {
     const char* command = "draw_indexed_indirect";
     auto found = device_->buffers().get(buffer);
-    if (!found.ok()) {
-        fail(ErrorCode::InvalidHandle, where(command) + "argument buffer: " + found.error().message);
-        return;
-    }
+    if (!found.ok()) return fail(ErrorCode::InvalidHandle, std::string(command) + ": argument buffer: " + found.error().message);
     const GlBuffer& b = **found;
-    constexpr uint64_t kCommandBytes = sizeof(rhi::DrawIndexedIndirectCommand);
-    if (!rhi::has_all(b.desc.usage, rhi::BufferUsage::Indirect)) {
-        fail(ErrorCode::InvalidArgument, where(command) + "buffer " + in_quotes(b.desc.name) + " lacks Indirect usage");
-        return;
-    }
-    if (offset % 4 != 0 || stride % 4 != 0 || stride < kCommandBytes) {
-        fail(ErrorCode::InvalidArgument, where(command) + "offset " + std::to_string(offset) + " and stride " +
-                                             std::to_string(stride) + " must be multiples of 4, the stride at least " +
-                                             std::to_string(kCommandBytes));
-        return;
-    }
-    // At most (2^32 - 1)^2 + kCommandBytes bytes: the span itself cannot overflow; offset + span can.
-    if (draw_count > 0 && !checked::range_fits(offset, uint64_t{draw_count - 1} * stride + kCommandBytes, b.desc.size)) {
-        fail(ErrorCode::InvalidArgument, where(command) + std::to_string(draw_count) + " commands from offset " +
-                                             std::to_string(offset) + " run past the end of buffer " + in_quotes(b.desc.name));
-        return;
+    if (Status valid = rhi::validation::indirect_draws(b.desc, offset, draw_count, stride); !valid) {
+        return fail(valid.error().code, valid.error().message);
     }
     if (index_buffer_.offset != 0) {
         // GL's indirect draws count first_index from the start of the element buffer.
@@ -590,15 +583,13 @@ void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_
         index_buffer = (*buffer)->name;
         index_type = u16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
         const uint64_t index_bytes = u16 ? 2 : 4;
-        const auto start = checked::add<uint64_t>(index_buffer_.offset, uint64_t{first} * index_bytes);
         // Indirect draws' index ranges are in GPU memory: the GPU checks them.
-        if (!start || (!indirect && !checked::range_fits(*start, uint64_t{count} * index_bytes, (*buffer)->desc.size))) {
-            fail(ErrorCode::InvalidArgument, where(command) + std::to_string(count) + " indices from index " +
-                                                 std::to_string(first) + " run past the end of index buffer " +
-                                                 in_quotes((*buffer)->desc.name));
-            return;
+        if (!indirect) {
+            Status valid = rhi::validation::index_range((*buffer)->desc, index_buffer_.type, index_buffer_.offset, first, count);
+            if (!valid) return fail(valid.error().code, valid.error().message);
         }
-        index_offset = static_cast<uintptr_t>(*start);
+        // Inside the buffer (checked above; indirect draws start at index 0).
+        index_offset = static_cast<uintptr_t>(index_buffer_.offset + uint64_t{first} * index_bytes);
     }
     const GLuint program = p->program, vao = p->vao;
     const GLenum topology = p->topology;

@@ -304,8 +304,8 @@ void VulkanCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle handl
     if (Status valid = rhi::validation::vertex_buffer_slot(slot); !valid) return fail(valid.error().code, valid.error().message);
     auto buffer = device_.buffers().get(handle);
     if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, "set_vertex_buffer: " + buffer.error().message);
-    if (!rhi::has_all((*buffer)->desc.usage, rhi::BufferUsage::Vertex)) {
-        return fail(ErrorCode::InvalidArgument, "set_vertex_buffer: buffer " + in_quotes((*buffer)->desc.name) + " lacks Vertex usage");
+    if (Status valid = rhi::validation::vertex_buffer(slot, (*buffer)->desc, offset); !valid) {
+        return fail(valid.error().code, valid.error().message);
     }
     VkDeviceSize o = offset;
     vkCmdBindVertexBuffers(cmd_, slot, 1, &(*buffer)->buffer, &o);
@@ -317,16 +317,8 @@ void VulkanCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle handl
 void VulkanCommandList::set_index_buffer(rhi::BufferHandle handle, rhi::IndexType type, uint64_t offset) {
     auto buffer = device_.buffers().get(handle);
     if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, "set_index_buffer: " + buffer.error().message);
-    if (!rhi::has_all((*buffer)->desc.usage, rhi::BufferUsage::Index)) {
-        return fail(ErrorCode::InvalidArgument, "set_index_buffer: buffer " + in_quotes((*buffer)->desc.name) + " lacks Index usage");
-    }
-    // Vulkan requires the offset inside the buffer and a multiple of the index size.
-    const uint64_t index_bytes = type == rhi::IndexType::Uint16 ? 2 : 4;
-    if (offset >= (*buffer)->desc.size || offset % index_bytes != 0) {
-        return fail(ErrorCode::InvalidArgument, "set_index_buffer: offset " + std::to_string(offset) + " of buffer " +
-                                                    in_quotes((*buffer)->desc.name) + " (" + std::to_string((*buffer)->desc.size) +
-                                                    " bytes) is past its end or not a multiple of the index size " +
-                                                    std::to_string(index_bytes));
+    if (Status valid = rhi::validation::index_buffer((*buffer)->desc, type, offset); !valid) {
+        return fail(valid.error().code, valid.error().message);
     }
     vkCmdBindIndexBuffer(cmd_, (*buffer)->buffer, offset, to_vk(type));
     index_buffer_ = handle;
@@ -567,14 +559,9 @@ void VulkanCommandList::draw_indexed(uint32_t index_count, uint32_t instance_cou
         fail(ErrorCode::InvalidState, "draw_indexed without a (live) index buffer");
         return;
     }
-    // The GPU would read past the buffer (undefined without robustness features): refuse, as GL does.
-    const uint64_t index_bytes = index_type_ == rhi::IndexType::Uint16 ? 2 : 4;
-    const auto start = checked::add<uint64_t>(index_offset_, uint64_t{first_index} * index_bytes);
-    if (!start || !checked::range_fits(*start, uint64_t{index_count} * index_bytes, indices->desc.size)) {
-        fail(ErrorCode::InvalidArgument, "draw_indexed: " + std::to_string(index_count) + " indices from index " +
-                                             std::to_string(first_index) + " run past the end of index buffer " +
-                                             in_quotes(indices->desc.name));
-        return;
+    // The GPU would read past the buffer (undefined without robustness features): refuse.
+    if (Status valid = rhi::validation::index_range(indices->desc, index_type_, index_offset_, first_index, index_count); !valid) {
+        return fail(valid.error().code, valid.error().message);
     }
     vkCmdDrawIndexed(cmd_, index_count, instance_count, first_index, base_vertex, first_instance);
     ++stats_.draw_calls;
@@ -587,19 +574,8 @@ void VulkanCommandList::draw_indexed_indirect(rhi::BufferHandle handle, uint64_t
     auto buffer = device_.buffers().get(handle);
     if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, std::string(what) + ": argument buffer: " + buffer.error().message);
     const Buffer& b = **buffer;
-    constexpr uint64_t kCommandBytes = sizeof(rhi::DrawIndexedIndirectCommand);
-    if (!rhi::has_all(b.desc.usage, rhi::BufferUsage::Indirect)) {
-        return fail(ErrorCode::InvalidArgument, std::string(what) + ": buffer " + in_quotes(b.desc.name) + " lacks Indirect usage");
-    }
-    if (offset % 4 != 0 || stride % 4 != 0 || stride < kCommandBytes) {
-        return fail(ErrorCode::InvalidArgument, std::string(what) + ": offset " + std::to_string(offset) + " and stride " +
-                                                    std::to_string(stride) + " must be multiples of 4, the stride at least " +
-                                                    std::to_string(kCommandBytes));
-    }
-    // At most (2^32 - 1)^2 + kCommandBytes bytes: the span itself cannot overflow; offset + span can.
-    if (draw_count > 0 && !checked::range_fits(offset, uint64_t{draw_count - 1} * stride + kCommandBytes, b.desc.size)) {
-        return fail(ErrorCode::InvalidArgument, std::string(what) + ": " + std::to_string(draw_count) + " commands from offset " +
-                                                    std::to_string(offset) + " run past the end of buffer " + in_quotes(b.desc.name));
+    if (Status valid = rhi::validation::indirect_draws(b.desc, offset, draw_count, stride); !valid) {
+        return fail(valid.error().code, valid.error().message);
     }
     if (!prepare_draw(what)) return;
     if (!device_.buffers().find(index_buffer_)) return fail(ErrorCode::InvalidState, std::string(what) + " without a (live) index buffer");

@@ -130,5 +130,17 @@ Status push_constants(uint64_t offset, uint64_t size);
 Status bind_group(uint32_t set, const BindGroup& group);
 /// CommandList::set_vertex_buffer: the slot is below kMaxVertexBuffers.
 Status vertex_buffer_slot(uint32_t slot);
+/// CommandList::set_vertex_buffer with `buffer` (after vertex_buffer_slot): Vertex usage and
+/// the offset inside it.
+Status vertex_buffer(uint32_t slot, const BufferDesc& buffer, uint64_t offset);
+/// CommandList::set_index_buffer: Index usage; the offset inside the buffer and a multiple of
+/// the index size.
+Status index_buffer(const BufferDesc& buffer, IndexType type, uint64_t offset);
+/// CommandList::draw_indexed: `index_count` indices from `first_index` lie inside the index
+/// buffer bound at `offset`.
+Status index_range(const BufferDesc& buffer, IndexType type, uint64_t offset, uint32_t first_index, uint32_t index_count);
+/// CommandList::draw_indexed_indirect: Indirect usage; offset and stride multiples of 4, the
+/// stride at least one DrawIndexedIndirectCommand; every command inside the buffer.
+Status indirect_draws(const BufferDesc& buffer, uint64_t offset, uint32_t draw_count, uint32_t stride);
 
 }  // namespace loom::rhi::validation
