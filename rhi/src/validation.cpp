@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <variant>
 #include <vector>
 
 #include "loom/rhi/checked_math.hpp"
@@ -501,6 +502,107 @@ Status buffer_copy(const BufferDesc& src, uint64_t src_offset, const BufferDesc&
                                                      " overlap (" + std::to_string(size) + " bytes each)"};
     }
     return {};
+}
+
+namespace {
+
+std::string_view binding_kind_name(BindingKind kind) {
+    switch (kind) {
+        case BindingKind::UniformBuffer: return "a uniform buffer";
+        case BindingKind::StorageBuffer: return "a storage buffer";
+        case BindingKind::SampledTexture: return "a sampled texture";
+        case BindingKind::StorageImage: return "a storage image";
+    }
+    return "?";
+}
+
+std::string_view entry_kind_name(const BindingEntry& entry) {
+    if (std::holds_alternative<BufferBinding>(entry.resource)) return "a buffer";
+    if (std::holds_alternative<TextureBinding>(entry.resource)) return "a sampled texture";
+    return "a storage image";
+}
+
+std::string slot_site(std::string_view command, std::string_view pipeline, const PipelineSlot& slot) {
+    return std::string(command) + ": pipeline " + in_quotes(pipeline) + " set " + std::to_string(slot.set) + " binding " +
+           std::to_string(slot.binding) + " (" + in_quotes(slot.name) + ")";
+}
+
+}  // namespace
+
+Result<const BindingEntry*> binding(std::string_view command, std::string_view pipeline, const PipelineSlot& slot, const BindGroup* group,
+                                    const Capabilities& caps, const ResourceLookup& lookup) {
+    const std::string site = slot_site(command, pipeline, slot);
+    const BindingEntry* entry = nullptr;
+    if (group) {
+        for (const BindingEntry& e : group->entries) {
+            if (e.binding == slot.binding) entry = &e;
+        }
+    }
+    if (!entry) return Error{ErrorCode::InvalidState, site + " is not bound"};
+    auto wrong_kind = [&] {
+        return Error{ErrorCode::InvalidArgument, site + " is " + std::string(binding_kind_name(slot.kind)) + " but the bind group has " +
+                                                     std::string(entry_kind_name(*entry)) + " there"};
+    };
+    auto handle_error = [&](Error e) {
+        e.message = site + ": " + e.message;
+        return e;
+    };
+    switch (slot.kind) {
+        case BindingKind::UniformBuffer:
+        case BindingKind::StorageBuffer: {
+            const auto* range = std::get_if<BufferBinding>(&entry->resource);
+            if (!range) return wrong_kind();
+            auto found = lookup.buffer(range->buffer);
+            if (!found.ok()) return handle_error(found.take_error());
+            const BufferDesc& b = **found;
+            const bool uniform = slot.kind == BindingKind::UniformBuffer;
+            if (!has_all(b.usage, uniform ? BufferUsage::Uniform : BufferUsage::Storage)) {
+                return Error{ErrorCode::InvalidArgument, site + ": buffer " + in_quotes(b.name) + " lacks usage " + (uniform ? "Uniform" : "Storage")};
+            }
+            const uint64_t alignment = std::max<uint64_t>(1, uniform ? caps.uniform_buffer_offset_alignment : caps.storage_buffer_offset_alignment);
+            const uint64_t size = range->size ? range->size : (b.size > range->offset ? b.size - range->offset : 0);
+            if (range->offset % alignment != 0 || size == 0 || !checked::range_fits(range->offset, size, b.size)) {
+                return Error{ErrorCode::InvalidArgument, site + ": " + std::to_string(size) + " bytes at offset " + std::to_string(range->offset) +
+                                                             " of buffer " + in_quotes(b.name) + " (" + std::to_string(b.size) +
+                                                             " bytes) are empty, outside it or not aligned to " + std::to_string(alignment)};
+            }
+            return entry;
+        }
+        case BindingKind::SampledTexture: {
+            const auto* tb = std::get_if<TextureBinding>(&entry->resource);
+            if (!tb) return wrong_kind();
+            auto texture = lookup.texture(tb->texture);
+            if (!texture.ok()) return handle_error(texture.take_error());
+            auto sampler = lookup.sampler(tb->sampler);
+            if (!sampler.ok()) return handle_error(sampler.take_error());
+            if (!has_all((*texture)->usage, TextureUsage::Sampled)) {
+                return Error{ErrorCode::InvalidArgument, site + ": texture " + in_quotes((*texture)->name) + " lacks usage Sampled"};
+            }
+            return entry;
+        }
+        case BindingKind::StorageImage: {
+            const auto* sb = std::get_if<StorageTextureBinding>(&entry->resource);
+            if (!sb) return wrong_kind();
+            auto texture = lookup.texture(sb->texture);
+            if (!texture.ok()) return handle_error(texture.take_error());
+            const TextureDesc& t = **texture;
+            if (!has_all(t.usage, TextureUsage::Storage)) {
+                return Error{ErrorCode::InvalidArgument, site + ": texture " + in_quotes(t.name) + " lacks usage Storage"};
+            }
+            if (sb->mip >= t.mip_levels) {
+                return Error{ErrorCode::InvalidArgument, site + ": mip " + std::to_string(sb->mip) + " of texture " + in_quotes(t.name) +
+                                                             " does not exist (" + count_of(t.mip_levels, "level") + ")"};
+            }
+            return entry;
+        }
+    }
+    return entry;
+}
+
+Error state_for_binding(std::string_view command, std::string_view pipeline, const PipelineSlot& slot, std::string_view texture,
+                        std::string_view state_name, std::string_view needed) {
+    return Error{ErrorCode::InvalidState, slot_site(command, pipeline, slot) + ": texture " + in_quotes(texture) + " is in state " +
+                                              std::string(state_name) + "; transition it to " + std::string(needed) + " first"};
 }
 
 Status viewport(const Viewport& v) {

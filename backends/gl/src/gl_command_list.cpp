@@ -352,113 +352,62 @@ rhi::BufferBinding GlCommandList::transient_uniforms(std::span<const std::byte> 
 // ---- bindings --------------------------------------------------------------------------------
 
 bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view command, std::vector<ResolvedBinding>& out) {
-    const std::string prefix = where(command) + "pipeline " + in_quotes(p.name) + ": ";
+    // Every binding is checked before any state, as on Vulkan.
+    const rhi::validation::ResourceLookup lookup = device_->resource_lookup();
+    std::vector<const rhi::BindingEntry*> entries;
     for (const PipelineBinding& b : p.bindings) {
-        const std::string slot = "set " + std::to_string(b.set) + " binding " + std::to_string(b.binding) + " (" + in_quotes(b.name) + ")";
-        const rhi::BindingEntry* entry = nullptr;
-        if (groups_[b.set]) {
-            for (const rhi::BindingEntry& e : groups_[b.set]->entries) {
-                if (e.binding == b.binding) entry = &e;
-            }
-        }
-        if (!entry) {
-            fail(ErrorCode::InvalidState, prefix + slot + " is not bound");
+        const rhi::validation::PipelineSlot slot{b.set, b.binding, b.kind, b.name};
+        const rhi::BindGroup* group = groups_[b.set] ? &*groups_[b.set] : nullptr;
+        auto entry = rhi::validation::binding(command, p.name, slot, group, device_->capabilities(), lookup);
+        if (!entry.ok()) {
+            fail(entry.error().code, entry.error().message);
             return false;
         }
+        entries.push_back(*entry);
+    }
+    for (std::size_t n = 0; n < p.bindings.size(); ++n) {
+        const PipelineBinding& b = p.bindings[n];
+        const rhi::validation::PipelineSlot slot{b.set, b.binding, b.kind, b.name};
+        const rhi::BindingEntry* entry = entries[n];
+        // The handles were found by the validation above.
         ResolvedBinding r;
         r.kind = b.kind;
         r.point = rhi::gl_binding_point(b.set, b.binding);
         switch (b.kind) {
             case BindingKind::UniformBuffer:
             case BindingKind::StorageBuffer: {
-                const auto* range = std::get_if<rhi::BufferBinding>(&entry->resource);
-                if (!range) {
-                    fail(ErrorCode::InvalidArgument, prefix + slot + " is a buffer but a texture is bound there");
-                    return false;
-                }
-                auto buffer = device_->buffers().get(range->buffer);
-                if (!buffer.ok()) {
-                    fail(ErrorCode::InvalidHandle, prefix + slot + ": " + buffer.error().message);
-                    return false;
-                }
-                const GlBuffer& buf = **buffer;
-                const bool uniform = b.kind == BindingKind::UniformBuffer;
-                const uint64_t alignment = uniform ? device_->capabilities().uniform_buffer_offset_alignment
-                                                   : device_->capabilities().storage_buffer_offset_alignment;
-                const uint64_t size = range->size ? range->size : buf.desc.size - std::min(buf.desc.size, range->offset);
-                if (range->offset % alignment != 0 || !checked::range_fits(range->offset, size, buf.desc.size) || size == 0) {
-                    fail(ErrorCode::InvalidArgument, prefix + slot + ": range " + std::to_string(range->offset) + "+" +
-                                                         std::to_string(size) + " of buffer " + in_quotes(buf.desc.name) +
-                                                         " is out of bounds or not aligned to " + std::to_string(alignment));
-                    return false;
-                }
+                const auto& range = std::get<rhi::BufferBinding>(entry->resource);
+                const GlBuffer& buf = **device_->buffers().get(range.buffer);
                 r.object = buf.name;
-                r.offset = static_cast<GLintptr>(range->offset);
-                r.size = static_cast<GLsizeiptr>(size);
+                r.offset = static_cast<GLintptr>(range.offset);
+                r.size = static_cast<GLsizeiptr>(range.size ? range.size : buf.desc.size - range.offset);
                 break;
             }
             case BindingKind::SampledTexture: {
-                const auto* tb = std::get_if<rhi::TextureBinding>(&entry->resource);
-                if (!tb) {
-                    fail(ErrorCode::InvalidArgument, prefix + slot + " is a sampled texture but something else is bound there");
-                    return false;
-                }
-                auto texture = device_->textures().get(tb->texture);
-                if (!texture.ok()) {
-                    fail(ErrorCode::InvalidHandle, prefix + slot + ": " + texture.error().message);
-                    return false;
-                }
-                auto sampler = device_->samplers().get(tb->sampler);
-                if (!sampler.ok()) {
-                    fail(ErrorCode::InvalidHandle, prefix + slot + ": " + sampler.error().message);
-                    return false;
-                }
-                const GlTexture& t = **texture;
+                const auto& tb = std::get<rhi::TextureBinding>(entry->resource);
+                const GlTexture& t = **device_->textures().get(tb.texture);
                 const bool depth = rhi::format_info(t.desc.format).is_depth_stencil();
-                const bool readable = t.state == ResourceState::ShaderRead || (depth && t.state == ResourceState::DepthRead);
-                if (!readable) {
+                if (t.state != ResourceState::ShaderRead && !(depth && t.state == ResourceState::DepthRead)) {
                     // Parity with Vulkan, where sampling needs the shader-read layout.
-                    fail(ErrorCode::InvalidState, prefix + "texture " + in_quotes(t.desc.name) + " sampled at " + slot +
-                                                      " is in state " + std::string(state_name(t.state)) +
-                                                      "; transition it to ShaderRead first");
-                    return false;
-                }
-                if (!rhi::has_any(t.desc.usage, rhi::TextureUsage::Sampled)) {
-                    fail(ErrorCode::InvalidArgument, prefix + "texture " + in_quotes(t.desc.name) + " lacks usage Sampled");
+                    Error e = rhi::validation::state_for_binding(command, p.name, slot, t.desc.name, state_name(t.state),
+                                                                 depth ? "DepthRead or ShaderRead" : "ShaderRead");
+                    fail(e.code, e.message);
                     return false;
                 }
                 r.object = t.name;
-                r.sampler = (*sampler)->name;
+                r.sampler = (*device_->samplers().get(tb.sampler))->name;
                 break;
             }
             case BindingKind::StorageImage: {
-                const auto* sb = std::get_if<rhi::StorageTextureBinding>(&entry->resource);
-                if (!sb) {
-                    fail(ErrorCode::InvalidArgument, prefix + slot + " is a storage image but something else is bound there");
-                    return false;
-                }
-                auto texture = device_->textures().get(sb->texture);
-                if (!texture.ok()) {
-                    fail(ErrorCode::InvalidHandle, prefix + slot + ": " + texture.error().message);
-                    return false;
-                }
-                const GlTexture& t = **texture;
-                if (!rhi::has_any(t.desc.usage, rhi::TextureUsage::Storage)) {
-                    fail(ErrorCode::InvalidArgument, prefix + "texture " + in_quotes(t.desc.name) + " lacks usage Storage");
-                    return false;
-                }
+                const auto& sb = std::get<rhi::StorageTextureBinding>(entry->resource);
+                const GlTexture& t = **device_->textures().get(sb.texture);
                 if (t.state != ResourceState::Storage) {
-                    fail(ErrorCode::InvalidState, prefix + "storage texture " + in_quotes(t.desc.name) + " at " + slot +
-                                                      " is in state " + std::string(state_name(t.state)) +
-                                                      "; transition it to Storage first");
-                    return false;
-                }
-                if (sb->mip >= t.desc.mip_levels) {
-                    fail(ErrorCode::InvalidArgument, prefix + slot + ": mip " + std::to_string(sb->mip) + " out of range");
+                    Error e = rhi::validation::state_for_binding(command, p.name, slot, t.desc.name, state_name(t.state), "Storage");
+                    fail(e.code, e.message);
                     return false;
                 }
                 r.object = t.name;
-                r.level = static_cast<GLint>(sb->mip);
+                r.level = static_cast<GLint>(sb.mip);
                 r.layered = t.target != GL_TEXTURE_2D;
                 r.access = b.image_access;
                 r.format = t.format->internal_format;

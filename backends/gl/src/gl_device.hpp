@@ -207,6 +207,8 @@ public:
     [[nodiscard]] GlAppStateScope app_state_scope() { return GlAppStateScope(app_state_.get(), *cache_); }
 
     // -- used by GlCommandList ----------------------------------------------------------
+    /// The buffers, textures and samplers of this device as the validation layer sees them.
+    rhi::validation::ResourceLookup resource_lookup();
     rhi::HandlePool<rhi::TextureTag, GlTexture>& textures() { return textures_; }
     rhi::HandlePool<rhi::BufferTag, GlBuffer>& buffers() { return buffers_; }
     rhi::HandlePool<rhi::SamplerTag, GlSampler>& samplers() { return samplers_; }

@@ -11,6 +11,7 @@
 #include "gl_state_cache.hpp"
 #include "loom/rhi/descriptions.hpp"
 #include "loom/rhi/shader.hpp"
+#include "loom/rhi/validation.hpp"
 
 namespace loom::gl {
 
@@ -52,7 +53,7 @@ struct GlShader {
 };
 
 /// What a pipeline expects at one (set, binding), from the reflection of its stages.
-enum class BindingKind : uint8_t { UniformBuffer, StorageBuffer, SampledTexture, StorageImage };
+using BindingKind = rhi::validation::BindingKind;
 
 struct PipelineBinding {
     uint32_t set = 0;

@@ -389,6 +389,10 @@ Result<GlPipeline> link_program(const std::string& pipeline_name, std::initializ
         }
         for (const auto& pc : r.push_constants) p.push_constant_size = std::max(p.push_constant_size, pc.size);
     }
+    // In (set, binding) order, as Vulkan's set layouts list them: draws check them in this order.
+    std::sort(p.bindings.begin(), p.bindings.end(), [](const PipelineBinding& a, const PipelineBinding& b) {
+        return std::pair(a.set, a.binding) < std::pair(b.set, b.binding);
+    });
     if (p.push_constant_size > kMaxPushConstantBytes) {
         return Error{ErrorCode::Unsupported, what + ": push constants of " + std::to_string(p.push_constant_size) +
                                                  " bytes exceed the " + std::to_string(kMaxPushConstantBytes) + " supported"};
@@ -412,6 +416,26 @@ Result<GlPipeline> link_program(const std::string& pipeline_name, std::initializ
 }
 
 }  // namespace
+
+rhi::validation::ResourceLookup GlDevice::resource_lookup() {
+    rhi::validation::ResourceLookup lookup;
+    lookup.buffer = [this](rhi::BufferHandle h) -> Result<const rhi::BufferDesc*> {
+        auto found = buffers_.get(h);
+        if (!found.ok()) return found.take_error();
+        return &(*found)->desc;
+    };
+    lookup.texture = [this](rhi::TextureHandle h) -> Result<const rhi::TextureDesc*> {
+        auto found = textures_.get(h);
+        if (!found.ok()) return found.take_error();
+        return &(*found)->desc;
+    };
+    lookup.sampler = [this](rhi::SamplerHandle h) -> Result<bool> {
+        auto found = samplers_.get(h);
+        if (!found.ok()) return found.take_error();
+        return true;
+    };
+    return lookup;
+}
 
 rhi::validation::ShaderLookup GlDevice::shader_lookup() {
     return [this](rhi::ShaderHandle handle) -> Result<rhi::validation::ShaderFacts> {

@@ -340,18 +340,35 @@ rhi::BufferBinding VulkanCommandList::transient_uniforms(std::span<const std::by
 
 // ---- bindings ---------------------------------------------------------------------------------
 
+namespace {
+
+rhi::validation::BindingKind binding_kind(VkDescriptorType type) {
+    switch (type) {
+        case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER: return rhi::validation::BindingKind::StorageBuffer;
+        case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER: return rhi::validation::BindingKind::SampledTexture;
+        case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE: return rhi::validation::BindingKind::StorageImage;
+        default: return rhi::validation::BindingKind::UniformBuffer;
+    }
+}
+
+}  // namespace
+
 bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::string_view what) {
     const PipelineLayout& layout = *pipeline_->layout;
     const SetLayout& set_layout = *layout.sets[set];
-    const std::string pipe = "pipeline " + in_quotes(pipeline_->name);
-    if (!groups_[set].group) {
-        fail(ErrorCode::InvalidState, std::string(what) + ": " + pipe + " uses set " + std::to_string(set) + " binding " +
-                                          std::to_string(set_layout.bindings.front().binding) + " ('" +
-                                          set_layout.bindings.front().name + "') but no bind group is set for set " +
-                                          std::to_string(set));
-        return false;
+    const rhi::BindGroup* group = groups_[set].group ? &*groups_[set].group : nullptr;
+    const rhi::validation::ResourceLookup lookup = device_.resource_lookup();
+    // Every binding is checked before a descriptor set is allocated for them.
+    std::vector<const rhi::BindingEntry*> entries;
+    for (const SetBinding& b : set_layout.bindings) {
+        const rhi::validation::PipelineSlot slot{set, b.binding, binding_kind(b.type), b.name};
+        auto entry = rhi::validation::binding(what, pipeline_->name, slot, group, device_.capabilities(), lookup);
+        if (!entry.ok()) {
+            fail(entry.error().code, entry.error().message);
+            return false;
+        }
+        entries.push_back(*entry);
     }
-    const rhi::BindGroup& group = *groups_[set].group;
     auto allocated = device_.current_frame().descriptors->allocate(set_layout.layout);
     if (!allocated.ok()) {
         fail(allocated.error().code, std::string(what) + ": " + allocated.error().message);
@@ -368,86 +385,49 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
     image_infos.reserve(image_count);
     std::vector<VkWriteDescriptorSet> writes;
 
-    for (const SetBinding& b : set_layout.bindings) {
-        const std::string where = std::string(what) + ": " + pipe + " set " + std::to_string(set) + " binding " +
-                                  std::to_string(b.binding) + " ('" + b.name + "')";
-        auto entry = std::find_if(group.entries.begin(), group.entries.end(),
-                                  [&](const rhi::BindingEntry& e) { return e.binding == b.binding; });
-        if (entry == group.entries.end()) {
-            fail(ErrorCode::InvalidState, where + " is not in the bind group");
-            return false;
-        }
+    for (std::size_t n = 0; n < set_layout.bindings.size(); ++n) {
+        const SetBinding& b = set_layout.bindings[n];
+        const rhi::validation::PipelineSlot slot{set, b.binding, binding_kind(b.type), b.name};
+        const rhi::BindingEntry* entry = entries[n];
+        const std::string where = std::string(what) + ": pipeline " + in_quotes(pipeline_->name) + " set " + std::to_string(set) +
+                                  " binding " + std::to_string(b.binding) + " (" + in_quotes(b.name) + ")";
         auto w = vk_init<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
         w.dstSet = out;
         w.dstBinding = b.binding;
         w.descriptorType = b.type;
         w.descriptorCount = b.count;
         if (b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER || b.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) {
-            const auto* binding = std::get_if<rhi::BufferBinding>(&entry->resource);
-            if (!binding) {
-                fail(ErrorCode::InvalidArgument, where + " is a buffer but the bind group has a texture there");
-                return false;
-            }
-            const Buffer* buffer = device_.buffers().find(binding->buffer);
-            if (!buffer) {
-                fail(ErrorCode::InvalidHandle, where + ": the buffer was destroyed");
-                return false;
-            }
+            const rhi::BufferBinding* binding = &std::get<rhi::BufferBinding>(entry->resource);
+            const Buffer* buffer = *device_.buffers().get(binding->buffer);  // found by the validation above
             const bool uniform = b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-            const rhi::BufferUsage usage = uniform ? rhi::BufferUsage::Uniform : rhi::BufferUsage::Storage;
-            if (!rhi::has_all(buffer->desc.usage, usage)) {
-                fail(ErrorCode::InvalidArgument, where + ": buffer " + in_quotes(buffer->desc.name) + " lacks " +
-                                                     (uniform ? "Uniform" : "Storage") + " usage");
-                return false;
-            }
-            const uint64_t alignment = uniform ? device_.min_uniform_alignment() : device_.min_storage_alignment();
-            if (binding->offset % alignment != 0 || binding->offset >= buffer->desc.size) {
-                fail(ErrorCode::InvalidArgument, where + ": offset " + std::to_string(binding->offset) + " into buffer " +
-                                                     in_quotes(buffer->desc.name) + " must be below its size and a multiple of " +
-                                                     std::to_string(alignment));
-                return false;
-            }
-            // No underflow when the offset is past the end: the check below refuses it.
-            uint64_t range = binding->size ? binding->size : buffer->desc.size - std::min(buffer->desc.size, binding->offset);
+            // The whole rest of the buffer, for a uniform buffer at most what the device can bind.
+            uint64_t range = binding->size ? binding->size : buffer->desc.size - binding->offset;
             if (!binding->size && uniform) range = std::min(range, device_.max_uniform_range());
-            if (!checked::range_fits(binding->offset, range, buffer->desc.size)) {
-                fail(ErrorCode::InvalidArgument, where + ": range " + std::to_string(binding->offset) + "+" + std::to_string(range) +
-                                                     " is beyond buffer " + in_quotes(buffer->desc.name) + " (" +
-                                                     std::to_string(buffer->desc.size) + " bytes)");
-                return false;
-            }
             buffer_infos.push_back({buffer->buffer, binding->offset, range});
             w.descriptorCount = 1;
             w.pBufferInfo = &buffer_infos.back();
             ++stats_.buffer_binds;
         } else if (b.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) {
-            const auto* binding = std::get_if<rhi::TextureBinding>(&entry->resource);
-            if (!binding) {
-                fail(ErrorCode::InvalidArgument, where + " is a sampled texture but the bind group has something else there");
-                return false;
-            }
-            const Texture* texture = device_.textures().find(binding->texture);
-            const Sampler* sampler = device_.samplers().find(binding->sampler);
-            if (!texture || !sampler) {
-                fail(ErrorCode::InvalidHandle, where + ": the texture or sampler was destroyed");
-                return false;
-            }
+            const rhi::TextureBinding* binding = &std::get<rhi::TextureBinding>(entry->resource);
+            // Found by the validation above.
+            const Texture* texture = *device_.textures().get(binding->texture);
+            const Sampler* sampler = *device_.samplers().get(binding->sampler);
             // Sampling needs the texture in ShaderRead (depth textures: DepthRead or ShaderRead).
             const bool depth_ok = texture->depth_stencil && VulkanDevice::texture_all_in(*texture, ResourceState::DepthRead);
             if (!depth_ok && !VulkanDevice::texture_all_in(*texture, ResourceState::ShaderRead)) {
-                fail(ErrorCode::InvalidState, "texture " + in_quotes(texture->desc.name) + " is sampled (" + where + ") but is in state " +
-                                                  state_name(texture->states.front()) + "; transition it to " +
-                                                  (texture->depth_stencil ? "DepthRead or ShaderRead" : "ShaderRead") + " first");
+                const Error e = rhi::validation::state_for_binding(what, pipeline_->name, slot, texture->desc.name,
+                                                                   state_name(texture->states.front()),
+                                                                   texture->depth_stencil ? "DepthRead or ShaderRead" : "ShaderRead");
+                fail(e.code, e.message);
                 return false;
             }
-            if (!texture->sampled_view) {
-                fail(ErrorCode::Unsupported, where + ": texture " + in_quotes(texture->desc.name) + " cannot be sampled");
+            if (!texture->sampled_view) {  // Sampled usage (checked above) implies a sampled view
+                fail(ErrorCode::Backend, where + ": texture " + in_quotes(texture->desc.name) + " has no sampled view");
                 return false;
             }
             if (const Texture* owner = device_.alias_owner(*texture)) {
-                fail(ErrorCode::InvalidState, "texture " + in_quotes(texture->desc.name) + " is sampled (" + where +
-                                                  ") but shares heap memory with texture " + in_quotes(owner->desc.name) +
-                                                  ", which was used after it: its contents are gone");
+                fail(ErrorCode::InvalidState, where + ": texture " + in_quotes(texture->desc.name) + " shares heap memory with texture " +
+                                                  in_quotes(owner->desc.name) + ", which was used after it: its contents are gone");
                 return false;
             }
             const VkImageLayout layout_now = depth_ok ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
@@ -456,27 +436,14 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
             for (uint32_t i = 0; i < b.count; ++i) image_infos.push_back({sampler->sampler, texture->sampled_view, layout_now});
             ++stats_.texture_binds;
         } else if (b.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
-            const auto* binding = std::get_if<rhi::StorageTextureBinding>(&entry->resource);
-            if (!binding) {
-                fail(ErrorCode::InvalidArgument, where + " is a storage image but the bind group has something else there");
-                return false;
-            }
-            Texture* texture = device_.textures().find(binding->texture);
-            if (!texture) {
-                fail(ErrorCode::InvalidHandle, where + ": the texture was destroyed");
-                return false;
-            }
-            if (!rhi::has_all(texture->desc.usage, rhi::TextureUsage::Storage) || binding->mip >= texture->desc.mip_levels) {
-                fail(ErrorCode::InvalidArgument, where + ": texture " + in_quotes(texture->desc.name) +
-                                                     " lacks Storage usage or mip " + std::to_string(binding->mip));
-                return false;
-            }
+            const rhi::StorageTextureBinding* binding = &std::get<rhi::StorageTextureBinding>(entry->resource);
+            // Found by the validation above.
+            Texture* texture = *device_.textures().get(binding->texture);
             for (uint32_t l = 0; l < texture->array_layers; ++l) {
-                if (texture->states[texture->subresource(binding->mip, l)] != ResourceState::Storage) {
-                    fail(ErrorCode::InvalidState, "texture " + in_quotes(texture->desc.name) + " is used as storage image (" + where +
-                                                      ") but is in state " +
-                                                      state_name(texture->states[texture->subresource(binding->mip, l)]) +
-                                                      "; transition it to Storage first");
+                const ResourceState state = texture->states[texture->subresource(binding->mip, l)];
+                if (state != ResourceState::Storage) {
+                    const Error e = rhi::validation::state_for_binding(what, pipeline_->name, slot, texture->desc.name, state_name(state), "Storage");
+                    fail(e.code, e.message);
                     return false;
                 }
             }

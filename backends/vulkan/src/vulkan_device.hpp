@@ -104,6 +104,8 @@ public:
 
     // ---- for the command list ---------------------------------------------------------------
     [[nodiscard]] VulkanContext& context() { return *context_; }
+    /// The buffers, textures and samplers of this device as the validation layer sees them.
+    rhi::validation::ResourceLookup resource_lookup();
     rhi::HandlePool<rhi::TextureTag, Texture>& textures() { return textures_; }
     rhi::HandlePool<rhi::BufferTag, Buffer>& buffers() { return buffers_; }
     rhi::HandlePool<rhi::SamplerTag, Sampler>& samplers() { return samplers_; }

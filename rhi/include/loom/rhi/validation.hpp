@@ -122,6 +122,38 @@ Result<TextureCopyRange> texture_copy(const TextureDesc& src, const TextureDesc&
 Status buffer_copy(const BufferDesc& src, uint64_t src_offset, const BufferDesc& dst, uint64_t dst_offset, uint64_t size,
                    bool same_buffer);
 
+/// What a pipeline reads at one (set, binding), from its shaders' reflection.
+enum class BindingKind : uint8_t { UniformBuffer, StorageBuffer, SampledTexture, StorageImage };
+
+/// One (set, binding) a pipeline reads, for draw-time checks of the bound groups.
+struct PipelineSlot {
+    uint32_t set = 0;
+    uint32_t binding = 0;
+    BindingKind kind = BindingKind::UniformBuffer;
+    std::string_view name;  ///< the GLSL name
+};
+
+/// Buffers, textures and samplers by handle on the device being validated; InvalidHandle
+/// errors (HandlePool's messages) for null, stale or foreign handles.
+struct ResourceLookup {
+    std::function<Result<const BufferDesc*>(BufferHandle)> buffer;
+    TextureLookup texture;
+    std::function<Result<bool>(SamplerHandle)> sampler;  ///< true when alive
+};
+
+/// A draw or dispatch (`command`) with pipeline `pipeline`: the entry `group` (null when no
+/// group is set for slot.set) has at slot.binding must be there, of the slot's kind, refer to
+/// live resources with the usage the kind needs, a buffer range inside the buffer with its
+/// offset aligned as `caps` says, a storage image's mip must exist. Returns the entry. The
+/// resource states sampling and storage access need are the command lists' to check
+/// (state_for_binding gives their message).
+Result<const BindingEntry*> binding(std::string_view command, std::string_view pipeline, const PipelineSlot& slot, const BindGroup* group,
+                                    const Capabilities& caps, const ResourceLookup& lookup);
+/// The InvalidState error for texture `texture` bound at `slot` while in state `state_name`,
+/// where the slot's kind needs `needed` ("ShaderRead", "DepthRead or ShaderRead", "Storage").
+Error state_for_binding(std::string_view command, std::string_view pipeline, const PipelineSlot& slot, std::string_view texture,
+                        std::string_view state_name, std::string_view needed);
+
 /// CommandList::set_viewport: a positive size, depths within 0..1, nothing NaN.
 Status viewport(const Viewport& viewport);
 /// CommandList::push_constants: the bytes fit kMaxPushConstantBytes.
