@@ -15,23 +15,7 @@ using rhi::ResourceState;
 
 namespace {
 
-std::string state_name(ResourceState s) {
-    switch (s) {
-        case ResourceState::Undefined: return "Undefined";
-        case ResourceState::ShaderRead: return "ShaderRead";
-        case ResourceState::RenderTarget: return "RenderTarget";
-        case ResourceState::DepthWrite: return "DepthWrite";
-        case ResourceState::DepthRead: return "DepthRead";
-        case ResourceState::Storage: return "Storage";
-        case ResourceState::CopySrc: return "CopySrc";
-        case ResourceState::CopyDst: return "CopyDst";
-        case ResourceState::Present: return "Present";
-        case ResourceState::VertexBuffer: return "VertexBuffer";
-        case ResourceState::IndexBuffer: return "IndexBuffer";
-        case ResourceState::IndirectArgument: return "IndirectArgument";
-    }
-    return "?";
-}
+std::string state_name(ResourceState s) { return std::string(rhi::resource_state_name(s)); }
 
 using rhi::validation::in_quotes;
 

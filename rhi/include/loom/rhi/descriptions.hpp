@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <variant>
 #include <vector>
@@ -405,6 +406,25 @@ enum class ResourceState : uint8_t {
     IndexBuffer,
     IndirectArgument,
 };
+
+/// The name of a state as errors print it ("ShaderRead").
+constexpr std::string_view resource_state_name(ResourceState state) {
+    switch (state) {
+        case ResourceState::Undefined: return "Undefined";
+        case ResourceState::ShaderRead: return "ShaderRead";
+        case ResourceState::RenderTarget: return "RenderTarget";
+        case ResourceState::DepthWrite: return "DepthWrite";
+        case ResourceState::DepthRead: return "DepthRead";
+        case ResourceState::Storage: return "Storage";
+        case ResourceState::CopySrc: return "CopySrc";
+        case ResourceState::CopyDst: return "CopyDst";
+        case ResourceState::Present: return "Present";
+        case ResourceState::VertexBuffer: return "VertexBuffer";
+        case ResourceState::IndexBuffer: return "IndexBuffer";
+        case ResourceState::IndirectArgument: return "IndirectArgument";
+    }
+    return "?";
+}
 
 /// A texel position (x, y, and z for 3D textures).
 struct Origin3D {
