@@ -531,20 +531,21 @@ std::string slot_site(std::string_view command, std::string_view pipeline, const
 
 Result<const BindingEntry*> binding(std::string_view command, std::string_view pipeline, const PipelineSlot& slot, const BindGroup* group,
                                     const Capabilities& caps, const ResourceLookup& lookup) {
-    const std::string site = slot_site(command, pipeline, slot);
+    // Built only for an error: draws check every binding, and nearly all are fine.
+    auto site = [&] { return slot_site(command, pipeline, slot); };
     const BindingEntry* entry = nullptr;
     if (group) {
         for (const BindingEntry& e : group->entries) {
             if (e.binding == slot.binding) entry = &e;
         }
     }
-    if (!entry) return Error{ErrorCode::InvalidState, site + " is not bound"};
+    if (!entry) return Error{ErrorCode::InvalidState, site() + " is not bound"};
     auto wrong_kind = [&] {
-        return Error{ErrorCode::InvalidArgument, site + " is " + std::string(binding_kind_name(slot.kind)) + " but the bind group has " +
+        return Error{ErrorCode::InvalidArgument, site() + " is " + std::string(binding_kind_name(slot.kind)) + " but the bind group has " +
                                                      std::string(entry_kind_name(*entry)) + " there"};
     };
     auto handle_error = [&](Error e) {
-        e.message = site + ": " + e.message;
+        e.message = site() + ": " + e.message;
         return e;
     };
     switch (slot.kind) {
@@ -557,12 +558,12 @@ Result<const BindingEntry*> binding(std::string_view command, std::string_view p
             const BufferDesc& b = **found;
             const bool uniform = slot.kind == BindingKind::UniformBuffer;
             if (!has_all(b.usage, uniform ? BufferUsage::Uniform : BufferUsage::Storage)) {
-                return Error{ErrorCode::InvalidArgument, site + ": buffer " + in_quotes(b.name) + " lacks usage " + (uniform ? "Uniform" : "Storage")};
+                return Error{ErrorCode::InvalidArgument, site() + ": buffer " + in_quotes(b.name) + " lacks usage " + (uniform ? "Uniform" : "Storage")};
             }
             const uint64_t alignment = std::max<uint64_t>(1, uniform ? caps.uniform_buffer_offset_alignment : caps.storage_buffer_offset_alignment);
             const uint64_t size = range->size ? range->size : (b.size > range->offset ? b.size - range->offset : 0);
             if (range->offset % alignment != 0 || size == 0 || !checked::range_fits(range->offset, size, b.size)) {
-                return Error{ErrorCode::InvalidArgument, site + ": " + std::to_string(size) + " bytes at offset " + std::to_string(range->offset) +
+                return Error{ErrorCode::InvalidArgument, site() + ": " + std::to_string(size) + " bytes at offset " + std::to_string(range->offset) +
                                                              " of buffer " + in_quotes(b.name) + " (" + std::to_string(b.size) +
                                                              " bytes) are empty, outside it or not aligned to " + std::to_string(alignment)};
             }
@@ -576,7 +577,7 @@ Result<const BindingEntry*> binding(std::string_view command, std::string_view p
             auto sampler = lookup.sampler(tb->sampler);
             if (!sampler.ok()) return handle_error(sampler.take_error());
             if (!has_all((*texture)->usage, TextureUsage::Sampled)) {
-                return Error{ErrorCode::InvalidArgument, site + ": texture " + in_quotes((*texture)->name) + " lacks usage Sampled"};
+                return Error{ErrorCode::InvalidArgument, site() + ": texture " + in_quotes((*texture)->name) + " lacks usage Sampled"};
             }
             return entry;
         }
@@ -587,10 +588,10 @@ Result<const BindingEntry*> binding(std::string_view command, std::string_view p
             if (!texture.ok()) return handle_error(texture.take_error());
             const TextureDesc& t = **texture;
             if (!has_all(t.usage, TextureUsage::Storage)) {
-                return Error{ErrorCode::InvalidArgument, site + ": texture " + in_quotes(t.name) + " lacks usage Storage"};
+                return Error{ErrorCode::InvalidArgument, site() + ": texture " + in_quotes(t.name) + " lacks usage Storage"};
             }
             if (sb->mip >= t.mip_levels) {
-                return Error{ErrorCode::InvalidArgument, site + ": mip " + std::to_string(sb->mip) + " of texture " + in_quotes(t.name) +
+                return Error{ErrorCode::InvalidArgument, site() + ": mip " + std::to_string(sb->mip) + " of texture " + in_quotes(t.name) +
                                                              " does not exist (" + count_of(t.mip_levels, "level") + ")"};
             }
             return entry;

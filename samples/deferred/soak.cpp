@@ -16,12 +16,6 @@ fg::Extent2D three_quarters(fg::Extent2D size) {
     return {std::max<uint32_t>(1, size.width / 4 * 3), std::max<uint32_t>(1, size.height / 4 * 3)};
 }
 
-bool same_live_objects(const rhi::ResourceStats& a, const rhi::ResourceStats& b) {
-    return a.textures == b.textures && a.buffers == b.buffers && a.heaps == b.heaps && a.samplers == b.samplers &&
-           a.shaders == b.shaders && a.pipelines == b.pipelines && a.texture_bytes == b.texture_bytes &&
-           a.buffer_bytes == b.buffer_bytes && a.heap_bytes == b.heap_bytes;
-}
-
 std::string describe_live(const rhi::ResourceStats& s) {
     return std::to_string(s.textures) + " textures, " + std::to_string(s.buffers) + " buffers, " +
            std::to_string(s.heaps) + " heaps, " + std::to_string(s.samplers) + " samplers, " +
@@ -112,7 +106,7 @@ SoakVerdict check_soak(const std::vector<SoakSample>& samples, uint64_t period) 
         const SoakSample& now = samples[i];
         const SoakSample& before = samples[i - period];
         ++verdict.compared;
-        if (verdict.first_difference.empty() && !same_live_objects(now.live, before.live)) {
+        if (verdict.first_difference.empty() && now.live != before.live) {
             verdict.first_difference = "frame " + std::to_string(now.frame) + " has " + describe_live(now.live) +
                                        ", frame " + std::to_string(before.frame) + " had " + describe_live(before.live);
         }

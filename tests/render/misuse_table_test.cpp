@@ -528,6 +528,10 @@ void main() { result.value = textureLod(tex, vec2(0.5), 0.0); }
         dispatch_with(TextureUsage::Sampled, rhi::BufferUsage::Storage, true,
                       [](const Resources& r) { return std::optional(rhi::BindGroup{}.buffer(0, r.b).buffer(1, r.b)); }),
         invalid("dispatch: pipeline 'p' set 0 binding 0 ('tex') is a sampled texture but the bind group has a buffer there"));
+    add("binding a null texture",
+        dispatch_with(TextureUsage::Sampled, rhi::BufferUsage::Storage, true,
+                      [](const Resources& r) { return std::optional(rhi::BindGroup{}.texture(0, rhi::TextureHandle{}, r.s).buffer(1, r.b)); }),
+        expect({ErrorCode::InvalidHandle, "dispatch: pipeline 'p' set 0 binding 0 ('tex'): texture handle is null"}));
     add("sampling a texture without Sampled usage", dispatch_with(TextureUsage::Storage, rhi::BufferUsage::Storage, false, both),
         invalid("dispatch: pipeline 'p' set 0 binding 0 ('tex'): texture 't' lacks usage Sampled"));
     add("storage buffer without Storage usage", dispatch_with(TextureUsage::Sampled, rhi::BufferUsage::Uniform, true, both),

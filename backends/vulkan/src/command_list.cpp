@@ -262,17 +262,8 @@ void VulkanCommandList::set_scissor(const rhi::Rect& r) {
 
 void VulkanCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
     if (Status valid = rhi::validation::bind_group(set, group); !valid) return fail(valid.error().code, valid.error().message);
-    for (const rhi::BindingEntry& e : group.entries) {
-        const std::string where = "set_bind_group(" + std::to_string(set) + "), binding " + std::to_string(e.binding) + ": ";
-        if (const auto* b = std::get_if<rhi::BufferBinding>(&e.resource)) {
-            if (auto r = device_.buffers().get(b->buffer); !r.ok()) return fail(ErrorCode::InvalidHandle, where + r.error().message);
-        } else if (const auto* t = std::get_if<rhi::TextureBinding>(&e.resource)) {
-            if (auto r = device_.textures().get(t->texture); !r.ok()) return fail(ErrorCode::InvalidHandle, where + r.error().message);
-            if (auto r = device_.samplers().get(t->sampler); !r.ok()) return fail(ErrorCode::InvalidHandle, where + r.error().message);
-        } else if (const auto* s = std::get_if<rhi::StorageTextureBinding>(&e.resource)) {
-            if (auto r = device_.textures().get(s->texture); !r.ok()) return fail(ErrorCode::InvalidHandle, where + r.error().message);
-        }
-    }
+    // Handles are checked when a draw or dispatch uses them (rhi::validation::binding), as on GL:
+    // a group may hold entries the pipeline does not read.
     groups_[set].group = group;
     groups_[set].dirty = true;
 }
@@ -373,8 +364,11 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
         const SetBinding& b = set_layout.bindings[n];
         const rhi::validation::PipelineSlot slot{set, b.binding, binding_kind(b.type), b.name};
         const rhi::BindingEntry* entry = entries[n];
-        const std::string where = std::string(what) + ": pipeline " + in_quotes(pipeline_->name) + " set " + std::to_string(set) +
-                                  " binding " + std::to_string(b.binding) + " (" + in_quotes(b.name) + ")";
+        // Built only for an error.
+        auto where = [&] {
+            return std::string(what) + ": pipeline " + in_quotes(pipeline_->name) + " set " + std::to_string(set) + " binding " +
+                   std::to_string(b.binding) + " (" + in_quotes(b.name) + ")";
+        };
         auto w = vk_init<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
         w.dstSet = out;
         w.dstBinding = b.binding;
@@ -406,11 +400,11 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
                 return false;
             }
             if (!texture->sampled_view) {  // Sampled usage (checked above) implies a sampled view
-                fail(ErrorCode::Backend, where + ": texture " + in_quotes(texture->desc.name) + " has no sampled view");
+                fail(ErrorCode::Backend, where() + ": texture " + in_quotes(texture->desc.name) + " has no sampled view");
                 return false;
             }
             if (const Texture* owner = device_.alias_owner(*texture)) {
-                fail(ErrorCode::InvalidState, where + ": texture " + in_quotes(texture->desc.name) + " shares heap memory with texture " +
+                fail(ErrorCode::InvalidState, where() + ": texture " + in_quotes(texture->desc.name) + " shares heap memory with texture " +
                                                   in_quotes(owner->desc.name) + ", which was used after it: its contents are gone");
                 return false;
             }
@@ -433,7 +427,7 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
             }
             auto view = device_.storage_view(*texture, binding->mip);
             if (!view.ok()) {
-                fail(view.error().code, where + ": " + view.error().message);
+                fail(view.error().code, where() + ": " + view.error().message);
                 return false;
             }
             w.descriptorCount = 1;

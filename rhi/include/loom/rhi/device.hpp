@@ -115,6 +115,8 @@ struct ResourceStats {
     uint64_t heap_bytes = 0;
     /// Texture, buffer and heap bytes together.
     [[nodiscard]] uint64_t total_bytes() const { return texture_bytes + buffer_bytes + heap_bytes; }
+    /// Equal counts and bytes of every kind (the soak test's "nothing leaked").
+    friend bool operator==(const ResourceStats&, const ResourceStats&) = default;
 };
 
 /// Work done by the last finished frame, counted by the backend.
