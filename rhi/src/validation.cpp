@@ -52,8 +52,7 @@ Status size_within_limits(const TextureDesc& d, const Capabilities& caps, const 
         limit = caps.max_texture_size_cube;
     }
     if (largest > limit) {
-        const uint32_t depth = d.dimension == TextureDimension::Tex3D ? d.depth_or_layers : 1;
-        return Error{ErrorCode::Unsupported, what + "size " + size_text(d.width, d.height, depth) + " exceeds this device's limit of " +
+        return Error{ErrorCode::Unsupported, what + "size " + size_text(d.width, d.height, mip_extent(d, 0).depth) + " exceeds this device's limit of " +
                                                  std::to_string(limit) + " texels for a " + std::string(dimension_name(d.dimension)) +
                                                  " texture"};
     }
@@ -80,6 +79,57 @@ Status usage_supported(const TextureDesc& d, const Capabilities& caps, const std
         return Error{ErrorCode::Unsupported, what + std::to_string(d.samples) + " samples of " + format + " are not supported on this device"};
     }
     return {};
+}
+
+// The sample counts loom knows: powers of two from 1 to 64 (whether a device has them is
+// FormatCapabilities::sample_counts).
+bool is_sample_count(uint32_t samples) { return samples >= 1 && samples <= 64 && std::has_single_bit(samples); }
+
+uint64_t index_bytes(IndexType type) { return type == IndexType::Uint16 ? 2 : 4; }
+
+// The subresource one side of a transfer or copy addresses exists, and z is used on 3D
+// textures only. `side` starts the messages ("source ", or "" for a one-sided transfer);
+// `extent_used` is false where the region's extent is ignored (a copy's destination).
+Status region_subresource(const TextureDesc& t, const TextureRegion& r, const std::string& what, std::string_view side, bool extent_used) {
+    const std::string in = what + std::string(side);
+    if (r.mip >= t.mip_levels) {
+        return Error{ErrorCode::InvalidArgument, in + "mip " + std::to_string(r.mip) + " does not exist (" + count_of(t.mip_levels, "level") + ")"};
+    }
+    if (t.dimension == TextureDimension::Tex3D) {
+        if (r.layer != 0) {
+            return Error{ErrorCode::InvalidArgument,
+                         in + "layer " + std::to_string(r.layer) + ": a Tex3D texture has no layers (origin.z selects depth slices)"};
+        }
+        return {};
+    }
+    if (r.origin.z != 0 || (extent_used && r.extent.depth > 1)) {
+        return Error{ErrorCode::InvalidArgument, in + "origin.z and extent.depth apply to Tex3D textures only"};
+    }
+    if (r.layer >= t.depth_or_layers) {
+        return Error{ErrorCode::InvalidArgument,
+                     in + "layer " + std::to_string(r.layer) + " does not exist (" + count_of(t.depth_or_layers, "layer") + ")"};
+    }
+    return {};
+}
+
+// The extent a region addresses in a mip level of size `mip`: its zeros are "the rest of the
+// level from the origin".
+Extent3D resolved_extent(const TextureRegion& r, const Extent3D& mip) {
+    auto rest = [](uint32_t size, uint32_t origin) { return size > origin ? size - origin : 0u; };
+    return {r.extent.width ? r.extent.width : rest(mip.width, r.origin.x), r.extent.height ? r.extent.height : rest(mip.height, r.origin.y),
+            r.extent.depth ? r.extent.depth : rest(mip.depth, r.origin.z)};
+}
+
+// An `extent` at `origin` is not empty and lies inside mip `mip_index` (of size `mip`).
+Status region_fits(const Origin3D& origin, const Extent3D& extent, uint32_t mip_index, const Extent3D& mip, const std::string& what,
+                   std::string_view side) {
+    const bool fits = extent.width > 0 && extent.height > 0 && extent.depth > 0 && checked::range_fits(origin.x, extent.width, mip.width) &&
+                      checked::range_fits(origin.y, extent.height, mip.height) && checked::range_fits(origin.z, extent.depth, mip.depth);
+    if (fits) return {};
+    return Error{ErrorCode::InvalidArgument, what + "region " + size_text(extent.width, extent.height, extent.depth) + " at (" +
+                                                 std::to_string(origin.x) + "," + std::to_string(origin.y) + "," + std::to_string(origin.z) +
+                                                 ") does not fit " + std::string(side) + "mip " + std::to_string(mip_index) + " (" +
+                                                 size_text(mip.width, mip.height, mip.depth) + ")"};
 }
 
 // "<what>: N bytes at [side ]offset O exceed its size S" when [offset, offset + size) leaves a
@@ -125,11 +175,10 @@ Status texture_desc(const TextureDesc& d, const Capabilities& caps) {
             break;
     }
     if (d.mip_levels == 0 || d.mip_levels > max_mip_levels(d)) {
-        const uint32_t depth = d.dimension == TextureDimension::Tex3D ? d.depth_or_layers : 1;
         return invalid("mip_levels " + std::to_string(d.mip_levels) + " is not in 1.." + std::to_string(max_mip_levels(d)) + " for a " +
-                       size_text(d.width, d.height, depth) + " texture");
+                       size_text(d.width, d.height, mip_extent(d, 0).depth) + " texture");
     }
-    if (d.samples == 0 || d.samples > 64 || !std::has_single_bit(d.samples)) {
+    if (!is_sample_count(d.samples)) {
         return invalid("samples " + std::to_string(d.samples) + " is not a power of two from 1 to 64");
     }
     if (d.samples > 1) {
@@ -193,35 +242,16 @@ Result<TextureWrite> texture_write(const TextureDesc& texture, const TextureRegi
     const std::string what = "write_texture to texture " + in_quotes(texture.name) + ": ";
     auto invalid = [&](const std::string& message) { return Error{ErrorCode::InvalidArgument, what + message}; };
     if (texture.samples > 1) return Error{ErrorCode::Unsupported, what + "a multisampled texture cannot be uploaded to"};
-    if (region.mip >= texture.mip_levels) {
-        return invalid("mip " + std::to_string(region.mip) + " does not exist (" + count_of(texture.mip_levels, "level") + ")");
-    }
+    LOOM_TRY(region_subresource(texture, region, what, "", true));
     const bool is3d = texture.dimension == TextureDimension::Tex3D;
-    if (is3d && region.layer != 0) {
-        return invalid("layer " + std::to_string(region.layer) + ": a Tex3D texture has no layers (origin.z selects depth slices)");
-    }
-    if (!is3d && (region.origin.z != 0 || region.extent.depth > 1)) {
-        return invalid("origin.z and extent.depth apply to Tex3D textures only");
-    }
-    if (!is3d && region.layer >= texture.depth_or_layers) {
-        return invalid("layer " + std::to_string(region.layer) + " does not exist (" + count_of(texture.depth_or_layers, "layer") + ")");
-    }
     const Extent3D full = mip_extent(texture, region.mip);
-    auto rest = [](uint32_t size, uint32_t origin) { return size > origin ? size - origin : 0u; };
     TextureWrite out;
     out.mip = region.mip;
     out.layer = is3d ? 0 : region.layer;
     out.origin = region.origin;
-    out.extent = {region.extent.width ? region.extent.width : rest(full.width, region.origin.x),
-                  region.extent.height ? region.extent.height : rest(full.height, region.origin.y),
-                  region.extent.depth ? region.extent.depth : rest(full.depth, region.origin.z)};
+    out.extent = resolved_extent(region, full);
     const Extent3D& e = out.extent;
-    if (e.width == 0 || e.height == 0 || e.depth == 0 || !checked::range_fits(region.origin.x, e.width, full.width) ||
-        !checked::range_fits(region.origin.y, e.height, full.height) || !checked::range_fits(region.origin.z, e.depth, full.depth)) {
-        return invalid("region " + size_text(e.width, e.height, e.depth) + " at (" + std::to_string(region.origin.x) + "," +
-                       std::to_string(region.origin.y) + "," + std::to_string(region.origin.z) + ") does not fit mip " +
-                       std::to_string(region.mip) + " (" + size_text(full.width, full.height, full.depth) + ")");
-    }
+    LOOM_TRY(region_fits(region.origin, e, region.mip, full, what, ""));
     // Three extents near 2^32 would overflow 64 bits: checked.
     const auto bytes = checked::product({e.width, e.height, e.depth, format_info(texture.format).bytes_per_texel});
     if (!bytes || data_size != *bytes) {
@@ -286,7 +316,7 @@ Status graphics_pipeline(const GraphicsPipelineDesc& d, const Capabilities& caps
     auto fs = shader_of_stage(lookup, d.fragment, ShaderStage::Fragment, what, "fragment shader");
     if (!fs.ok()) return fs.take_error();
     if (d.color_formats.empty() && d.depth_format == Format::Undefined) return invalid("no colour formats and no depth format");
-    if (d.samples == 0 || d.samples > 64 || !std::has_single_bit(d.samples)) {
+    if (!is_sample_count(d.samples)) {
         return invalid("samples " + std::to_string(d.samples) + " is not a power of two from 1 to 64");
     }
     if (d.color_formats.size() > caps.max_color_attachments) {
@@ -433,34 +463,12 @@ Result<TextureCopyRange> texture_copy(const TextureDesc& src, const TextureDesc&
         return Error{ErrorCode::Unsupported, what + "copies between a Tex3D texture and a " +
                                                  std::string(dimension_name(src3d ? dst.dimension : src.dimension)) + " texture are not supported"};
     }
-    // One side's region: the subresource exists and z is used only on 3D textures.
-    auto check_side = [&](const TextureDesc& t, const TextureRegion& r, const char* side) -> Status {
-        if (r.mip >= t.mip_levels) {
-            return invalid(std::string(side) + " mip " + std::to_string(r.mip) + " does not exist (" + count_of(t.mip_levels, "level") + ")");
-        }
-        if (t.dimension == TextureDimension::Tex3D) {
-            if (r.layer != 0) {
-                return invalid(std::string(side) + " layer " + std::to_string(r.layer) +
-                               ": a Tex3D texture has no layers (origin.z selects depth slices)");
-            }
-        } else {
-            if (r.origin.z != 0 || (&r == &copy.src_region && r.extent.depth > 1)) {
-                return invalid(std::string(side) + " origin.z and extent.depth apply to Tex3D textures only");
-            }
-            if (r.layer >= t.depth_or_layers) {
-                return invalid(std::string(side) + " layer " + std::to_string(r.layer) + " does not exist (" +
-                               count_of(t.depth_or_layers, "layer") + ")");
-            }
-        }
-        return {};
-    };
-    LOOM_TRY(check_side(src, copy.src_region, "source"));
-    LOOM_TRY(check_side(dst, copy.dst_region, "destination"));
     const TextureRegion& sr = copy.src_region;
     const TextureRegion& dr = copy.dst_region;
+    LOOM_TRY(region_subresource(src, sr, what, "source ", true));
+    LOOM_TRY(region_subresource(dst, dr, what, "destination ", false));
     const Extent3D se = mip_extent(src, sr.mip);
     const Extent3D de = mip_extent(dst, dr.mip);
-    auto rest = [](uint32_t size, uint32_t origin) { return size > origin ? size - origin : 0u; };
     TextureCopyRange out;
     out.src_mip = sr.mip;
     out.src_layer = src3d ? 0 : sr.layer;
@@ -468,21 +476,9 @@ Result<TextureCopyRange> texture_copy(const TextureDesc& src, const TextureDesc&
     out.dst_mip = dr.mip;
     out.dst_layer = dst3d ? 0 : dr.layer;
     out.dst_origin = dr.origin;
-    out.extent = {sr.extent.width ? sr.extent.width : rest(se.width, sr.origin.x),
-                  sr.extent.height ? sr.extent.height : rest(se.height, sr.origin.y),
-                  sr.extent.depth ? sr.extent.depth : rest(se.depth, sr.origin.z)};
-    const Extent3D& e = out.extent;
-    auto fits = [&](const Origin3D& o, const Extent3D& mip) {
-        return checked::range_fits(o.x, e.width, mip.width) && checked::range_fits(o.y, e.height, mip.height) &&
-               checked::range_fits(o.z, e.depth, mip.depth);
-    };
-    auto where = [&](const Origin3D& o, uint32_t mip, const Extent3D& size, const char* side) {
-        return invalid("region " + size_text(e.width, e.height, e.depth) + " at (" + std::to_string(o.x) + "," + std::to_string(o.y) + "," +
-                       std::to_string(o.z) + ") does not fit " + side + " mip " + std::to_string(mip) + " (" +
-                       size_text(size.width, size.height, size.depth) + ")");
-    };
-    if (e.width == 0 || e.height == 0 || e.depth == 0 || !fits(sr.origin, se)) return where(sr.origin, sr.mip, se, "source");
-    if (!fits(dr.origin, de)) return where(dr.origin, dr.mip, de, "destination");
+    out.extent = resolved_extent(sr, se);
+    LOOM_TRY(region_fits(sr.origin, out.extent, sr.mip, se, what, "source "));
+    LOOM_TRY(region_fits(dr.origin, out.extent, dr.mip, de, what, "destination "));
     if (same_texture && out.src_mip == out.dst_mip && out.src_layer == out.dst_layer) {
         return invalid("source and destination are one subresource (mip " + std::to_string(out.src_mip) + ", layer " +
                        std::to_string(out.src_layer) + ")");
@@ -601,9 +597,9 @@ Result<const BindingEntry*> binding(std::string_view command, std::string_view p
 }
 
 Error state_for_binding(std::string_view command, std::string_view pipeline, const PipelineSlot& slot, std::string_view texture,
-                        std::string_view state_name, std::string_view needed) {
+                        ResourceState state, std::string_view needed) {
     return Error{ErrorCode::InvalidState, slot_site(command, pipeline, slot) + ": texture " + in_quotes(texture) + " is in state " +
-                                              std::string(state_name) + "; transition it to " + std::string(needed) + " first"};
+                                              std::string(resource_state_name(state)) + "; transition it to " + std::string(needed) + " first"};
 }
 
 Status viewport(const Viewport& v) {
@@ -661,19 +657,17 @@ Status vertex_buffer(uint32_t slot, const BufferDesc& buffer, uint64_t offset) {
 Status index_buffer(const BufferDesc& buffer, IndexType type, uint64_t offset) {
     const std::string what = "set_index_buffer: buffer " + in_quotes(buffer.name);
     if (!has_all(buffer.usage, BufferUsage::Index)) return Error{ErrorCode::InvalidArgument, what + " lacks usage Index"};
-    const uint64_t index_bytes = type == IndexType::Uint16 ? 2 : 4;
-    if (offset >= buffer.size || offset % index_bytes != 0) {
+    if (offset >= buffer.size || offset % index_bytes(type) != 0) {
         return Error{ErrorCode::InvalidArgument, what + ": offset " + std::to_string(offset) + " is not inside its " +
                                                      std::to_string(buffer.size) + " bytes or not a multiple of the index size " +
-                                                     std::to_string(index_bytes)};
+                                                     std::to_string(index_bytes(type))};
     }
     return {};
 }
 
 Status index_range(const BufferDesc& buffer, IndexType type, uint64_t offset, uint32_t first_index, uint32_t index_count) {
-    const uint64_t index_bytes = type == IndexType::Uint16 ? 2 : 4;
-    const auto start = checked::add<uint64_t>(offset, uint64_t{first_index} * index_bytes);
-    if (!start || !checked::range_fits(*start, uint64_t{index_count} * index_bytes, buffer.size)) {
+    const auto start = checked::add<uint64_t>(offset, uint64_t{first_index} * index_bytes(type));
+    if (!start || !checked::range_fits(*start, uint64_t{index_count} * index_bytes(type), buffer.size)) {
         return Error{ErrorCode::InvalidArgument, "draw_indexed: " + std::to_string(index_count) + " indices from index " +
                                                      std::to_string(first_index) + " run past the end of index buffer " +
                                                      in_quotes(buffer.name) + " (" + std::to_string(buffer.size) + " bytes from offset " +

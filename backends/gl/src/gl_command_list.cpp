@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "loom/rhi/checked_math.hpp"
 #include "gl_device.hpp"
 #include "loom/rhi/subresources.hpp"
 #include "loom/rhi/validation.hpp"
@@ -15,7 +14,6 @@ using rhi::ResourceState;
 
 using rhi::validation::in_quotes;
 
-std::string state_name(ResourceState s) { return std::string(rhi::resource_state_name(s)); }
 
 /// Barrier bits that make shader storage writes visible to the use `next` stands for.
 GLbitfield barrier_after_storage(ResourceState next) {
@@ -116,11 +114,7 @@ void GlCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
         fail(ErrorCode::InvalidState, what + "render pass " + in_quotes(pass_->label) + " is still open");
         return;
     }
-    auto shape = rhi::validation::render_pass(desc, device_->capabilities(), [this](rhi::TextureHandle h) -> Result<const rhi::TextureDesc*> {
-        auto found = device_->textures().get(h);
-        if (!found.ok()) return found.take_error();
-        return &(*found)->desc;
-    });
+    auto shape = rhi::validation::render_pass(desc, device_->capabilities(), device_->resource_lookup().texture);
     if (!shape.ok()) {
         fail(shape.error().code, shape.error().message);
         return;
@@ -337,7 +331,7 @@ rhi::BufferBinding GlCommandList::transient_uniforms(std::span<const std::byte> 
 
 bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view command, std::vector<ResolvedBinding>& out) {
     // Every binding is checked before any state, as on Vulkan.
-    const rhi::validation::ResourceLookup lookup = device_->resource_lookup();
+    const rhi::validation::ResourceLookup& lookup = device_->resource_lookup();
     std::vector<const rhi::BindingEntry*> entries;
     for (const PipelineBinding& b : p.bindings) {
         const rhi::validation::PipelineSlot slot{b.set, b.binding, b.kind, b.name};
@@ -373,7 +367,7 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
                 const bool depth = rhi::format_info(t.desc.format).is_depth_stencil();
                 if (t.state != ResourceState::ShaderRead && !(depth && t.state == ResourceState::DepthRead)) {
                     // Parity with Vulkan, where sampling needs the shader-read layout.
-                    Error e = rhi::validation::state_for_binding(command, p.name, slot, t.desc.name, state_name(t.state),
+                    Error e = rhi::validation::state_for_binding(command, p.name, slot, t.desc.name, t.state,
                                                                  depth ? "DepthRead or ShaderRead" : "ShaderRead");
                     fail(e.code, e.message);
                     return false;
@@ -386,7 +380,7 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
                 const auto& sb = std::get<rhi::StorageTextureBinding>(entry->resource);
                 const GlTexture& t = **device_->textures().get(sb.texture);
                 if (t.state != ResourceState::Storage) {
-                    Error e = rhi::validation::state_for_binding(command, p.name, slot, t.desc.name, state_name(t.state), "Storage");
+                    Error e = rhi::validation::state_for_binding(command, p.name, slot, t.desc.name, t.state, "Storage");
                     fail(e.code, e.message);
                     return false;
                 }

@@ -208,7 +208,7 @@ public:
 
     // -- used by GlCommandList ----------------------------------------------------------
     /// The buffers, textures and samplers of this device as the validation layer sees them.
-    rhi::validation::ResourceLookup resource_lookup();
+    const rhi::validation::ResourceLookup& resource_lookup();
     rhi::HandlePool<rhi::TextureTag, GlTexture>& textures() { return textures_; }
     rhi::HandlePool<rhi::BufferTag, GlBuffer>& buffers() { return buffers_; }
     rhi::HandlePool<rhi::SamplerTag, GlSampler>& samplers() { return samplers_; }
@@ -272,6 +272,7 @@ private:
     std::unique_ptr<GlAppState> app_state_;
     std::optional<SavedDebugOutput> saved_debug_output_;
     rhi::Capabilities caps_;
+    rhi::validation::ResourceLookup resource_lookup_;  ///< see resource_lookup()
     Limits limits_;
     rhi::HandlePool<rhi::TextureTag, GlTexture> textures_;
     rhi::HandlePool<rhi::BufferTag, GlBuffer> buffers_;

@@ -4,7 +4,6 @@
 #include <cstring>
 
 #include "formats.hpp"
-#include "loom/rhi/checked_math.hpp"
 #include "vulkan_device.hpp"
 #include "loom/rhi/subresources.hpp"
 #include "loom/rhi/validation.hpp"
@@ -15,7 +14,6 @@ using rhi::ResourceState;
 
 namespace {
 
-std::string state_name(ResourceState s) { return std::string(rhi::resource_state_name(s)); }
 
 using rhi::validation::in_quotes;
 
@@ -104,11 +102,7 @@ void VulkanCommandList::finish() {
 void VulkanCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
     const std::string pass = "render pass " + in_quotes(desc.label);
     if (!require_outside_pass("begin_render_pass(" + in_quotes(desc.label) + ")")) return;
-    auto shape = rhi::validation::render_pass(desc, device_.capabilities(), [this](rhi::TextureHandle h) -> loom::Result<const rhi::TextureDesc*> {
-        auto found = device_.textures().get(h);
-        if (!found.ok()) return found.take_error();
-        return &(*found)->desc;
-    });
+    auto shape = rhi::validation::render_pass(desc, device_.capabilities(), device_.resource_lookup().texture);
     if (!shape.ok()) return fail(shape.error().code, shape.error().message);
     // Every handle was found by the validation above.
     std::vector<Texture*> color_textures;
@@ -332,7 +326,7 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
     const PipelineLayout& layout = *pipeline_->layout;
     const SetLayout& set_layout = *layout.sets[set];
     const rhi::BindGroup* group = groups_[set].group ? &*groups_[set].group : nullptr;
-    const rhi::validation::ResourceLookup lookup = device_.resource_lookup();
+    const rhi::validation::ResourceLookup& lookup = device_.resource_lookup();
     // Every binding is checked before a descriptor set is allocated for them.
     std::vector<const rhi::BindingEntry*> entries;
     for (const SetBinding& b : set_layout.bindings) {
@@ -394,7 +388,7 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
             const bool depth_ok = texture->depth_stencil && VulkanDevice::texture_all_in(*texture, ResourceState::DepthRead);
             if (!depth_ok && !VulkanDevice::texture_all_in(*texture, ResourceState::ShaderRead)) {
                 const Error e = rhi::validation::state_for_binding(what, pipeline_->name, slot, texture->desc.name,
-                                                                   state_name(texture->states.front()),
+                                                                   texture->states.front(),
                                                                    texture->depth_stencil ? "DepthRead or ShaderRead" : "ShaderRead");
                 fail(e.code, e.message);
                 return false;
@@ -420,7 +414,7 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
             for (uint32_t l = 0; l < texture->array_layers; ++l) {
                 const ResourceState state = texture->states[texture->subresource(binding->mip, l)];
                 if (state != ResourceState::Storage) {
-                    const Error e = rhi::validation::state_for_binding(what, pipeline_->name, slot, texture->desc.name, state_name(state), "Storage");
+                    const Error e = rhi::validation::state_for_binding(what, pipeline_->name, slot, texture->desc.name, state, "Storage");
                     fail(e.code, e.message);
                     return false;
                 }
@@ -621,11 +615,11 @@ void VulkanCommandList::transition(rhi::TextureHandle handle, ResourceState stat
     const std::string tex = "texture " + in_quotes(t.desc.name);
     if (!texture_state_access(state, t.depth_stencil).valid) {
         return fail(ErrorCode::InvalidArgument, "transition: " + tex + " (" + std::string(rhi::format_name(t.desc.format)) +
-                                                    ") cannot be in state " + state_name(state));
+                                                    ") cannot be in state " + std::string(rhi::resource_state_name(state)));
     }
     auto needs = [&](rhi::TextureUsage usage, const char* name) {
         if (rhi::has_all(t.desc.usage, usage)) return true;
-        fail(ErrorCode::InvalidArgument, "transition: " + tex + " to " + state_name(state) + " needs " + name + " usage");
+        fail(ErrorCode::InvalidArgument, "transition: " + tex + " to " + std::string(rhi::resource_state_name(state)) + " needs " + name + " usage");
         return false;
     };
     if (state == ResourceState::RenderTarget && !needs(rhi::TextureUsage::ColorAttachment, "ColorAttachment")) return;
@@ -650,7 +644,7 @@ void VulkanCommandList::transition(rhi::BufferHandle handle, ResourceState state
     if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + buffer.error().message);
     Buffer& b = **buffer;
     if (!buffer_state_access(state).valid) {
-        return fail(ErrorCode::InvalidArgument, "transition: buffer " + in_quotes(b.desc.name) + " cannot be in state " + state_name(state));
+        return fail(ErrorCode::InvalidArgument, "transition: buffer " + in_quotes(b.desc.name) + " cannot be in state " + std::string(rhi::resource_state_name(state)));
     }
     BarrierBatch batch;
     batch.buffer(b.buffer, b.state, state);

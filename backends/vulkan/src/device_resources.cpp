@@ -517,24 +517,10 @@ loom::Status VulkanDevice::destroy(rhi::ShaderHandle handle) {
 
 // ---- pipelines ---------------------------------------------------------------------------------
 
-rhi::validation::ResourceLookup VulkanDevice::resource_lookup() {
-    rhi::validation::ResourceLookup lookup;
-    lookup.buffer = [this](rhi::BufferHandle h) -> loom::Result<const rhi::BufferDesc*> {
-        auto found = buffers_.get(h);
-        if (!found.ok()) return found.take_error();
-        return &(*found)->desc;
-    };
-    lookup.texture = [this](rhi::TextureHandle h) -> loom::Result<const rhi::TextureDesc*> {
-        auto found = textures_.get(h);
-        if (!found.ok()) return found.take_error();
-        return &(*found)->desc;
-    };
-    lookup.sampler = [this](rhi::SamplerHandle h) -> loom::Result<bool> {
-        auto found = samplers_.get(h);
-        if (!found.ok()) return found.take_error();
-        return true;
-    };
-    return lookup;
+const rhi::validation::ResourceLookup& VulkanDevice::resource_lookup() {
+    // Made once: every draw asks for it.
+    if (!resource_lookup_.buffer) resource_lookup_ = rhi::validation::lookup_in(buffers_, textures_, samplers_);
+    return resource_lookup_;
 }
 
 rhi::validation::ShaderLookup VulkanDevice::shader_lookup() {

@@ -105,7 +105,7 @@ public:
     // ---- for the command list ---------------------------------------------------------------
     [[nodiscard]] VulkanContext& context() { return *context_; }
     /// The buffers, textures and samplers of this device as the validation layer sees them.
-    rhi::validation::ResourceLookup resource_lookup();
+    const rhi::validation::ResourceLookup& resource_lookup();
     rhi::HandlePool<rhi::TextureTag, Texture>& textures() { return textures_; }
     rhi::HandlePool<rhi::BufferTag, Buffer>& buffers() { return buffers_; }
     rhi::HandlePool<rhi::SamplerTag, Sampler>& samplers() { return samplers_; }
@@ -189,6 +189,7 @@ private:
     std::unique_ptr<Swapchain> swapchain_;
     VkPipelineCache pipeline_cache_ = VK_NULL_HANDLE;
     rhi::Capabilities caps_;
+    rhi::validation::ResourceLookup resource_lookup_;  ///< see resource_lookup()
     bool debug_ = false;
 
     uint16_t device_id_ = rhi::next_device_id();

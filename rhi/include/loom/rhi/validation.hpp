@@ -141,6 +141,29 @@ struct ResourceLookup {
     std::function<Result<bool>(SamplerHandle)> sampler;  ///< true when alive
 };
 
+/// The ResourceLookup over a backend's handle pools (rhi::HandlePool of objects with a `desc`),
+/// which must outlive it.
+template <class BufferPool, class TexturePool, class SamplerPool>
+ResourceLookup lookup_in(BufferPool& buffers, TexturePool& textures, SamplerPool& samplers) {
+    ResourceLookup lookup;
+    lookup.buffer = [&buffers](BufferHandle h) -> Result<const BufferDesc*> {
+        auto found = buffers.get(h);
+        if (!found.ok()) return found.take_error();
+        return &(*found)->desc;
+    };
+    lookup.texture = [&textures](TextureHandle h) -> Result<const TextureDesc*> {
+        auto found = textures.get(h);
+        if (!found.ok()) return found.take_error();
+        return &(*found)->desc;
+    };
+    lookup.sampler = [&samplers](SamplerHandle h) -> Result<bool> {
+        auto found = samplers.get(h);
+        if (!found.ok()) return found.take_error();
+        return true;
+    };
+    return lookup;
+}
+
 /// A draw or dispatch (`command`) with pipeline `pipeline`: the entry `group` (null when no
 /// group is set for slot.set) has at slot.binding must be there, of the slot's kind, refer to
 /// live resources with the usage the kind needs, a buffer range inside the buffer with its
@@ -149,10 +172,10 @@ struct ResourceLookup {
 /// (state_for_binding gives their message).
 Result<const BindingEntry*> binding(std::string_view command, std::string_view pipeline, const PipelineSlot& slot, const BindGroup* group,
                                     const Capabilities& caps, const ResourceLookup& lookup);
-/// The InvalidState error for texture `texture` bound at `slot` while in state `state_name`,
-/// where the slot's kind needs `needed` ("ShaderRead", "DepthRead or ShaderRead", "Storage").
+/// The InvalidState error for texture `texture` bound at `slot` while in `state`, where the
+/// slot's kind needs `needed` ("ShaderRead", "DepthRead or ShaderRead", "Storage").
 Error state_for_binding(std::string_view command, std::string_view pipeline, const PipelineSlot& slot, std::string_view texture,
-                        std::string_view state_name, std::string_view needed);
+                        ResourceState state, std::string_view needed);
 
 /// CommandList::set_viewport: a positive size, depths within 0..1, nothing NaN.
 Status viewport(const Viewport& viewport);
