@@ -196,6 +196,10 @@ loom::Status VulkanDevice::recreate_swapchain() {
     // Resizes are rare: waiting for the GPU here (not per frame) is fine.
     LOOM_TRY(flush_setup());
     LOOM_TRY(submissions_->wait_all());
+    // The fences cover the submissions, not the presents waiting on the render-finished
+    // semaphores that the new swapchain replaces: only an idle device has finished those
+    // (VUID-vkDestroySemaphore-semaphore-01137, seen under load in VulkanWindow.UnderXvfb).
+    if (VkResult r = vkDeviceWaitIdle(context_->device()); r != VK_SUCCESS) return vk_error(r, "vkDeviceWaitIdle before a swapchain resize");
     for (rhi::TextureHandle h : backbuffers_) {
         auto t = textures_.remove(h);
         if (t.ok()) release_texture(*t);
