@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "graph_analysis.hpp"
+#include "plan_phases.hpp"
 #include "loom/framegraph/allocator.hpp"
 #include "loom/framegraph/graph.hpp"
 #include "loom/framegraph/join.hpp"
@@ -19,8 +20,6 @@ namespace {
 using rhi::TextureUsage;
 
 constexpr uint32_t kNone = UINT32_MAX;
-
-Error graph_error(std::string message) { return make_error(ErrorCode::Graph, std::move(message)); }
 
 // Ports of one graph by flat index, so per-port data lives in plain vectors.
 class PortIndex {
@@ -211,51 +210,12 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
 
     auto dependencies = detail::analyze(graph);
     if (!dependencies) return dependencies.take_error();
-    const uint32_t pass_count = graph.pass_count();
 
-    // ---- culling: keep what a graph output or a side-effect pass needs --------------------
-    std::vector<bool> kept(pass_count, false);
-    std::vector<uint32_t> stack;
-    for (uint32_t p = 0; p < pass_count; ++p) {
-        if (graph.pass(PassId{p}).side_effect()) stack.push_back(p);
-    }
-    for (const PortAddress& out : graph.outputs()) stack.push_back(out.pass);
-    if (stack.empty()) {
-        return graph_error("nothing to run: no graph output and no side-effect pass (mark_output the final texture)");
-    }
-    while (!stack.empty()) {
-        const uint32_t p = stack.back();
-        stack.pop_back();
-        if (kept[p]) continue;
-        kept[p] = true;
-        for (uint32_t producer : dependencies->producers[p]) {
-            if (!kept[producer]) stack.push_back(producer);
-        }
-    }
-
-    // ---- order: Kahn's algorithm over the kept passes, ties by declaration order -----------
-    std::vector<uint32_t> in_degree(pass_count, 0);
-    for (uint32_t p = 0; p < pass_count; ++p) {
-        if (!kept[p]) continue;
-        for (uint32_t next : dependencies->successors[p]) {
-            if (kept[next]) ++in_degree[next];
-        }
-    }
-    std::priority_queue<uint32_t, std::vector<uint32_t>, std::greater<>> ready;
-    for (uint32_t p = 0; p < pass_count; ++p) {
-        if (kept[p] && in_degree[p] == 0) ready.push(p);
-    }
-    std::vector<uint32_t> order;
-    std::vector<uint32_t> position(pass_count, kNone);
-    while (!ready.empty()) {
-        const uint32_t p = ready.top();
-        ready.pop();
-        position[p] = static_cast<uint32_t>(order.size());
-        order.push_back(p);
-        for (uint32_t next : dependencies->successors[p]) {
-            if (kept[next] && --in_degree[next] == 0) ready.push(next);
-        }
-    }
+    auto kept = detail::cull_passes(graph, *dependencies);
+    if (!kept) return kept.take_error();
+    const detail::Schedule schedule = detail::schedule_passes(*dependencies, *kept);
+    const std::vector<uint32_t>& order = schedule.order;
+    const std::vector<uint32_t>& position = schedule.position;
     const auto scheduled = static_cast<uint32_t>(order.size());
     const uint32_t last_position = scheduled - 1;
 
@@ -277,13 +237,13 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
         if (!joined) return joined.take_error();
 
         const PortAddress start = group.ports.front();
-        if (!kept[start.pass]) continue;
+        if (!(*kept)[start.pass]) continue;
         PendingResource item;
         item.start = start;
         bool graph_output = false;
         uint32_t last = position[start.pass];
         for (const PortAddress& address : group.ports) {
-            if (!kept[address.pass]) continue;
+            if (!(*kept)[address.pass]) continue;
             item.kept_ports.push_back(address);
             graph_output = graph_output || is_graph_output[ports.flat(address)];
             last = std::max(last, position[address.pass]);
@@ -409,11 +369,9 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
             problem.graph_outputs.push_back(r);
         }
     }
-    for (uint32_t p = 0; p < pass_count; ++p) {
-        if (!kept[p]) plan.culled.push_back(graph.pass(PassId{p}).name());
-    }
+    plan.culled = detail::culled_pass_names(graph, *kept);
     for (const Connection& c : graph.connections()) {
-        if (!kept[c.from.pass] || !kept[c.to.pass]) continue;
+        if (!(*kept)[c.from.pass] || !(*kept)[c.to.pass]) continue;
         const uint32_t r = resource_of_port[ports.flat(c.to)];
         plan.edges.push_back(PlanEdge{position[c.from.pass], c.from.port, position[c.to.pass], c.to.port, r});
     }
