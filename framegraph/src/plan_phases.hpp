@@ -3,6 +3,9 @@
 // data so that each can be tested on its own. In order:
 //   cull      → which passes run                         (plan_schedule.cpp)
 //   schedule  → their order and positions                 (plan_schedule.cpp)
+//   join      → the port groups and the join of each        (plan_resources.cpp)
+//   resolve   → the logical resources: specs, usages,
+//               lifetimes, bytes; the ports of each pass    (plan_resources.cpp)
 // The barriers are not a phase of planning: build_execution_schedule (execution_schedule.cpp)
 // derives them from a finished plan, once per plan and set of bindings.
 
@@ -12,12 +15,16 @@
 
 #include "graph_analysis.hpp"
 #include "loom/framegraph/graph.hpp"
+#include "loom/framegraph/memory_model.hpp"
+#include "loom/framegraph/plan.hpp"
 #include "loom/rhi/result.hpp"
 
 namespace loom::fg::detail {
 
 /// Schedule::position of a pass that does not run.
 inline constexpr uint32_t kNotScheduled = UINT32_MAX;
+/// ResolvedResources::resource_of_port of a port without a resource.
+inline constexpr uint32_t kNoResource = UINT32_MAX;
 
 /// Cull: per pass (declaration order), whether it runs: a pass runs when it has side effects,
 /// produces a graph output, or produces a texture a running pass reads. ErrorCode::Graph when
@@ -36,5 +43,47 @@ struct Schedule {
 /// Schedule: Kahn's algorithm over the kept passes; of the passes ready at once, the one
 /// declared first runs first.
 Schedule schedule_passes(const Dependencies& dependencies, const std::vector<bool>& kept);
+
+/// A connected group of ports: an output (or an unconnected inout) and everything it feeds,
+/// directly or through inouts. One logical resource when its producer runs.
+struct JoinedGroup {
+    std::vector<PortAddress> ports;  ///< the starting port first, then breadth-first by connection order
+    /// The join of the ports' specs in group order; on a conflict, the error naming the port that
+    /// first constrained the property and the port that contradicts it.
+    Result<TextureSpec> spec;
+};
+
+/// Join: every group of the graph, in declaration order of their starting ports, with its join.
+/// Groups of culled passes are joined too: a bad connection is an error either way.
+std::vector<JoinedGroup> join_port_groups(const FrameGraph& graph, Extent2D frame);
+
+/// The logical resources of the passes that run.
+struct ResolvedResources {
+    /// In order of their producers' positions, then by port; spec_class and texture are not
+    /// assigned yet.
+    std::vector<PlanResource> resources;
+    /// Per pass, per port: the index of its resource, or kNoResource (culled passes, unconnected
+    /// optional inputs, optional outputs nobody reads).
+    std::vector<std::vector<uint32_t>> resource_of_port;
+    /// The resources of the graph outputs, in marking order, each once.
+    std::vector<uint32_t> graph_output_resources;
+};
+
+/// Resolve: a resource for each group whose producer runs, except an optional output no running
+/// pass reads: its joined spec resolved for `frame`, with the usage its running ports' roles
+/// need (and CopySrc when it is a graph output); the positions from its producer to its last
+/// running reader (a graph output lives to the last position); bytes and alignment from
+/// `memory`. The first group at fault in group order gives the error: its join error, or its
+/// resolve error naming its running ports, or the memory model's.
+Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::vector<JoinedGroup>& groups,
+                                            const Schedule& schedule, Extent2D frame, MemoryModel& memory);
+
+/// The passes that run, in order, each port with its resource and the usage its role needs
+/// (Plan::order).
+std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& schedule, const ResolvedResources& resolved);
+
+/// The connections between passes that run, by position, each with its resource (Plan::edges).
+std::vector<PlanEdge> plan_edges(const FrameGraph& graph, const Schedule& schedule,
+                                 const std::vector<std::vector<uint32_t>>& resource_of_port);
 
 }  // namespace loom::fg::detail

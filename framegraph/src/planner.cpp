@@ -21,67 +21,6 @@ using rhi::TextureUsage;
 
 constexpr uint32_t kNone = UINT32_MAX;
 
-// Ports of one graph by flat index, so per-port data lives in plain vectors.
-class PortIndex {
-public:
-    explicit PortIndex(const FrameGraph& graph) {
-        offsets_.reserve(graph.pass_count() + 1);
-        uint32_t total = 0;
-        for (uint32_t p = 0; p < graph.pass_count(); ++p) {
-            offsets_.push_back(total);
-            total += static_cast<uint32_t>(graph.pass(PassId{p}).ports().size());
-        }
-        offsets_.push_back(total);
-    }
-    [[nodiscard]] uint32_t flat(PortAddress a) const { return offsets_[a.pass] + a.port; }
-    [[nodiscard]] uint32_t size() const { return offsets_.back(); }
-
-private:
-    std::vector<uint32_t> offsets_;
-};
-
-// A connected group of ports: an output (or an unconnected inout) and everything it feeds,
-// directly or through inouts. One logical resource when its producer runs.
-struct Group {
-    std::vector<PortAddress> ports;  // the starting port first, then breadth-first by connection order
-};
-
-std::vector<Group> collect_groups(const FrameGraph& graph) {
-    std::vector<Group> groups;
-    for (uint32_t p = 0; p < graph.pass_count(); ++p) {
-        const Pass& pass = graph.pass(PassId{p});
-        for (uint32_t i = 0; i < pass.ports().size(); ++i) {
-            const PortAddress start{p, i};
-            const Port& port = pass.ports()[i];
-            const bool starts = port.kind == PortKind::Output || (port.kind == PortKind::InOut && !graph.source(start));
-            if (!starts) continue;
-            Group group;
-            group.ports.push_back(start);
-            for (std::size_t next = 0; next < group.ports.size(); ++next) {
-                const PortAddress at = group.ports[next];
-                if (!port_writes(graph.port_at(at).kind)) continue;
-                for (const PortAddress& consumer : graph.consumers(at)) group.ports.push_back(consumer);
-            }
-            groups.push_back(std::move(group));
-        }
-    }
-    return groups;
-}
-
-// The role of a port decides the usage it needs; an explicit Storage request turns an
-// attachment write or a sampled read into a storage access.
-TextureUsage port_usage(const Port& port, rhi::Format format) {
-    TextureUsage usage = port.spec.usage;
-    if (rhi::has_all(port.spec.usage, TextureUsage::Storage)) return usage;
-    if (port_writes(port.kind)) {
-        usage |= rhi::format_info(format).is_depth_stencil() ? TextureUsage::DepthStencilAttachment
-                                                             : TextureUsage::ColorAttachment;
-    } else {
-        usage |= TextureUsage::Sampled;
-    }
-    return usage;
-}
-
 // A spec that asks for exactly what `resolved` is, to join resolved specs with each other.
 TextureSpec as_spec(const ResolvedSpec& resolved) {
     TextureSpec spec = TextureSpec::of(resolved.format).with_size(resolved.extent.width, resolved.extent.height);
@@ -106,61 +45,6 @@ std::optional<ResolvedSpec> join_resolved(const ResolvedSpec& a, const ResolvedS
     auto resolved = resolve(*joined, frame, "joined texture");
     if (!resolved) return std::nullopt;
     return *resolved;
-}
-
-// A spec with only one of the properties format, size, samples, mips, layers (by index) of `spec`.
-TextureSpec only_property(const TextureSpec& spec, std::size_t property) {
-    TextureSpec out;
-    switch (property) {
-        case 0: out.format = spec.format; break;
-        case 1: out.size = spec.size; break;
-        case 2: out.samples = spec.samples; break;
-        case 3: out.mips = spec.mips; break;
-        default: out.layers = spec.layers; break;
-    }
-    return out;
-}
-
-// Joins the specs of a group's ports in group order. On a conflict the error names the port
-// that first constrained the conflicting property and the port that contradicts it.
-Result<TextureSpec> join_group(const FrameGraph& graph, const Group& group, Extent2D frame) {
-    TextureSpec joined;
-    // First port to constrain each property: format, size, samples, mips, layers.
-    std::array<std::optional<PortAddress>, 5> origin{};
-    for (const PortAddress& address : group.ports) {
-        const TextureSpec& spec = graph.port_at(address).spec;
-        JoinContext context;
-        context.frame = frame;
-        auto result = join(joined, spec, context);
-        if (!result) {
-            // Find the property at fault and name the port it came from.
-            for (std::size_t i = 0; i < origin.size(); ++i) {
-                if (!origin[i]) continue;
-                const std::string a_name = graph.port_name(*origin[i]);
-                const std::string b_name = graph.port_name(address);
-                JoinContext named;
-                named.frame = frame;
-                named.a_name = a_name;
-                named.b_name = b_name;
-                auto single = join(only_property(joined, i), only_property(spec, i), named);
-                if (!single) {
-                    Error error = single.take_error();
-                    error.subjects = {b_name, a_name};
-                    return error;
-                }
-            }
-            Error error = result.take_error();
-            error.subjects = {graph.port_name(address)};
-            return error;
-        }
-        if (spec.format && !origin[0]) origin[0] = address;
-        if (spec.size && !origin[1]) origin[1] = address;
-        if (spec.samples && !origin[2]) origin[2] = address;
-        if (spec.mips && !origin[3]) origin[3] = address;
-        if (spec.layers && !origin[4]) origin[4] = address;
-        joined = std::move(*result);
-    }
-    return joined;
 }
 
 // Most members of each class alive at once, and the peak of live bytes, over the order.
@@ -214,82 +98,20 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
     auto kept = detail::cull_passes(graph, *dependencies);
     if (!kept) return kept.take_error();
     const detail::Schedule schedule = detail::schedule_passes(*dependencies, *kept);
-    const std::vector<uint32_t>& order = schedule.order;
-    const std::vector<uint32_t>& position = schedule.position;
-    const auto scheduled = static_cast<uint32_t>(order.size());
-    const uint32_t last_position = scheduled - 1;
-
-    // ---- resources: join each group, resolve, measure its lifetime ------------------------
-    const PortIndex ports(graph);
-    std::vector<uint32_t> resource_of_port(ports.size(), kNone);
-    std::vector<bool> is_graph_output(ports.size(), false);
-    for (const PortAddress& out : graph.outputs()) is_graph_output[ports.flat(out)] = true;
-
-    struct PendingResource {
-        PlanResource resource;
-        PortAddress start;
-        std::vector<PortAddress> kept_ports;
-    };
-    std::vector<PendingResource> pending;
-    for (const Group& group : collect_groups(graph)) {
-        // Join every port, even those of culled passes: a bad connection is an error either way.
-        auto joined = join_group(graph, group, options.frame);
-        if (!joined) return joined.take_error();
-
-        const PortAddress start = group.ports.front();
-        if (!(*kept)[start.pass]) continue;
-        PendingResource item;
-        item.start = start;
-        bool graph_output = false;
-        uint32_t last = position[start.pass];
-        for (const PortAddress& address : group.ports) {
-            if (!(*kept)[address.pass]) continue;
-            item.kept_ports.push_back(address);
-            graph_output = graph_output || is_graph_output[ports.flat(address)];
-            last = std::max(last, position[address.pass]);
-        }
-        // An optional output nobody reads gets no texture.
-        if (item.kept_ports.size() == 1 && !graph_output && graph.port_at(start).optional) continue;
-
-        const std::string name = graph.port_name(start);
-        auto resolved = resolve(*joined, options.frame, name);
-        if (!resolved) {
-            Error error = resolved.take_error();
-            for (const PortAddress& address : item.kept_ports) error.subjects.push_back(graph.port_name(address));
-            return error;
-        }
-        TextureUsage usage = TextureUsage::None;
-        for (const PortAddress& address : item.kept_ports) usage |= port_usage(graph.port_at(address), resolved->format);
-        if (graph_output) usage |= TextureUsage::CopySrc;
-        resolved->usage = usage;
-
-        PlanResource& r = item.resource;
-        r.name = name;
-        for (const PortAddress& address : item.kept_ports) r.ports.push_back(graph.port_name(address));
-        r.requested_format = joined->format;
-        r.spec = *resolved;
-        r.graph_output = graph_output;
-        r.lifetime = {position[start.pass], graph_output ? last_position : last};
-        auto requirements = memory->requirements(to_texture_desc(r.spec, r.name));
-        if (!requirements) return requirements.take_error();
-        r.bytes = requirements->size;
-        r.alignment = std::max<uint64_t>(requirements->alignment, 1);
-        pending.push_back(std::move(item));
-    }
-    // Resources in order of their producers' positions, then by port.
-    std::stable_sort(pending.begin(), pending.end(), [&](const PendingResource& a, const PendingResource& b) {
-        return std::pair(position[a.start.pass], a.start.port) < std::pair(position[b.start.pass], b.start.port);
-    });
+    const auto scheduled = static_cast<uint32_t>(schedule.order.size());
+    auto resolved =
+        detail::resolve_resources(graph, detail::join_port_groups(graph, options.frame), schedule, options.frame, *memory);
+    if (!resolved) return resolved.take_error();
 
     Plan plan;
     plan.allocator = std::string((*allocator)->name());
     plan.frame = options.frame;
     plan.sharing = options.sharing;
-    plan.resources.reserve(pending.size());
-    for (uint32_t r = 0; r < pending.size(); ++r) {
-        for (const PortAddress& address : pending[r].kept_ports) resource_of_port[ports.flat(address)] = r;
-        plan.resources.push_back(std::move(pending[r].resource));
-    }
+    plan.order = detail::plan_passes(graph, schedule, *resolved);
+    plan.culled = detail::culled_pass_names(graph, *kept);
+    plan.edges = detail::plan_edges(graph, schedule, resolved->resource_of_port);
+    for (const PortAddress& out : graph.outputs()) plan.graph_outputs.push_back(graph.port_name(out));
+    plan.resources = std::move(resolved->resources);
 
     // ---- spec classes: which resources may share a texture -------------------------------
     // Equal sharing: a class per texture shape (its shape never changes, only its usage
@@ -330,30 +152,18 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
     const Peaks peaks = measure_peaks(plan.resources, scheduled, class_count);
     for (uint32_t c = 0; c < class_count; ++c) plan.spec_classes[c].peak_live = peaks.live_per_class[c];
 
-    // ---- scheduled passes with their ports -------------------------------------------------
+    // ---- the allocation problem ----------------------------------------------------------
     AllocationProblem problem;
     problem.spec_class_count = class_count;
     problem.max_heap_bytes = options.max_heap_bytes;
     problem.passes.resize(scheduled);
-    plan.order.reserve(scheduled);
     for (uint32_t at = 0; at < scheduled; ++at) {
-        const uint32_t p = order[at];
-        const Pass& pass = graph.pass(PassId{p});
-        PlanPass planned{pass.name(), p, pass.side_effect(), {}};
         AllocationPass& step = problem.passes[at];
-        for (uint32_t i = 0; i < pass.ports().size(); ++i) {
-            const Port& port = pass.ports()[i];
-            PlanPort planned_port{port.name, port.kind, port.optional, std::nullopt, TextureUsage::None};
-            const uint32_t r = resource_of_port[ports.flat({p, i})];
-            if (r != kNone) {
-                planned_port.resource = r;
-                planned_port.usage = port_usage(port, plan.resources[r].spec.format);
-                if (port_reads(port.kind)) step.inputs.push_back(r);
-                if (port_writes(port.kind)) step.non_inputs.push_back(r);
-            }
-            planned.ports.push_back(std::move(planned_port));
+        for (const PlanPort& port : plan.order[at].ports) {
+            if (!port.resource) continue;
+            if (port_reads(port.kind)) step.inputs.push_back(*port.resource);
+            if (port_writes(port.kind)) step.non_inputs.push_back(*port.resource);
         }
-        plan.order.push_back(std::move(planned));
     }
     for (uint32_t r = 0; r < plan.resources.size(); ++r) {
         const PlanResource& resource = plan.resources[r];
@@ -361,21 +171,7 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
         problem.resources.push_back(
             AllocationResource{resource.spec_class, resource.lifetime, resource.bytes, resource.alignment, resource.name});
     }
-    std::vector<bool> listed_output(plan.resources.size(), false);
-    for (const PortAddress& out : graph.outputs()) {
-        const uint32_t r = resource_of_port[ports.flat(out)];
-        if (r != kNone && !listed_output[r]) {
-            listed_output[r] = true;
-            problem.graph_outputs.push_back(r);
-        }
-    }
-    plan.culled = detail::culled_pass_names(graph, *kept);
-    for (const Connection& c : graph.connections()) {
-        if (!(*kept)[c.from.pass] || !(*kept)[c.to.pass]) continue;
-        const uint32_t r = resource_of_port[ports.flat(c.to)];
-        plan.edges.push_back(PlanEdge{position[c.from.pass], c.from.port, position[c.to.pass], c.to.port, r});
-    }
-    for (const PortAddress& out : graph.outputs()) plan.graph_outputs.push_back(graph.port_name(out));
+    problem.graph_outputs = resolved->graph_output_resources;
 
     // ---- allocation -----------------------------------------------------------------------
     auto allocation = (*allocator)->allocate(problem);

@@ -1,0 +1,253 @@
+// The logical resources of a plan: the join and resolve phases of build_plan, and the ports of
+// the scheduled passes with the resource and usage of each.
+#include <algorithm>
+#include <array>
+#include <optional>
+#include <utility>
+
+#include "loom/framegraph/join.hpp"
+#include "plan_phases.hpp"
+
+namespace loom::fg::detail {
+namespace {
+
+using rhi::TextureUsage;
+
+std::vector<std::vector<PortAddress>> collect_groups(const FrameGraph& graph) {
+    std::vector<std::vector<PortAddress>> groups;
+    for (uint32_t p = 0; p < graph.pass_count(); ++p) {
+        const Pass& pass = graph.pass(PassId{p});
+        for (uint32_t i = 0; i < pass.ports().size(); ++i) {
+            const PortAddress start{p, i};
+            const Port& port = pass.ports()[i];
+            const bool starts = port.kind == PortKind::Output || (port.kind == PortKind::InOut && !graph.source(start));
+            if (!starts) continue;
+            std::vector<PortAddress> group{start};
+            for (std::size_t next = 0; next < group.size(); ++next) {
+                const PortAddress at = group[next];
+                if (!port_writes(graph.port_at(at).kind)) continue;
+                for (const PortAddress& consumer : graph.consumers(at)) group.push_back(consumer);
+            }
+            groups.push_back(std::move(group));
+        }
+    }
+    return groups;
+}
+
+// A spec with only one of the properties format, size, samples, mips, layers (by index) of `spec`.
+TextureSpec only_property(const TextureSpec& spec, std::size_t property) {
+    TextureSpec out;
+    switch (property) {
+        case 0: out.format = spec.format; break;
+        case 1: out.size = spec.size; break;
+        case 2: out.samples = spec.samples; break;
+        case 3: out.mips = spec.mips; break;
+        default: out.layers = spec.layers; break;
+    }
+    return out;
+}
+
+// Joins the specs of a group's ports in group order. On a conflict the error names the port
+// that first constrained the conflicting property and the port that contradicts it.
+Result<TextureSpec> join_group(const FrameGraph& graph, const std::vector<PortAddress>& group, Extent2D frame) {
+    TextureSpec joined;
+    // First port to constrain each property: format, size, samples, mips, layers.
+    std::array<std::optional<PortAddress>, 5> origin{};
+    for (const PortAddress& address : group) {
+        const TextureSpec& spec = graph.port_at(address).spec;
+        JoinContext context;
+        context.frame = frame;
+        auto result = join(joined, spec, context);
+        if (!result) {
+            // Find the property at fault and name the port it came from.
+            for (std::size_t i = 0; i < origin.size(); ++i) {
+                if (!origin[i]) continue;
+                const std::string a_name = graph.port_name(*origin[i]);
+                const std::string b_name = graph.port_name(address);
+                JoinContext named;
+                named.frame = frame;
+                named.a_name = a_name;
+                named.b_name = b_name;
+                auto single = join(only_property(joined, i), only_property(spec, i), named);
+                if (!single) {
+                    Error error = single.take_error();
+                    error.subjects = {b_name, a_name};
+                    return error;
+                }
+            }
+            Error error = result.take_error();
+            error.subjects = {graph.port_name(address)};
+            return error;
+        }
+        if (spec.format && !origin[0]) origin[0] = address;
+        if (spec.size && !origin[1]) origin[1] = address;
+        if (spec.samples && !origin[2]) origin[2] = address;
+        if (spec.mips && !origin[3]) origin[3] = address;
+        if (spec.layers && !origin[4]) origin[4] = address;
+        joined = std::move(*result);
+    }
+    return joined;
+}
+
+// The role of a port decides the usage it needs; an explicit Storage request turns an
+// attachment write or a sampled read into a storage access.
+TextureUsage port_usage(const Port& port, rhi::Format format) {
+    TextureUsage usage = port.spec.usage;
+    if (rhi::has_all(port.spec.usage, TextureUsage::Storage)) return usage;
+    if (port_writes(port.kind)) {
+        usage |= rhi::format_info(format).is_depth_stencil() ? TextureUsage::DepthStencilAttachment
+                                                             : TextureUsage::ColorAttachment;
+    } else {
+        usage |= TextureUsage::Sampled;
+    }
+    return usage;
+}
+
+// `value` for every port of the graph, by pass and port.
+template <class T>
+std::vector<std::vector<T>> per_port(const FrameGraph& graph, T value) {
+    std::vector<std::vector<T>> out(graph.pass_count());
+    for (uint32_t p = 0; p < graph.pass_count(); ++p) out[p].assign(graph.pass(PassId{p}).ports().size(), value);
+    return out;
+}
+
+// A resource before its index is known: resources are numbered once sorted by producer position.
+struct PendingResource {
+    PlanResource resource;
+    PortAddress start;
+    std::vector<PortAddress> kept_ports;  // the group's ports whose passes run, the starting port first
+};
+
+// The running part of a group whose producer runs: its running ports, whether one is a graph
+// output, and the positions they span (a graph output lives to the last position).
+PendingResource running_part(const std::vector<PortAddress>& group, const Schedule& schedule,
+                             const std::vector<std::vector<bool>>& is_graph_output) {
+    const std::vector<uint32_t>& position = schedule.position;
+    PendingResource item;
+    item.start = group.front();
+    bool graph_output = false;
+    uint32_t last = position[item.start.pass];
+    for (const PortAddress& address : group) {
+        if (position[address.pass] == kNotScheduled) continue;
+        item.kept_ports.push_back(address);
+        graph_output = graph_output || is_graph_output[address.pass][address.port];
+        last = std::max(last, position[address.pass]);
+    }
+    const auto last_position = static_cast<uint32_t>(schedule.order.size() - 1);
+    item.resource.graph_output = graph_output;
+    item.resource.lifetime = {position[item.start.pass], graph_output ? last_position : last};
+    return item;
+}
+
+// Fills in what the joined spec decides: the resolved spec with the usage of the running
+// ports, the port names, and the bytes the memory model asks for.
+Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Extent2D frame, MemoryModel& memory,
+                       PendingResource& item) {
+    PlanResource& r = item.resource;
+    r.name = graph.port_name(item.start);
+    auto resolved = resolve(joined, frame, r.name);
+    if (!resolved) {
+        Error error = resolved.take_error();
+        for (const PortAddress& address : item.kept_ports) error.subjects.push_back(graph.port_name(address));
+        return error;
+    }
+    TextureUsage usage = TextureUsage::None;
+    for (const PortAddress& address : item.kept_ports) usage |= port_usage(graph.port_at(address), resolved->format);
+    if (r.graph_output) usage |= TextureUsage::CopySrc;
+    resolved->usage = usage;
+
+    for (const PortAddress& address : item.kept_ports) r.ports.push_back(graph.port_name(address));
+    r.requested_format = joined.format;
+    r.spec = *resolved;
+    auto requirements = memory.requirements(to_texture_desc(r.spec, r.name));
+    if (!requirements) return requirements.take_error();
+    r.bytes = requirements->size;
+    r.alignment = std::max<uint64_t>(requirements->alignment, 1);
+    return {};
+}
+
+}  // namespace
+
+std::vector<JoinedGroup> join_port_groups(const FrameGraph& graph, Extent2D frame) {
+    std::vector<JoinedGroup> joined;
+    for (std::vector<PortAddress>& group : collect_groups(graph)) {
+        Result<TextureSpec> spec = join_group(graph, group, frame);
+        joined.push_back(JoinedGroup{std::move(group), std::move(spec)});
+    }
+    return joined;
+}
+
+Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::vector<JoinedGroup>& groups,
+                                            const Schedule& schedule, Extent2D frame, MemoryModel& memory) {
+    std::vector<std::vector<bool>> is_graph_output = per_port(graph, false);
+    for (const PortAddress& out : graph.outputs()) is_graph_output[out.pass][out.port] = true;
+
+    std::vector<PendingResource> pending;
+    for (const JoinedGroup& group : groups) {
+        if (!group.spec) return group.spec.error();
+        const PortAddress start = group.ports.front();
+        if (schedule.position[start.pass] == kNotScheduled) continue;
+        PendingResource item = running_part(group.ports, schedule, is_graph_output);
+        // An optional output nobody reads gets no texture.
+        if (item.kept_ports.size() == 1 && !item.resource.graph_output && graph.port_at(start).optional) continue;
+        LOOM_TRY(resolve_pending(graph, *group.spec, frame, memory, item));
+        pending.push_back(std::move(item));
+    }
+    // Resources in order of their producers' positions, then by port.
+    const std::vector<uint32_t>& position = schedule.position;
+    std::stable_sort(pending.begin(), pending.end(), [&](const PendingResource& a, const PendingResource& b) {
+        return std::pair(position[a.start.pass], a.start.port) < std::pair(position[b.start.pass], b.start.port);
+    });
+
+    ResolvedResources resolved;
+    resolved.resource_of_port = per_port(graph, kNoResource);
+    resolved.resources.reserve(pending.size());
+    for (uint32_t r = 0; r < pending.size(); ++r) {
+        for (const PortAddress& address : pending[r].kept_ports) resolved.resource_of_port[address.pass][address.port] = r;
+        resolved.resources.push_back(std::move(pending[r].resource));
+    }
+    std::vector<bool> listed(resolved.resources.size(), false);
+    for (const PortAddress& out : graph.outputs()) {
+        const uint32_t r = resolved.resource_of_port[out.pass][out.port];
+        if (r != kNoResource && !listed[r]) {
+            listed[r] = true;
+            resolved.graph_output_resources.push_back(r);
+        }
+    }
+    return resolved;
+}
+
+std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& schedule, const ResolvedResources& resolved) {
+    std::vector<PlanPass> passes;
+    passes.reserve(schedule.order.size());
+    for (uint32_t p : schedule.order) {
+        const Pass& pass = graph.pass(PassId{p});
+        PlanPass planned{pass.name(), p, pass.side_effect(), {}};
+        for (uint32_t i = 0; i < pass.ports().size(); ++i) {
+            const Port& port = pass.ports()[i];
+            PlanPort planned_port{port.name, port.kind, port.optional, std::nullopt, TextureUsage::None};
+            const uint32_t r = resolved.resource_of_port[p][i];
+            if (r != kNoResource) {
+                planned_port.resource = r;
+                planned_port.usage = port_usage(port, resolved.resources[r].spec.format);
+            }
+            planned.ports.push_back(std::move(planned_port));
+        }
+        passes.push_back(std::move(planned));
+    }
+    return passes;
+}
+
+std::vector<PlanEdge> plan_edges(const FrameGraph& graph, const Schedule& schedule,
+                                 const std::vector<std::vector<uint32_t>>& resource_of_port) {
+    const std::vector<uint32_t>& position = schedule.position;
+    std::vector<PlanEdge> edges;
+    for (const Connection& c : graph.connections()) {
+        if (position[c.from.pass] == kNotScheduled || position[c.to.pass] == kNotScheduled) continue;
+        const uint32_t r = resource_of_port[c.to.pass][c.to.port];
+        edges.push_back(PlanEdge{position[c.from.pass], c.from.port, position[c.to.pass], c.to.port, r});
+    }
+    return edges;
+}
+
+}  // namespace loom::fg::detail
