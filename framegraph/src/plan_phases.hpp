@@ -1,11 +1,15 @@
 #pragma once
 // Internal: the phases of build_plan (planner.cpp), each a function from plain data to plain
 // data so that each can be tested on its own. In order:
-//   cull      → which passes run                         (plan_schedule.cpp)
-//   schedule  → their order and positions                 (plan_schedule.cpp)
-//   join      → the port groups and the join of each        (plan_resources.cpp)
-//   resolve   → the logical resources: specs, usages,
-//               lifetimes, bytes; the ports of each pass    (plan_resources.cpp)
+//   cull          which passes run                                     plan_schedule.cpp
+//   schedule      their order, and each pass's position in it          plan_schedule.cpp
+//   join          the port groups, each with the join of its specs     plan_resources.cpp
+//   resolve       the logical resources: resolved specs, usages,       plan_resources.cpp
+//                 lifetimes, bytes; each running pass's ports, edges
+//   spec classes  which resources may share a texture; the peaks       plan_allocation.cpp
+//   allocate      the allocation problem, the allocator's checked      plan_allocation.cpp
+//                 answer, textures numbered by first use, heaps
+//   summary       the figures that make allocators comparable          plan_allocation.cpp
 // The barriers are not a phase of planning: build_execution_schedule (execution_schedule.cpp)
 // derives them from a finished plan, once per plan and set of bindings.
 
@@ -14,6 +18,7 @@
 #include <vector>
 
 #include "graph_analysis.hpp"
+#include "loom/framegraph/allocator.hpp"
 #include "loom/framegraph/graph.hpp"
 #include "loom/framegraph/memory_model.hpp"
 #include "loom/framegraph/plan.hpp"
@@ -85,5 +90,47 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
 /// The connections between passes that run, by position, each with its resource (Plan::edges).
 std::vector<PlanEdge> plan_edges(const FrameGraph& graph, const Schedule& schedule,
                                  const std::vector<std::vector<uint32_t>>& resource_of_port);
+
+/// Which resources may share a texture.
+struct SpecClassAssignment {
+    std::vector<SpecClass> classes;           ///< with their members and peak live counts (Plan::spec_classes)
+    std::vector<uint32_t> class_of_resource;  ///< per resource, an index into `classes`
+    uint64_t peak_live_bytes = 0;             ///< most bytes of resources alive at one position
+};
+
+/// Spec classes: under SpecSharing::Equal a class per texture shape (its spec's usage the union
+/// of its members'); under Joinable each resource joins the first class whose spec joins with
+/// its own, widening that spec, or starts a class. Then the peaks over `position_count`
+/// positions: the most members of each class alive at once, and the most live bytes.
+SpecClassAssignment assign_spec_classes(const std::vector<PlanResource>& resources, SpecSharing sharing, Extent2D frame,
+                                        uint32_t position_count);
+
+/// The problem an allocator is given: per position of `order` the resources its ports read and
+/// write and the resources that start there, and every resource (spec_class assigned) with its
+/// class, lifetime, bytes and alignment.
+AllocationProblem make_allocation_problem(const std::vector<PlanPass>& order,
+                                          const std::vector<PlanResource>& resources,
+                                          std::vector<uint32_t> graph_output_resources, uint32_t spec_class_count,
+                                          uint64_t max_heap_bytes);
+
+/// The textures an allocation makes.
+struct TextureAssignment {
+    std::vector<uint32_t> texture_of_resource;  ///< per resource, an index into `textures`
+    std::vector<PlanTexture> textures;          ///< numbered by first use (Plan::textures)
+    std::vector<uint64_t> heaps;                ///< Plan::heaps
+};
+
+/// Allocate: runs `allocator` on `problem` and checks its answer (ErrorCode::Graph naming the
+/// allocator: a texture index per resource below the texture count, a placement per texture if
+/// any, no texture without a resource, only resources whose specs join in one texture). Textures
+/// are numbered by their first resource; each has the join of its resources' specs and, when
+/// shared, the bytes `memory` gives for that join (else its resource's bytes).
+Result<TextureAssignment> allocate_textures(const Allocator& allocator, const AllocationProblem& problem,
+                                            const std::vector<PlanResource>& resources, Extent2D frame,
+                                            MemoryModel& memory);
+
+/// Summary: the figures of a plan whose other fields are filled (Plan::summary); the lower bound
+/// of bytes is `peak_live_bytes` (SpecClassAssignment).
+PlanSummary summarize_plan(const Plan& plan, uint64_t peak_live_bytes);
 
 }  // namespace loom::fg::detail

@@ -203,7 +203,9 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::
     resolved.resource_of_port = per_port(graph, kNoResource);
     resolved.resources.reserve(pending.size());
     for (uint32_t r = 0; r < pending.size(); ++r) {
-        for (const PortAddress& address : pending[r].kept_ports) resolved.resource_of_port[address.pass][address.port] = r;
+        for (const PortAddress& address : pending[r].kept_ports) {
+            resolved.resource_of_port[address.pass][address.port] = r;
+        }
         resolved.resources.push_back(std::move(pending[r].resource));
     }
     std::vector<bool> listed(resolved.resources.size(), false);
@@ -217,7 +219,8 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::
     return resolved;
 }
 
-std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& schedule, const ResolvedResources& resolved) {
+std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& schedule,
+                                  const ResolvedResources& resolved) {
     std::vector<PlanPass> passes;
     passes.reserve(schedule.order.size());
     for (uint32_t p : schedule.order) {

@@ -1,0 +1,249 @@
+// Which resources share which texture: the spec classes, allocate and summary phases of
+// build_plan.
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <tuple>
+
+#include "loom/framegraph/join.hpp"
+#include "plan_phases.hpp"
+
+namespace loom::fg::detail {
+namespace {
+
+// A spec that asks for exactly what `resolved` is, to join resolved specs with each other.
+TextureSpec as_spec(const ResolvedSpec& resolved) {
+    TextureSpec spec = TextureSpec::of(resolved.format).with_size(resolved.extent.width, resolved.extent.height);
+    spec.samples = resolved.samples;
+    spec.mips = resolved.mips;
+    spec.layers = resolved.layers;
+    spec.usage = resolved.usage;
+    return spec;
+}
+
+// Join of two resolved specs; nullopt when they do not join.
+std::optional<ResolvedSpec> join_resolved(const ResolvedSpec& a, const ResolvedSpec& b, Extent2D frame) {
+    if (same_texture_shape(a, b)) {
+        ResolvedSpec out = a;
+        out.usage = a.usage | b.usage;
+        return out;
+    }
+    JoinContext context;
+    context.frame = frame;
+    auto joined = join(as_spec(a), as_spec(b), context);
+    if (!joined) return std::nullopt;
+    auto resolved = resolve(*joined, frame, "joined texture");
+    if (!resolved) return std::nullopt;
+    return *resolved;
+}
+
+// Most members of each class alive at once, and the peak of live bytes, over the order.
+struct Peaks {
+    std::vector<uint32_t> live_per_class;
+    uint64_t bytes = 0;
+};
+
+Peaks measure_peaks(const std::vector<PlanResource>& resources, const std::vector<uint32_t>& class_of_resource,
+                    uint32_t position_count, uint32_t class_count) {
+    // Sweep: +1 at first, -1 after last.
+    std::vector<std::vector<uint32_t>> starting(position_count + 1);
+    std::vector<std::vector<uint32_t>> ending(position_count + 1);
+    for (uint32_t r = 0; r < resources.size(); ++r) {
+        starting[resources[r].lifetime.first].push_back(r);
+        ending[resources[r].lifetime.last + 1].push_back(r);
+    }
+    Peaks peaks;
+    peaks.live_per_class.assign(class_count, 0);
+    std::vector<uint32_t> live(class_count, 0);
+    uint64_t live_bytes = 0;
+    for (uint32_t position = 0; position < position_count; ++position) {
+        for (uint32_t r : ending[position]) {
+            --live[class_of_resource[r]];
+            live_bytes -= resources[r].bytes;
+        }
+        for (uint32_t r : starting[position]) {
+            const uint32_t c = class_of_resource[r];
+            peaks.live_per_class[c] = std::max(peaks.live_per_class[c], ++live[c]);
+            live_bytes += resources[r].bytes;
+        }
+        peaks.bytes = std::max(peaks.bytes, live_bytes);
+    }
+    return peaks;
+}
+
+constexpr uint32_t kNoClass = UINT32_MAX;
+
+// An allocator's answer can be trusted only this far: a texture below the count for every
+// resource, and a placement for every texture when it places any.
+bool well_formed(const Allocation& allocation, std::size_t resource_count) {
+    const bool placed = !allocation.texture_placement.empty();
+    return allocation.texture_of_resource.size() == resource_count &&
+           std::all_of(allocation.texture_of_resource.begin(), allocation.texture_of_resource.end(),
+                       [&](uint32_t t) { return t < allocation.texture_count; }) &&
+           (!placed || allocation.texture_placement.size() == allocation.texture_count);
+}
+
+// The textures of a well-formed allocation numbered by first use, so plans read the same
+// whatever an allocator's own numbering; nullopt when a texture has no resource.
+std::optional<TextureAssignment> number_by_first_use(const Allocation& allocation) {
+    std::vector<uint32_t> first_user(allocation.texture_count, kNoResource);
+    for (uint32_t r = 0; r < allocation.texture_of_resource.size(); ++r) {
+        uint32_t& first = first_user[allocation.texture_of_resource[r]];
+        first = std::min(first, r);
+    }
+    if (std::find(first_user.begin(), first_user.end(), kNoResource) != first_user.end()) return std::nullopt;
+    std::vector<uint32_t> by_first_use(allocation.texture_count);
+    std::iota(by_first_use.begin(), by_first_use.end(), 0u);
+    std::sort(by_first_use.begin(), by_first_use.end(),
+              [&](uint32_t a, uint32_t b) { return first_user[a] < first_user[b]; });
+    std::vector<uint32_t> renumbered(allocation.texture_count);
+    for (uint32_t t = 0; t < by_first_use.size(); ++t) renumbered[by_first_use[t]] = t;
+
+    TextureAssignment out;
+    const bool placed = !allocation.texture_placement.empty();
+    out.textures.resize(allocation.texture_count);
+    for (uint32_t t = 0; t < allocation.texture_count; ++t) {
+        out.textures[t].name = "t" + std::to_string(t);
+        if (placed) out.textures[t].placement = allocation.texture_placement[by_first_use[t]];
+    }
+    out.texture_of_resource.reserve(allocation.texture_of_resource.size());
+    for (uint32_t t : allocation.texture_of_resource) out.texture_of_resource.push_back(renumbered[t]);
+    out.heaps = allocation.heap_sizes;
+    return out;
+}
+
+// Each texture's resources, its spec (the join of theirs) and its bytes.
+Status describe_textures(const std::string& allocator_name, const std::vector<PlanResource>& resources, Extent2D frame,
+                         MemoryModel& memory, TextureAssignment& assignment) {
+    for (uint32_t r = 0; r < resources.size(); ++r) {
+        const PlanResource& resource = resources[r];
+        PlanTexture& texture = assignment.textures[assignment.texture_of_resource[r]];
+        if (texture.resources.empty()) {
+            texture.spec = resource.spec;
+        } else if (auto joined = join_resolved(texture.spec, resource.spec, frame)) {
+            texture.spec = *joined;
+        } else {
+            return make_error(ErrorCode::Graph, "allocator '" + allocator_name + "' put " + resource.name +
+                                                    " into a texture of a spec it does not join with");
+        }
+        texture.resources.push_back(r);
+    }
+    for (PlanTexture& texture : assignment.textures) {
+        if (texture.resources.size() == 1) {
+            texture.bytes = resources[texture.resources.front()].bytes;
+            texture.alignment = resources[texture.resources.front()].alignment;
+        } else {
+            auto requirements = memory.requirements(to_texture_desc(texture.spec, texture.name));
+            if (!requirements) return requirements.take_error();
+            texture.bytes = requirements->size;
+            texture.alignment = std::max<uint64_t>(requirements->alignment, 1);
+        }
+    }
+    return {};
+}
+
+}  // namespace
+
+SpecClassAssignment assign_spec_classes(const std::vector<PlanResource>& resources, SpecSharing sharing, Extent2D frame,
+                                        uint32_t position_count) {
+    SpecClassAssignment out;
+    std::vector<SpecClass>& classes = out.classes;
+    // Equal sharing: a class per texture shape (its shape never changes, only its usage
+    // grows), found by key rather than by trying every class.
+    using ShapeKey = std::tuple<rhi::Format, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t>;
+    auto shape_key = [](const ResolvedSpec& spec) {
+        return ShapeKey{spec.format, spec.extent.width, spec.extent.height, spec.samples, spec.mips, spec.layers};
+    };
+    std::map<ShapeKey, uint32_t> class_of_shape;
+    for (uint32_t r = 0; r < resources.size(); ++r) {
+        const PlanResource& resource = resources[r];
+        uint32_t chosen = kNoClass;
+        if (sharing == SpecSharing::Equal) {
+            auto it = class_of_shape.find(shape_key(resource.spec));
+            if (it != class_of_shape.end()) {
+                chosen = it->second;
+                classes[chosen].spec.usage |= resource.spec.usage;
+            } else {
+                class_of_shape.emplace(shape_key(resource.spec), static_cast<uint32_t>(classes.size()));
+            }
+        }
+        for (uint32_t c = 0; sharing != SpecSharing::Equal && c < classes.size() && chosen == kNoClass; ++c) {
+            if (auto joined = join_resolved(classes[c].spec, resource.spec, frame)) {
+                classes[c].spec = *joined;
+                chosen = c;
+            }
+        }
+        if (chosen == kNoClass) {
+            chosen = static_cast<uint32_t>(classes.size());
+            classes.push_back(SpecClass{resource.spec, {}, 0});
+        }
+        out.class_of_resource.push_back(chosen);
+        classes[chosen].resources.push_back(r);
+    }
+    const auto class_count = static_cast<uint32_t>(classes.size());
+    const Peaks peaks = measure_peaks(resources, out.class_of_resource, position_count, class_count);
+    for (uint32_t c = 0; c < class_count; ++c) classes[c].peak_live = peaks.live_per_class[c];
+    out.peak_live_bytes = peaks.bytes;
+    return out;
+}
+
+AllocationProblem make_allocation_problem(const std::vector<PlanPass>& order,
+                                          const std::vector<PlanResource>& resources,
+                                          std::vector<uint32_t> graph_output_resources, uint32_t spec_class_count,
+                                          uint64_t max_heap_bytes) {
+    AllocationProblem problem;
+    problem.spec_class_count = spec_class_count;
+    problem.max_heap_bytes = max_heap_bytes;
+    problem.passes.resize(order.size());
+    for (uint32_t at = 0; at < order.size(); ++at) {
+        AllocationPass& step = problem.passes[at];
+        for (const PlanPort& port : order[at].ports) {
+            if (!port.resource) continue;
+            if (port_reads(port.kind)) step.inputs.push_back(*port.resource);
+            if (port_writes(port.kind)) step.non_inputs.push_back(*port.resource);
+        }
+    }
+    for (uint32_t r = 0; r < resources.size(); ++r) {
+        const PlanResource& resource = resources[r];
+        problem.passes[resource.lifetime.first].begins.push_back(r);
+        problem.resources.push_back(AllocationResource{resource.spec_class, resource.lifetime, resource.bytes,
+                                                       resource.alignment, resource.name});
+    }
+    problem.graph_outputs = std::move(graph_output_resources);
+    return problem;
+}
+
+Result<TextureAssignment> allocate_textures(const Allocator& allocator, const AllocationProblem& problem,
+                                            const std::vector<PlanResource>& resources, Extent2D frame,
+                                            MemoryModel& memory) {
+    auto allocation = allocator.allocate(problem);
+    if (!allocation) return allocation.take_error();
+    const std::string name(allocator.name());
+    if (!well_formed(*allocation, resources.size())) {
+        return make_error(ErrorCode::Graph, "allocator '" + name + "' returned a malformed allocation");
+    }
+    std::optional<TextureAssignment> assignment = number_by_first_use(*allocation);
+    if (!assignment) return make_error(ErrorCode::Graph, "allocator '" + name + "' made a texture no resource uses");
+    LOOM_TRY(describe_textures(name, resources, frame, memory, *assignment));
+    return std::move(*assignment);
+}
+
+PlanSummary summarize_plan(const Plan& plan, uint64_t peak_live_bytes) {
+    PlanSummary summary;
+    summary.textures = static_cast<uint32_t>(plan.textures.size());
+    // An allocator that places textures places every one of them (allocate_textures checks it).
+    const bool placed = !plan.textures.empty() && plan.textures.front().placement.has_value();
+    if (placed) {
+        summary.bytes = std::accumulate(plan.heaps.begin(), plan.heaps.end(), uint64_t{0});
+    } else {
+        for (const PlanTexture& texture : plan.textures) summary.bytes += texture.bytes;
+    }
+    summary.naive_textures = static_cast<uint32_t>(plan.resources.size());
+    for (const PlanResource& resource : plan.resources) summary.naive_bytes += resource.bytes;
+    for (const SpecClass& spec_class : plan.spec_classes) summary.lower_bound_textures += spec_class.peak_live;
+    summary.lower_bound_bytes = peak_live_bytes;
+    return summary;
+}
+
+}  // namespace loom::fg::detail
