@@ -1,6 +1,6 @@
 #pragma once
 // Internal: the phases of build_plan (planner.cpp), each a function from plain data to plain
-// data so that each can be tested on its own. In order:
+// data so that each can be tested on its own (tests/framegraph/plan_phases_test.cpp). In order:
 //   cull          which passes run                                     plan_schedule.cpp
 //   schedule      their order, and each pass's position in it          plan_schedule.cpp
 //   join          the port groups, each with the join of its specs     plan_resources.cpp
