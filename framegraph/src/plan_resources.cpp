@@ -184,6 +184,9 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::
 
     std::vector<PendingResource> pending;
     for (const JoinedGroup& group : groups) {
+        // A join error is reported only when its group is reached: the first group at fault (in
+        // declaration order) gives the error, whether its ports do not join or its spec does not
+        // resolve.
         if (!group.spec) return group.spec.error();
         const PortAddress start = group.ports.front();
         if (schedule.position[start.pass] == kNotScheduled) continue;
