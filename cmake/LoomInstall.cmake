@@ -9,14 +9,18 @@
 # as not found. The config (cmake/loomConfig.cmake.in) loads what was asked for plus what that
 # needs, and finds the third-party packages those static libraries link.
 #
-#   component    targets                                     needs
-#   rhi          loom::rhi                                   glslang, SPIRV-Cross, stb (pkg-config)
-#   shaders      loom::shaders (+ loom::shaders_embedded)    rhi
-#   framegraph   loom::framegraph                            rhi, nlohmann_json
-#   gl           loom::gl                                    rhi, epoxy (pkg-config), glfw3
-#   vulkan       loom::vulkan                                rhi, Vulkan, glfw3
-#   backends     loom::backends (rhi::create_device)         rhi and every backend built
-#   passes       loom::passes                                framegraph, shaders, glm
+#   component        targets                                  needs
+#   rhi              loom::rhi                                (nothing third-party)
+#   shader_compiler  loom::shader_compiler                    rhi, glslang, SPIRV-Cross
+#   image_io         loom::image_io                           rhi, stb (pkg-config)
+#   shaders          loom::shaders (+ loom::shaders_embedded) rhi, shader_compiler
+#   framegraph       loom::framegraph                         rhi, nlohmann_json
+#   gl               loom::gl                                 rhi, epoxy (pkg-config), glfw3
+#   vulkan           loom::vulkan                             rhi, Vulkan, glfw3
+#   backends         loom::backends (rhi::create_device)      rhi and every backend built
+#   passes           loom::passes                             framegraph, shaders, shader_compiler, glm
+#   scene            loom::scene                              rhi, image_io, glm, tinygltf, nlohmann_json
+#   renderer         loom::renderer                           scene, passes
 #
 # Targets keep their in-tree names (loom::rhi is the alias of loom_rhi); EXPORT_NAME gives the
 # installed ones the same names.
@@ -28,7 +32,7 @@ set(LOOM_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/loom" CACHE STRING
     "Where the CMake package config of loom is installed, relative to the prefix")
 
 # Components in dependency order: the config loads them in this order.
-set(LOOM_ALL_COMPONENTS rhi shaders framegraph gl vulkan backends passes)
+set(LOOM_ALL_COMPONENTS rhi shader_compiler image_io shaders framegraph gl vulkan backends passes scene renderer)
 
 set(LOOM_PACKAGE_COMPONENTS "")
 set(LOOM_PACKAGE_COMPONENT_NEEDS "")
@@ -87,12 +91,16 @@ if(TARGET loom_vulkan)
 endif()
 
 _loom_install_component(rhi TARGETS loom_rhi)
-_loom_install_component(shaders TARGETS loom_shaders loom_shaders_embedded NEEDS rhi)
+_loom_install_component(shader_compiler TARGETS loom_shader_compiler NEEDS rhi)
+_loom_install_component(image_io TARGETS loom_image_io NEEDS rhi)
+_loom_install_component(shaders TARGETS loom_shaders loom_shaders_embedded NEEDS rhi shader_compiler)
 _loom_install_component(framegraph TARGETS loom_framegraph NEEDS rhi)
 _loom_install_component(gl TARGETS loom_gl NEEDS rhi)
 _loom_install_component(vulkan TARGETS loom_vulkan NEEDS rhi)
 _loom_install_component(backends TARGETS loom_backends NEEDS rhi ${_loom_backend_components})
-_loom_install_component(passes TARGETS loom_passes NEEDS framegraph shaders)
+_loom_install_component(passes TARGETS loom_passes NEEDS framegraph shaders shader_compiler)
+_loom_install_component(scene TARGETS loom_scene NEEDS rhi image_io)
+_loom_install_component(renderer TARGETS loom_renderer NEEDS scene passes framegraph)
 
 configure_package_config_file(
   "${CMAKE_CURRENT_LIST_DIR}/loomConfig.cmake.in"

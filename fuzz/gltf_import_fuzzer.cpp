@@ -27,7 +27,7 @@
 #include "loom/scene/camera.hpp"
 #include "loom/scene/gltf.hpp"
 #include "loom/scene/packed_geometry.hpp"
-#include "loom/scene_objects/mip_chain.hpp"
+#include "loom/scene/mip_chain.hpp"
 
 namespace {
 
@@ -151,7 +151,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // What PreparedScene (scene_objects/gpu_scene.hpp) computes before uploading anything.
     const loom::scene::PackedGeometry geometry = loom::scene::pack_geometry(*scene);
     for (const loom::scene::DrawItem& item : scene->draw_items) (void)geometry.range(item);
-    for (const loom::scene::TextureImage& image : scene->images) (void)loom::scene_objects::mip_chain(image.image);
+    for (const loom::scene::TextureImage& image : scene->images) (void)loom::scene::mip_chain(image.image);
     (void)loom::scene::frame_bounds(scene->bounds, 16.0f / 9.0f);
     (void)scene->vertex_count();
     (void)scene->index_count();

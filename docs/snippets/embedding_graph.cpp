@@ -2,7 +2,7 @@
 // into the top-left quadrant of the application's texture, bound to "ui"."target".
 #include "embedding_graph.hpp"
 
-#include "loom/rhi/shader_compiler.hpp"
+#include "loom/shader_compiler/shader_compiler.hpp"
 
 namespace loom::docs {
 namespace {
@@ -20,7 +20,7 @@ void main() { color = vec4(1.0, 0.0, 0.0, 1.0); })";
 
 Result<std::unique_ptr<EmbeddingGraph>> EmbeddingGraph::create(rhi::Device& device, rhi::Format target_format) {
     auto out = std::make_unique<EmbeddingGraph>();
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto vs = compiler.compile({"fullscreen.vert", rhi::ShaderStage::Vertex, kFullscreenVert, {}});
     if (!vs) return vs.take_error();
     auto fs = compiler.compile({"red.frag", rhi::ShaderStage::Fragment, kRedFrag, {}});

@@ -11,7 +11,7 @@
 using namespace loom;
 // [/docs:include]
 
-#include "loom/rhi/shader_compiler.hpp"
+#include "loom/shader_compiler/shader_compiler.hpp"
 
 namespace loom::docs {
 namespace {
@@ -74,7 +74,7 @@ void main() {
 })";
 
 Result<rhi::PipelineHandle> fullscreen_pipeline(rhi::Device& device, const char* name, const char* fragment) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto vs = compiler.compile({"fullscreen.vert", rhi::ShaderStage::Vertex, kFullscreenVert, {}});
     if (!vs) return vs.take_error();
     auto fs = compiler.compile({name, rhi::ShaderStage::Fragment, fragment, {}});

@@ -6,7 +6,7 @@
 // [docs:includes]
 #include "loom/framegraph/framegraph.hpp"   // FrameGraph, Pass, Executor, ...
 #include "loom/rhi/device.hpp"              // rhi::Device, rhi::create_device
-#include "loom/rhi/shader_compiler.hpp"     // GLSL 450 -> SPIR-V (Vulkan) and GL GLSL
+#include "loom/shader_compiler/shader_compiler.hpp"     // GLSL 450 -> SPIR-V (Vulkan) and GL GLSL
 // [/docs:includes]
 
 namespace loom::docs {
@@ -35,7 +35,7 @@ void main() { color = vec4(1.0 - texelFetch(source, ivec2(gl_FragCoord.xy), 0).r
 // [docs:pipeline]
 /// A pipeline drawing a fullscreen triangle with `fragment` into one RGBA8 target.
 Result<rhi::PipelineHandle> make_pipeline(rhi::Device& device, const char* name, const char* fragment) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto vs = compiler.compile({"fullscreen.vert", rhi::ShaderStage::Vertex, kFullscreenVert, {}});
     if (!vs) return vs.take_error();  // a ShaderCompile error with "file:line: message"
     auto fs = compiler.compile({name, rhi::ShaderStage::Fragment, fragment, {}});

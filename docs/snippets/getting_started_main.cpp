@@ -4,6 +4,8 @@
 
 #include "snippets.hpp"
 
+#include "loom/image_io/image_io.hpp"
+
 // [docs:main]
 int main(int argc, char** argv) {
     using namespace loom;
@@ -23,7 +25,7 @@ int main(int argc, char** argv) {
         return 1;
     }
     const std::string path = "first_graph_" + backend + ".png";
-    if (auto written = rhi::write_png(*image, path); !written) return 1;
+    if (auto written = image_io::write_png(*image, path); !written) return 1;
     std::printf("wrote %s (%ux%u)\n", path.c_str(), image->width, image->height);
     return 0;
 }

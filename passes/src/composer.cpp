@@ -105,7 +105,7 @@ void append_part(std::string& out, const std::string& owner, const ShaderPart& p
 
 }  // namespace
 
-Result<rhi::ShaderSource> compose_stage(const Composition& composition, rhi::ShaderStage stage) {
+Result<shader_compiler::ShaderSource> compose_stage(const Composition& composition, rhi::ShaderStage stage) {
     LOOM_TRY(check_names(composition, stage));
     const bool with_object = composition.object != nullptr && composition.use_object_parts;
 
@@ -163,7 +163,7 @@ Result<rhi::ShaderSource> compose_stage(const Composition& composition, rhi::Sha
                               (any_code ? " (only the object's parts do)" : ""));
     }
 
-    rhi::ShaderSource source;
+    shader_compiler::ShaderSource source;
     source.name = composition.pass + "/" + (composition.object ? composition.object->name() : std::string("own")) + "." +
                   std::string(stage_suffix(stage));
     source.stage = stage;
@@ -172,14 +172,14 @@ Result<rhi::ShaderSource> compose_stage(const Composition& composition, rhi::Sha
 }
 
 ShaderLibrary::ShaderLibrary() {
-    rhi::ShaderCompilerOptions options;
+    shader_compiler::ShaderCompilerOptions options;
     options.virtual_files = shaders::include_files();
-    compiler_ = std::make_unique<rhi::ShaderCompiler>(std::move(options));
+    compiler_ = std::make_unique<shader_compiler::ShaderCompiler>(std::move(options));
 }
 
 ShaderLibrary::~ShaderLibrary() = default;
 
-Result<rhi::ShaderModule> ShaderLibrary::compile(const rhi::ShaderSource& source, const std::string& context) {
+Result<rhi::ShaderModule> ShaderLibrary::compile(const shader_compiler::ShaderSource& source, const std::string& context) {
     ++requests_;
     const std::size_t before = compiler_->cache_size();
     auto module = compiler_->compile_cached(source);

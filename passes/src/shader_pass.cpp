@@ -194,7 +194,7 @@ const Program* ShaderPass::program_for(const Object& object) const {
     return it == programs_.end() ? nullptr : it->second.second.get();
 }
 
-Result<rhi::ShaderSource> ShaderPass::coerce_shader(const ObjectKind* kind, rhi::ShaderStage stage) const {
+Result<shader_compiler::ShaderSource> ShaderPass::coerce_shader(const ObjectKind* kind, rhi::ShaderStage stage) const {
     Composition composition;
     composition.pass = name();
     for (const ShaderPart& part : parts_) composition.pass_parts.push_back(&part);

@@ -7,9 +7,6 @@
 #include <cstring>
 #include <limits>
 
-#include <stb_image.h>
-#include <stb_image_write.h>
-
 namespace loom::rhi {
 namespace {
 
@@ -360,30 +357,6 @@ Image to_rgba8(const Image& image, const DisplayOptions& options) {
     return out;
 }
 
-Status write_png(const Image& image, const std::filesystem::path& path, const DisplayOptions& options) {
-    if (image.empty()) return Error{ErrorCode::InvalidArgument, "cannot write empty image to " + path.string()};
-    const Image rgba = to_rgba8(image, options);
-    std::error_code ec;
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-    const int ok = stbi_write_png(path.string().c_str(), static_cast<int>(rgba.width), static_cast<int>(rgba.height), 4,
-                                  rgba.pixels.data(), static_cast<int>(rgba.row_bytes()));
-    if (!ok) return Error{ErrorCode::Io, "could not write PNG " + path.string()};
-    return {};
-}
-
-Result<Image> read_png(const std::filesystem::path& path) {
-    int w = 0, h = 0, n = 0;
-    stbi_uc* data = stbi_load(path.string().c_str(), &w, &h, &n, 4);
-    if (!data) {
-        const char* reason = stbi_failure_reason();
-        return Error{ErrorCode::Io, "could not read PNG " + path.string() + ": " + (reason ? reason : "unknown error")};
-    }
-    Image image(static_cast<uint32_t>(w), static_cast<uint32_t>(h), Format::RGBA8Unorm);
-    std::memcpy(image.pixels.data(), data, image.pixels.size());
-    stbi_image_free(data);
-    return image;
-}
-
 // ---- comparison ------------------------------------------------------------------------------
 
 std::string ImageComparison::summary() const {
@@ -467,16 +440,6 @@ Result<ImageComparison> compare_images(const Image& a, const Image& b, const Ima
         }
         result.heatmap = std::move(heat);
     }
-    return result;
-}
-
-Result<ImageComparison> compare_and_report(const Image& a, const Image& b, const std::filesystem::path& dir,
-                                           const std::string& stem, const ImageCompareOptions& options) {
-    auto result = compare_images(a, b, options);
-    if (!result.ok() || result->equal()) return result;
-    LOOM_TRY(write_png(a, dir / (stem + ".a.png")));
-    LOOM_TRY(write_png(b, dir / (stem + ".b.png")));
-    if (result->heatmap) LOOM_TRY(write_png(*result->heatmap, dir / (stem + ".diff.png")));
     return result;
 }
 

@@ -5,7 +5,8 @@
 #include <cmath>
 #include <utility>
 
-#include "gltf_scene.hpp"
+#include "loom/image_io/image_io.hpp"
+#include "loom/renderer/gltf_scene.hpp"
 #include "loom/rhi/log.hpp"
 #include "loom/scene/gltf.hpp"
 #include "log_router.hpp"
@@ -98,7 +99,7 @@ std::vector<CaseResult> CaseRunner::run(const SceneFile& file) {
     LogRouter router;
     std::vector<std::string> load_messages;
     router.route(&load_messages);
-    auto prepared = deferred::load_gltf_scene(file.path);
+    auto prepared = renderer::load_gltf_scene(file.path);
     router.route(nullptr);
     if (!prepared) {
         CaseResult result = new_case(file, "load");
@@ -107,7 +108,7 @@ std::vector<CaseResult> CaseRunner::run(const SceneFile& file) {
         return {result};
     }
     const scene::Scene& scene = (*prepared)->scene;
-    auto viewpoint = scene_objects::SceneViewpoint::choose(scene);
+    auto viewpoint = renderer::SceneViewpoint::choose(scene);
     if (!viewpoint) {
         CaseResult result = new_case(file, "load");
         result.failures.push_back(viewpoint.error().to_string());
@@ -130,7 +131,7 @@ std::vector<CaseResult> CaseRunner::run(const SceneFile& file) {
         std::vector<std::string> upload_messages;
         router.route(&upload_messages);
         const Clock::time_point upload_start = Clock::now();
-        auto gpu = scene_objects::GpuScene::create(device, *prepared);
+        auto gpu = renderer::GpuScene::create(device, *prepared);
         const double upload_ms = milliseconds_since(upload_start);
         for (std::size_t c = 0; c < results.size(); ++c) {
             BackendRun& run = results[c].runs[b];
@@ -142,13 +143,13 @@ std::vector<CaseResult> CaseRunner::run(const SceneFile& file) {
             }
             router.route(&run.messages);
             const Clock::time_point start = Clock::now();
-            deferred::PipelineScene content = deferred::gltf_pipeline_scene(*gpu, *viewpoint);
-            if (b == 0) results[c].scene_info = deferred::describe_gltf_scene(scene, content, *viewpoint);
-            deferred::PipelineSettings settings;
+            renderer::PipelineScene content = renderer::gltf_pipeline_scene(*gpu, *viewpoint);
+            if (b == 0) results[c].scene_info = renderer::describe_gltf_scene(scene, content, *viewpoint);
+            renderer::PipelineSettings settings;
             settings.forward = options_.pipelines[c] == PipelineKind::Forward;
             settings.capture = false;
             settings.library = library_;
-            auto pipeline = deferred::DeferredPipeline::create(device, std::move(content), settings);
+            auto pipeline = renderer::DeferredPipeline::create(device, std::move(content), settings);
             Status status = pipeline ? (*pipeline)->render({options_.width, options_.height}) : Status(pipeline.error());
             if (status) status = device.wait_idle();
             if (status) {
@@ -258,12 +259,12 @@ Status CaseRunner::write_pictures(CaseResult& result, const std::vector<rhi::Ima
     for (std::size_t b = 0; b < result.runs.size(); ++b) {
         if (images[b].empty()) continue;
         const std::filesystem::path file = relative / (std::string(rhi::backend_name(result.runs[b].backend)) + ".png");
-        LOOM_TRY(rhi::write_png(images[b], options_.out / file));
+        LOOM_TRY(image_io::write_png(images[b], options_.out / file));
         result.runs[b].image_file = file.generic_string();
     }
     if (heatmap && result.image) {
         const std::filesystem::path file = relative / "diff.png";
-        LOOM_TRY(rhi::write_png(*heatmap, options_.out / file));
+        LOOM_TRY(image_io::write_png(*heatmap, options_.out / file));
         result.image->diff_file = file.generic_string();
     }
     return {};

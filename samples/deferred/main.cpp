@@ -15,8 +15,9 @@
 #include <sstream>
 #include <string>
 
-#include "deferred_pipeline.hpp"
-#include "gltf_scene.hpp"
+#include "loom/image_io/image_io.hpp"
+#include "loom/renderer/deferred_pipeline.hpp"
+#include "loom/renderer/gltf_scene.hpp"
 #include "loom/framegraph/export.hpp"
 #include "loom/framegraph/plan.hpp"
 #include "loom/rhi/device.hpp"
@@ -175,8 +176,8 @@ loom::Result<Options> parse(int argc, char** argv) {
 std::string file_name(const std::string& texture) { return texture + ".png"; }
 
 /// The pipeline settings the options choose (allocator, lit pass); the callers add the rest.
-loom::deferred::PipelineSettings pipeline_settings(const Options& options) {
-    loom::deferred::PipelineSettings settings;
+loom::renderer::PipelineSettings pipeline_settings(const Options& options) {
+    loom::renderer::PipelineSettings settings;
     settings.allocator = options.allocator;
     settings.forward = options.forward;
     return settings;
@@ -184,31 +185,31 @@ loom::deferred::PipelineSettings pipeline_settings(const Options& options) {
 
 /// The pipeline on the scene the options name (built-in, or a glTF file seen from its camera).
 /// `scene_line` says what was loaded, for the summary.
-loom::Result<std::unique_ptr<loom::deferred::DeferredPipeline>> make_pipeline(loom::rhi::Device& device,
+loom::Result<std::unique_ptr<loom::renderer::DeferredPipeline>> make_pipeline(loom::rhi::Device& device,
                                                                              const Options& options,
-                                                                             const loom::deferred::PipelineSettings& settings,
+                                                                             const loom::renderer::PipelineSettings& settings,
                                                                              std::string& scene_line) {
     using namespace loom;
     if (options.scene.empty()) {
         scene_line = "scene: builtin (procedural)";
-        return deferred::DeferredPipeline::create(device, deferred::procedural_scene(), settings);
+        return deferred::create_procedural_pipeline(device, deferred::procedural_scene(), settings);
     }
-    auto prepared = deferred::load_gltf_scene(options.scene);
+    auto prepared = renderer::load_gltf_scene(options.scene);
     if (!prepared) return prepared.take_error();
     const scene::Scene& scene = (*prepared)->scene;
-    auto viewpoint = scene_objects::SceneViewpoint::choose(scene, options.camera);
+    auto viewpoint = renderer::SceneViewpoint::choose(scene, options.camera);
     if (!viewpoint) return viewpoint.take_error();
-    auto gpu = scene_objects::GpuScene::create(device, *prepared);
+    auto gpu = renderer::GpuScene::create(device, *prepared);
     if (!gpu) return gpu.take_error();
-    deferred::PipelineScene content = deferred::gltf_pipeline_scene(*gpu, *viewpoint);
-    scene_line = "scene: " + options.scene.string() + ": " + deferred::describe_gltf_scene(scene, content, *viewpoint) +
+    renderer::PipelineScene content = renderer::gltf_pipeline_scene(*gpu, *viewpoint);
+    scene_line = "scene: " + options.scene.string() + ": " + renderer::describe_gltf_scene(scene, content, *viewpoint) +
                  "; textures with mipmaps: " + fg::format_bytes((*gpu)->texture_bytes());
     for (const std::string& warning : scene.warnings) scene_line += "\n  warning: " + warning;
-    return deferred::DeferredPipeline::create(device, std::move(content), settings);
+    return renderer::DeferredPipeline::create(device, std::move(content), settings);
 }
 
 /// The plan, what the device created for it, and the timings of the latest frame.
-std::string summary(const loom::deferred::DeferredPipeline& pipeline, loom::fg::Executor& executor,
+std::string summary(const loom::renderer::DeferredPipeline& pipeline, loom::fg::Executor& executor,
                     loom::rhi::Device& device, const Options& options, const std::string& scene_line) {
     using loom::fg::format_bytes;
     const auto plan = executor.plan();
@@ -274,7 +275,7 @@ loom::Status write_text(const std::filesystem::path& path, const std::string& te
 }
 
 /// Reads back every intermediate and the final frame and writes them as pictures.
-loom::Status write_pictures(loom::rhi::Device& device, const loom::deferred::DeferredPipeline& pipeline,
+loom::Status write_pictures(loom::rhi::Device& device, const loom::renderer::DeferredPipeline& pipeline,
                             const std::filesystem::path& dir, std::vector<std::string>& written) {
     std::map<std::string, loom::rhi::Image> images;
     for (const auto& intermediate : pipeline.intermediates()) {
@@ -304,7 +305,7 @@ loom::Status write_pictures(loom::rhi::Device& device, const loom::deferred::Def
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     for (const auto& [name, picture] : pictures) {
-        LOOM_TRY(loom::rhi::write_png(picture, dir / file_name(name)));
+        LOOM_TRY(loom::image_io::write_png(picture, dir / file_name(name)));
         written.push_back(file_name(name));
     }
     return {};
@@ -322,7 +323,7 @@ int run_window(const Options& options) {
     auto desc = dev.texture_desc(dev.backbuffer());
     if (auto ended = dev.end_frame(); !ended) return fail(ended.error());
     if (!desc) return fail(desc.error());
-    deferred::PipelineSettings settings = pipeline_settings(options);
+    renderer::PipelineSettings settings = pipeline_settings(options);
     settings.capture = false;
     settings.target_format = desc->format;
     std::string scene_line;
@@ -350,7 +351,7 @@ int run_soak(const Options& options) {
     auto device = rhi::create_device(samples::device_desc(options.common, "loom deferred"));
     if (!device) return fail(device.error());
     rhi::Device& dev = **device;
-    deferred::PipelineSettings settings = pipeline_settings(options);
+    renderer::PipelineSettings settings = pipeline_settings(options);
     // No read-back copies: the soak measures what a frame keeps alive, not the capture.
     settings.capture = false;
     std::string scene_line;
@@ -411,7 +412,7 @@ int run_headless(const Options& options) {
     auto device = rhi::create_device(samples::device_desc(options.common, "loom deferred"));
     if (!device) return fail(device.error());
     rhi::Device& dev = **device;
-    const deferred::PipelineSettings settings = pipeline_settings(options);
+    const renderer::PipelineSettings settings = pipeline_settings(options);
     std::string scene_line;
     auto pipeline = make_pipeline(dev, options, settings, scene_line);
     if (!pipeline) return fail(pipeline.error());

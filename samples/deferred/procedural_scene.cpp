@@ -190,4 +190,42 @@ SceneContent procedural_scene() {
     return scene;
 }
 
+Result<renderer::PipelineScene> procedural_pipeline_scene(rhi::Device& device, const SceneContent& content) {
+    renderer::PipelineScene scene;
+    scene.name = "builtin";
+    const auto pbr = passes::pbr_mesh_kind();
+    const auto checker = passes::checker_mesh_kind();
+    for (const SceneItem& item : content.items) {
+        auto mesh = passes::GpuMesh::create(device, item.mesh.vertices, item.mesh.indices, item.name);
+        if (!mesh) return mesh.take_error();
+        auto object = std::make_shared<passes::MeshObject>(item.name, item.checker ? checker : pbr, *mesh, item.model,
+                                                           item.material);
+        // Only casters go into the shadow map (the ground has nothing below it to shadow).
+        if (item.casts_shadow) scene.shadow_casters.push_back(object);
+        scene.opaque.push_back(object);
+    }
+    const glm::vec3 eye = content.eye, target = content.target;
+    const float yfov = content.yfov;
+    scene.camera = [eye, target, yfov](float aspect) {
+        passes::Camera camera;
+        camera.view = glm::lookAtRH(eye, target, glm::vec3(0.0f, 1.0f, 0.0f));
+        camera.projection = glm::perspectiveRH_ZO(yfov, aspect, 0.1f, 150.0f);
+        camera.position = eye;
+        return camera;
+    };
+    scene.light = content.light;
+    scene.environment = content.environment;
+    scene.bounds = content.bounds;
+    scene.shadow_bounds = content.shadow_bounds;
+    return scene;
+}
+
+Result<std::unique_ptr<renderer::DeferredPipeline>> create_procedural_pipeline(rhi::Device& device,
+                                                                              const SceneContent& content,
+                                                                              const renderer::PipelineSettings& settings) {
+    auto scene = procedural_pipeline_scene(device, content);
+    if (!scene) return scene.take_error();
+    return renderer::DeferredPipeline::create(device, std::move(*scene), settings);
+}
+
 }  // namespace loom::deferred

@@ -4,6 +4,7 @@
 // to bloom, under a low sun that casts long shadows across the ground.
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,8 @@
 
 #include "loom/passes/mesh_object.hpp"
 #include "loom/passes/view.hpp"
+#include "loom/renderer/deferred_pipeline.hpp"
+#include "loom/rhi/device.hpp"
 
 namespace loom::deferred {
 
@@ -62,5 +65,14 @@ passes::Bounds shadow_region(const passes::Bounds& casters, const glm::vec3& tow
 
 /// The default scene.
 SceneContent procedural_scene();
+
+/// Uploads the scene's meshes (one GpuMesh per item) and makes its objects ("pbr-mesh" or
+/// "checker-mesh"), camera, light, sky and bounds.
+Result<renderer::PipelineScene> procedural_pipeline_scene(rhi::Device& device, const SceneContent& content);
+
+/// The Figure 2 pipeline drawing `content` (procedural_pipeline_scene, then
+/// renderer::DeferredPipeline::create).
+Result<std::unique_ptr<renderer::DeferredPipeline>> create_procedural_pipeline(
+    rhi::Device& device, const SceneContent& content, const renderer::PipelineSettings& settings = {});
 
 }  // namespace loom::deferred

@@ -31,7 +31,7 @@ uint64_t soak_period(const SoakSettings& settings) {
     return std::lcm(resize, rebuild);
 }
 
-Result<std::vector<SoakSample>> run_soak(rhi::Device& device, DeferredPipeline& pipeline, const SoakSettings& settings,
+Result<std::vector<SoakSample>> run_soak(rhi::Device& device, renderer::DeferredPipeline& pipeline, const SoakSettings& settings,
                                          const std::function<void(const SoakSample&)>& on_frame) {
     if (settings.size.width == 0 || settings.size.height == 0) {
         return make_error(ErrorCode::InvalidArgument, "soak: empty frame size");
@@ -54,7 +54,7 @@ Result<std::vector<SoakSample>> run_soak(rhi::Device& device, DeferredPipeline& 
         // A rebuild at every multiple of rebuild_every, whether or not the lit pass changes
         // (frame 0 keeps the graph the pipeline was created with).
         if (frame != 0 && settings.rebuild_every != 0 && frame % settings.rebuild_every == 0) {
-            PipelineSettings next = pipeline.settings();
+            renderer::PipelineSettings next = pipeline.settings();
             next.forward = sample.forward;
             if (Status rebuilt = pipeline.rebuild(next); !rebuilt) {
                 return make_error(rebuilt.error().code,

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "deferred_pipeline.hpp"
+#include "loom/renderer/deferred_pipeline.hpp"
 #include "loom/framegraph/plan.hpp"
 #include "loom/rhi/device.hpp"
 
@@ -47,7 +47,7 @@ uint64_t soak_period(const SoakSettings& settings);
 
 /// Renders `settings.frames` frames with `pipeline` (whose settings give the first lit pass),
 /// calling `on_frame` after each. Errors: those of rendering or rebuilding, named by frame.
-Result<std::vector<SoakSample>> run_soak(rhi::Device& device, DeferredPipeline& pipeline, const SoakSettings& settings,
+Result<std::vector<SoakSample>> run_soak(rhi::Device& device, renderer::DeferredPipeline& pipeline, const SoakSettings& settings,
                                          const std::function<void(const SoakSample&)>& on_frame = {});
 
 /// Whether the live objects stayed constant after the warm-up.

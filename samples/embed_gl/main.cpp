@@ -11,6 +11,7 @@
 #include "gl_engine.hpp"
 #include "loom/framegraph/framegraph.hpp"
 #include "loom/gl/gl_embed.hpp"
+#include "loom/image_io/image_io.hpp"
 #include "loom/rhi/log.hpp"
 #include "loom/sample_common/options.hpp"
 #include "overlay_graph.hpp"
@@ -85,11 +86,11 @@ int run(const loom::samples::CommonOptions& options, uint64_t max_frames) {
                     return fail(status.error());
                 }
                 if (last && !options.out.empty()) {
-                    if (auto status = rhi::write_png((*engine)->read_window(), options.out); !status) return fail(status.error());
+                    if (auto status = image_io::write_png((*engine)->read_window(), options.out); !status) return fail(status.error());
                 }
                 (*engine)->present();
             } else if (!options.out.empty()) {
-                if (auto status = rhi::write_png((*engine)->read_target(), options.out); !status) return fail(status.error());
+                if (auto status = image_io::write_png((*engine)->read_target(), options.out); !status) return fail(status.error());
             }
             if (last) break;
         }

@@ -1,6 +1,6 @@
 #include "overlay_graph.hpp"
 
-#include "loom/rhi/shader_compiler.hpp"
+#include "loom/shader_compiler/shader_compiler.hpp"
 
 namespace loom::samples {
 namespace {
@@ -29,7 +29,7 @@ void main() {
 }
 )";
 
-Result<rhi::ShaderHandle> compile(rhi::Device& device, rhi::ShaderCompiler& compiler, rhi::ShaderStage stage,
+Result<rhi::ShaderHandle> compile(rhi::Device& device, shader_compiler::ShaderCompiler& compiler, rhi::ShaderStage stage,
                                   const char* name, const char* source) {
     auto module = compiler.compile({name, stage, source, {}});
     if (!module) return module.take_error();
@@ -45,7 +45,7 @@ Result<std::unique_ptr<OverlayGraph>> OverlayGraph::create(rhi::Device& device, 
 }
 
 Status OverlayGraph::build(rhi::Format target_format) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto vs = compile(device_, compiler, rhi::ShaderStage::Vertex, "fullscreen.vert", kFullscreenVert);
     if (!vs) return vs.take_error();
     vertex_ = *vs;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "loom/framegraph/framegraph.hpp"
+#include "loom/image_io/image_io.hpp"
 #include "loom/rhi/log.hpp"
 #include "loom/sample_common/options.hpp"
 #include "loom/vulkan/vulkan_embed.hpp"
@@ -119,7 +120,7 @@ int run(const loom::samples::CommonOptions& options, uint64_t max_frames) {
     if (!options.out.empty() && frames == last_frame) {
         auto picture = eng.screenshot();
         if (!picture) return fail(picture.error());
-        if (auto status = rhi::write_png(*picture, options.out); !status) return fail(status.error());
+        if (auto status = image_io::write_png(*picture, options.out); !status) return fail(status.error());
     }
     std::printf("%s: %llu frame(s) at %ux%u on %s%s%s\n", kName, static_cast<unsigned long long>(frames), eng.extent().width,
                 eng.extent().height, dev.capabilities().device_name.c_str(), options.out.empty() ? "" : ", wrote ",

@@ -2,7 +2,7 @@
 
 #include <mutex>
 
-#include "loom/rhi/shader_compiler.hpp"
+#include "loom/shader_compiler/shader_compiler.hpp"
 #include "loom_shaders_embedded.hpp"
 
 namespace loom::shaders {
@@ -39,7 +39,7 @@ loom::Result<rhi::ShaderModule> builtin(std::string_view name) {
 
     for (const auto& shader : embedded::embedded_shaders()) {
         if (shader.name != name) continue;
-        auto module = rhi::ShaderCompiler::from_spirv(std::string(name), shader.stage, shader.spirv);
+        auto module = shader_compiler::ShaderCompiler::from_spirv(std::string(name), shader.stage, shader.spirv);
         if (!module) return module.take_error();
         cache.modules.emplace(std::string(name), *module);
         return module;

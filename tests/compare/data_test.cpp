@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "loom/image_io/image_io.hpp"
 #include "loom/rhi/image.hpp"
 #include "loom_test/render_fixture.hpp"
 #include "loom_test/test_support.hpp"
@@ -89,7 +90,7 @@ TEST(CompareOnData, EveryValidModelRendersAlikeOnEveryBackendThroughBothPipeline
         // Something was drawn: the forward pipeline clears to one flat colour (the horizon), so
         // the model is what differs from the top-left corner; it covers well over 1% of any frame.
         if (c["pipeline"] == "forward") {
-            auto picture = rhi::read_png(dir / c["backends"][0]["image"].get<std::string>());
+            auto picture = image_io::read_png(dir / c["backends"][0]["image"].get<std::string>());
             ASSERT_TRUE(picture.ok());
             const auto background = picture->load(0, 0);
             uint64_t model = 0;

@@ -1,26 +1,26 @@
 #include "gltf_render.hpp"
 
-#include "gltf_scene.hpp"
+#include "loom/renderer/gltf_scene.hpp"
 
 namespace loom::test {
 
 Result<GltfFrame> render_gltf(rhi::Device& device, scene::Scene scene, bool forward, uint32_t width, uint32_t height) {
-    auto prepared = scene_objects::prepare_scene(std::move(scene));
-    auto viewpoint = scene_objects::SceneViewpoint::choose(prepared->scene);
+    auto prepared = renderer::prepare_scene(std::move(scene));
+    auto viewpoint = renderer::SceneViewpoint::choose(prepared->scene);
     if (!viewpoint) return viewpoint.take_error();
-    auto gpu = scene_objects::GpuScene::create(device, prepared);
+    auto gpu = renderer::GpuScene::create(device, prepared);
     if (!gpu) return gpu.take_error();
-    deferred::PipelineSettings settings;
+    renderer::PipelineSettings settings;
     settings.forward = forward;
     settings.shadow_map_size = 512;
-    auto pipeline = deferred::DeferredPipeline::create(device, deferred::gltf_pipeline_scene(*gpu, *viewpoint), settings);
+    auto pipeline = renderer::DeferredPipeline::create(device, renderer::gltf_pipeline_scene(*gpu, *viewpoint), settings);
     if (!pipeline) return pipeline.take_error();
     LOOM_TRY((*pipeline)->render({width, height}));
     LOOM_TRY(device.wait_idle());
     GltfFrame frame;
     frame.plan = *(*pipeline)->executor().plan();
     frame.stats = (*pipeline)->executor().stats();
-    for (const deferred::Intermediate& intermediate : (*pipeline)->intermediates()) {
+    for (const renderer::Intermediate& intermediate : (*pipeline)->intermediates()) {
         auto image = device.read_texture(intermediate.texture);
         if (!image) return image.take_error();
         frame.images.emplace(intermediate.name, std::move(*image));

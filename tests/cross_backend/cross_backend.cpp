@@ -5,6 +5,8 @@
 #include "loom_test/render_fixture.hpp"
 #include "loom_test/test_support.hpp"
 
+#include "loom/image_io/image_io.hpp"
+
 namespace loom::test {
 
 bool both_backends_available(std::string& why_not) {
@@ -48,7 +50,7 @@ void CrossBackendTest::expect_same(const std::string& name, const Scene& scene, 
     ASSERT_TRUE(b.ok()) << name << " on vulkan: " << b.error().to_string();
     rhi::ImageCompareOptions options;
     options.threshold = threshold;
-    auto comparison = rhi::compare_and_report(*a, *b, output_dir() / "cross_backend", name, options);
+    auto comparison = image_io::compare_and_report(*a, *b, output_dir() / "cross_backend", name, options);
     ASSERT_TRUE(comparison.ok()) << name << ": " << comparison.error().to_string();
     EXPECT_TRUE(comparison->equal()) << name << " differs between gl (a) and vulkan (b): " << comparison->summary()
                                      << "; see " << (output_dir() / "cross_backend" / (name + ".diff.png")).string();

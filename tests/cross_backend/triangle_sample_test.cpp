@@ -6,6 +6,8 @@
 #include "cross_backend.hpp"
 #include "loom_test/test_support.hpp"
 
+#include "loom/image_io/image_io.hpp"
+
 namespace loom::test {
 namespace {
 
@@ -22,11 +24,11 @@ TEST(CrossBackendSample, TrianglePngIsIdenticalOnBothBackends) {
         const std::string command = std::string("\"") + LOOM_TRIANGLE_EXE + "\" --backend " + backend +
                                     " --size 203x151 --out \"" + png.string() + "\" > /dev/null";
         ASSERT_EQ(std::system(command.c_str()), 0) << command;
-        auto image = rhi::read_png(png);
+        auto image = image_io::read_png(png);
         ASSERT_TRUE(image.ok()) << image.error().to_string();
         images[i++] = std::move(*image);
     }
-    auto comparison = rhi::compare_and_report(images[0], images[1], dir, "triangle_sample");
+    auto comparison = image_io::compare_and_report(images[0], images[1], dir, "triangle_sample");
     ASSERT_TRUE(comparison.ok()) << comparison.error().to_string();
     EXPECT_TRUE(comparison->equal()) << "gl vs vulkan: " << comparison->summary();
 }

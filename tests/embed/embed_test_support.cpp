@@ -2,7 +2,8 @@
 
 #include <sstream>
 
-#include "loom/rhi/shader_compiler.hpp"
+#include "loom/image_io/image_io.hpp"
+#include "loom/shader_compiler/shader_compiler.hpp"
 #include "loom_test/test_support.hpp"
 
 namespace loom::test {
@@ -40,14 +41,14 @@ Rgba8 expected_overlay(uint32_t x, uint32_t y, uint32_t width, uint32_t height) 
     if (wrong == 0) return ::testing::AssertionSuccess();
     const auto path = output_dir() / "embed" / (name + ".png");
     std::filesystem::create_directories(path.parent_path());
-    (void)rhi::write_png(image, path);
+    (void)image_io::write_png(image, path);
     return ::testing::AssertionFailure() << name << ": " << wrong << " of " << image.width * image.height
                                          << " texels differ, first " << first.str() << "; picture: " << path.string();
 }
 
 Result<rhi::ShaderHandle> compile_shader(rhi::Device& device, rhi::ShaderStage stage, const std::string& name,
                                          const std::string& source) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compiler.compile({name, stage, source, {}});
     if (!module.ok()) return module.take_error();
     return device.create_shader(*module);

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "embed_test_support.hpp"
+#include "loom/image_io/image_io.hpp"
 #include "loom/rhi/image.hpp"
 #include "loom_test/test_support.hpp"
 
@@ -24,7 +25,7 @@ Result<rhi::Image> run_sample(const std::string& exe, const std::string& argumen
     if (const int status = std::system(command.c_str()); status != 0) {
         return Error{ErrorCode::Backend, command + " exited with status " + std::to_string(status)};
     }
-    return rhi::read_png(png);
+    return image_io::read_png(png);
 }
 
 void expect_overlay(const Result<rhi::Image>& picture, uint32_t width, uint32_t height, const std::string& name) {

@@ -2,7 +2,7 @@
 // The executor's transitions (→ Storage before each storage pass, → ShaderRead before the
 // sampling pass) are what makes the writes visible: Vulkan barriers, GL glMemoryBarrier.
 #include "execution_helpers.hpp"
-#include "loom/rhi/shader_compiler.hpp"
+#include "loom/shader_compiler/shader_compiler.hpp"
 #include "loom_test/render_fixture.hpp"
 
 namespace loom::test {
@@ -31,8 +31,8 @@ void main() {
 class ComputeExecution : public RenderTest {
 protected:
     Result<rhi::PipelineHandle> compute(const std::string& name, const char* code) {
-        rhi::ShaderCompiler compiler;
-        auto module = compiler.compile(rhi::ShaderSource{name, rhi::ShaderStage::Compute, code, {}});
+        shader_compiler::ShaderCompiler compiler;
+        auto module = compiler.compile(shader_compiler::ShaderSource{name, rhi::ShaderStage::Compute, code, {}});
         if (!module) return module.take_error();
         auto shader = device().create_shader(*module);
         if (!shader) return shader.take_error();

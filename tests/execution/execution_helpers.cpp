@@ -1,7 +1,8 @@
 #include "execution_helpers.hpp"
 
+#include "loom/image_io/image_io.hpp"
 #include "loom/rhi/image.hpp"
-#include "loom/rhi/shader_compiler.hpp"
+#include "loom/shader_compiler/shader_compiler.hpp"
 #include "loom_test/test_support.hpp"
 
 namespace loom::test {
@@ -54,8 +55,8 @@ void main() {
 )";
 
 Result<rhi::ShaderHandle> compile(rhi::Device& device, rhi::ShaderStage stage, const std::string& name, const std::string& code) {
-    rhi::ShaderCompiler compiler;
-    auto module = compiler.compile(rhi::ShaderSource{name, stage, code, {}});
+    shader_compiler::ShaderCompiler compiler;
+    auto module = compiler.compile(shader_compiler::ShaderSource{name, stage, code, {}});
     if (!module) return module.take_error();
     return device.create_shader(*module);
 }
@@ -195,7 +196,7 @@ std::array<double, 4> texel(rhi::Device& device, rhi::TextureHandle texture, uin
 void save_texture(rhi::Device& device, rhi::TextureHandle texture, const std::string& name) {
     auto image = device.read_texture(texture);
     ASSERT_TRUE(image.ok()) << image.error().to_string();
-    auto status = rhi::write_png(*image, output_dir() / "execution" / (name + ".png"));
+    auto status = image_io::write_png(*image, output_dir() / "execution" / (name + ".png"));
     EXPECT_TRUE(status.ok()) << status.error().to_string();
 }
 

@@ -19,7 +19,7 @@
 #include "loom/passes/high_pass_pass.hpp"
 #include "loom/passes/mesh_object.hpp"
 #include "loom/passes/shadow_map_pass.hpp"
-#include "loom/rhi/shader_compiler.hpp"
+#include "loom/shader_compiler/shader_compiler.hpp"
 
 namespace loom::passes {
 namespace {
@@ -320,7 +320,7 @@ TEST(Composition, EveryStandardProgramCompilesForBothApis) {
     auto check = [](const Program& program) {
         for (const rhi::ShaderModule* module : {&program.vertex(), &program.fragment()}) {
             EXPECT_FALSE(module->spirv.empty()) << module->name;
-            auto gl = rhi::ShaderCompiler::check_gl_source(*module);
+            auto gl = shader_compiler::ShaderCompiler::check_gl_source(*module);
             EXPECT_TRUE(gl.ok()) << gl.error().to_string();
         }
     };

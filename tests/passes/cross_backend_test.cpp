@@ -28,6 +28,8 @@
 #include "loom_test/render_fixture.hpp"
 #include "loom_test/test_support.hpp"
 
+#include "loom/image_io/image_io.hpp"
+
 namespace loom::test {
 namespace {
 
@@ -61,7 +63,7 @@ TEST(FlagshipCrossBackend, EveryTextureAndThePlanMatch) {
     for (const auto& [name, gl_image] : frames[0].images) {
         auto vk = frames[1].images.find(name);
         ASSERT_NE(vk, frames[1].images.end()) << name;
-        auto report = rhi::compare_and_report(gl_image, vk->second, dir, name);  // pictures when they differ
+        auto report = image_io::compare_and_report(gl_image, vk->second, dir, name);  // pictures when they differ
         ASSERT_TRUE(report.ok()) << name << ": " << report.error().to_string();
         const StepComparison steps = compare_steps(gl_image, vk->second);
         std::cout << "gl vs vulkan, " << name << ": " << steps.summary() << "\n";

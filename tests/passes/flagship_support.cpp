@@ -10,9 +10,9 @@ Result<std::unique_ptr<rhi::Device>> make_device(rhi::Backend backend) {
     return rhi::create_device(desc);
 }
 
-Result<std::map<std::string, rhi::Image>> read_back(rhi::Device& device, const deferred::DeferredPipeline& pipeline) {
+Result<std::map<std::string, rhi::Image>> read_back(rhi::Device& device, const renderer::DeferredPipeline& pipeline) {
     std::map<std::string, rhi::Image> images;
-    for (const deferred::Intermediate& intermediate : pipeline.intermediates()) {
+    for (const renderer::Intermediate& intermediate : pipeline.intermediates()) {
         auto image = device.read_texture(intermediate.texture);
         if (!image) return image.take_error();
         images.emplace(intermediate.name, std::move(*image));
@@ -24,8 +24,8 @@ Result<std::map<std::string, rhi::Image>> read_back(rhi::Device& device, const d
 }
 
 Result<FlagshipFrame> render_flagship(rhi::Device& device, uint32_t width, uint32_t height,
-                                      const deferred::PipelineSettings& settings, uint32_t frames) {
-    auto pipeline = deferred::DeferredPipeline::create(device, deferred::procedural_scene(), settings);
+                                      const renderer::PipelineSettings& settings, uint32_t frames) {
+    auto pipeline = deferred::create_procedural_pipeline(device, deferred::procedural_scene(), settings);
     if (!pipeline) return pipeline.take_error();
     for (uint32_t i = 0; i < frames; ++i) LOOM_TRY((*pipeline)->render({width, height}));
     LOOM_TRY(device.wait_idle());

@@ -6,10 +6,11 @@
 #include <memory>
 #include <string>
 
-#include "deferred_pipeline.hpp"
 #include "loom/framegraph/plan.hpp"
+#include "loom/renderer/deferred_pipeline.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/image.hpp"
+#include "procedural_scene.hpp"
 
 namespace loom::test {
 
@@ -26,9 +27,9 @@ Result<std::unique_ptr<rhi::Device>> make_device(rhi::Backend backend);
 
 /// Renders `frames` frames of the built-in scene at `width` x `height` and reads everything back.
 Result<FlagshipFrame> render_flagship(rhi::Device& device, uint32_t width, uint32_t height,
-                                      const deferred::PipelineSettings& settings = {}, uint32_t frames = 1);
+                                      const renderer::PipelineSettings& settings = {}, uint32_t frames = 1);
 
 /// Reads back the latest frame's intermediates and final picture.
-Result<std::map<std::string, rhi::Image>> read_back(rhi::Device& device, const deferred::DeferredPipeline& pipeline);
+Result<std::map<std::string, rhi::Image>> read_back(rhi::Device& device, const renderer::DeferredPipeline& pipeline);
 
 }  // namespace loom::test

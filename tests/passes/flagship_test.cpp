@@ -89,7 +89,7 @@ TEST_P(FlagshipTest, PlanSharesFiveColourTexturesAndTheBackendCreatesExactlyTheP
 }
 
 TEST_P(FlagshipTest, ThePaperAllocatorAlsoNeedsFiveColourTextures) {
-    deferred::PipelineSettings settings;
+    renderer::PipelineSettings settings;
     settings.allocator = "paper";
     auto frame = render_flagship(device(), 96, 64, settings);
     ASSERT_TRUE(frame.ok()) << frame.error().to_string();
@@ -98,9 +98,9 @@ TEST_P(FlagshipTest, ThePaperAllocatorAlsoNeedsFiveColourTextures) {
 }
 
 TEST_P(FlagshipTest, ResizingRebuildsWithoutLeaksAndRendersLikeAFreshPipeline) {
-    auto pipeline = deferred::DeferredPipeline::create(device(), deferred::procedural_scene());
+    auto pipeline = deferred::create_procedural_pipeline(device(), deferred::procedural_scene());
     ASSERT_TRUE(pipeline.ok()) << pipeline.error().to_string();
-    deferred::DeferredPipeline& p = **pipeline;
+    renderer::DeferredPipeline& p = **pipeline;
 
     ASSERT_TRUE(p.render({160, 90}).ok());
     ASSERT_TRUE(device().wait_idle().ok());
@@ -158,9 +158,9 @@ TEST_P(FlagshipTest, ResizingRebuildsWithoutLeaksAndRendersLikeAFreshPipeline) {
 TEST_P(FlagshipTest, ThePictureIsLitShadowedAndBlooms) {
     constexpr uint32_t kWidth = 320, kHeight = 180;
     const deferred::SceneContent scene = deferred::procedural_scene();
-    auto pipeline = deferred::DeferredPipeline::create(device(), scene);
+    auto pipeline = deferred::create_procedural_pipeline(device(), scene);
     ASSERT_TRUE(pipeline.ok()) << pipeline.error().to_string();
-    deferred::DeferredPipeline& p = **pipeline;
+    renderer::DeferredPipeline& p = **pipeline;
     ASSERT_TRUE(p.render({kWidth, kHeight}).ok());
     ASSERT_TRUE(device().wait_idle().ok());
     auto images = read_back(device(), p);
@@ -272,7 +272,7 @@ TEST_P(FlagshipTest, GBufferHoldsUnitNormalsAndTheMaterialsInItsAlphas) {
 }
 
 TEST_P(FlagshipTest, ForwardAndDeferredLightTheSameScene) {
-    deferred::PipelineSettings forward_settings;
+    renderer::PipelineSettings forward_settings;
     forward_settings.forward = true;
     auto forward = render_flagship(device(), 160, 90, forward_settings);
     ASSERT_TRUE(forward.ok()) << forward.error().to_string();

@@ -30,6 +30,7 @@
 #include "format_steps.hpp"
 #include "loom/framegraph/executor.hpp"
 #include "loom/framegraph/graph.hpp"
+#include "loom/image_io/image_io.hpp"
 #include "loom/passes/blit_pass.hpp"
 #include "loom/passes/blur_pass.hpp"
 #include "loom/passes/composite_pass.hpp"
@@ -129,7 +130,7 @@ protected:
         if (comparison.max_local_steps > steps) {
             const std::filesystem::path dir = output_dir() / "passes" / "post_process";
             std::filesystem::create_directories(dir);
-            (void)rhi::compare_and_report(gpu, reference, dir,
+            (void)image_io::compare_and_report(gpu, reference, dir,
                                           name + "_" + std::string(rhi::backend_name(backend())));
         }
     }

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "gbuffer_graph.hpp"
+#include "loom/image_io/image_io.hpp"
 #include "loom/passes/retained_mesh.hpp"
 #include "loom/passes/retained_scene.hpp"
 #include "loom/passes/shadow_map_pass.hpp"
@@ -58,7 +59,7 @@ protected:
         ASSERT_EQ(b.size(), 3u);
         const char* names[] = {"position", "normal", "albedo"};
         for (int i = 0; i < 3; ++i) {
-            auto comparison = rhi::compare_and_report(a[i], b[i], output_dir(),
+            auto comparison = image_io::compare_and_report(a[i], b[i], output_dir(),
                                                       stem + "." + std::string(rhi::backend_name(backend())) + "." + names[i]);
             ASSERT_TRUE(comparison.ok()) << comparison.error().to_string();
             EXPECT_TRUE(comparison->equal()) << names[i] << ": " << comparison->summary();
@@ -613,7 +614,7 @@ TEST_P(RetainedSceneTest, AShadowPassLeavesMaterialsOutOfItsKeys) {
     auto naive = make_naive_objects(device(), scene);
     ASSERT_TRUE(naive.ok());
     const rhi::Image expected = shadow_map(device(), scene, nullptr, naive->objects);
-    auto comparison = rhi::compare_and_report(expected, depth, output_dir(),
+    auto comparison = image_io::compare_and_report(expected, depth, output_dir(),
                                               "retained_shadow." + std::string(rhi::backend_name(backend())));
     ASSERT_TRUE(comparison.ok());
     EXPECT_TRUE(comparison->equal()) << comparison->summary();

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "format_steps.hpp"
+#include "loom/image_io/image_io.hpp"
 #include "loom/rhi/image.hpp"
 #include "loom_test/render_fixture.hpp"
 #include "loom_test/test_support.hpp"
@@ -71,8 +72,8 @@ TEST(DeferredSample, GlAndVulkanWriteTheSamePlanAndPictures) {
 
     for (const char* picture : kPictures) {
         const std::string file = std::string(picture) + ".png";
-        auto gl = rhi::read_png(root / "gl" / file);
-        auto vulkan = rhi::read_png(root / "vulkan" / file);
+        auto gl = image_io::read_png(root / "gl" / file);
+        auto vulkan = image_io::read_png(root / "vulkan" / file);
         ASSERT_TRUE(gl.ok() && vulkan.ok()) << file;
         ASSERT_EQ(gl->width, vulkan->width) << file;
         const StepComparison comparison = compare_steps(*gl, *vulkan);
@@ -81,7 +82,7 @@ TEST(DeferredSample, GlAndVulkanWriteTheSamePlanAndPictures) {
         const bool blurred = std::string(picture).rfind("blur-", 0) == 0;
         EXPECT_LE(comparison.fraction_differing(), blurred ? 0.05 : 0.01) << file << ": " << comparison.summary();
         if (comparison.pixels_differing != 0) {
-            (void)rhi::compare_and_report(*gl, *vulkan, root, std::string(picture) + ".gl-vs-vulkan");
+            (void)image_io::compare_and_report(*gl, *vulkan, root, std::string(picture) + ".gl-vs-vulkan");
         }
     }
 }

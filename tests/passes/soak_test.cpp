@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "loom_test/render_fixture.hpp"
+#include "procedural_scene.hpp"
 #include "soak.hpp"
 
 namespace loom::test {
@@ -75,9 +76,9 @@ TEST(SoakCheck, ThePeriodCoversBothSizesAndBothLitPasses) {
 class SoakTest : public RenderTest {};
 
 TEST_P(SoakTest, FiveHundredFramesOfResizesAndRebuildsLeaveTheLiveObjectsUnchanged) {
-    deferred::PipelineSettings settings;
+    renderer::PipelineSettings settings;
     settings.capture = false;
-    auto pipeline = deferred::DeferredPipeline::create(device(), deferred::procedural_scene(), settings);
+    auto pipeline = deferred::create_procedural_pipeline(device(), deferred::procedural_scene(), settings);
     ASSERT_TRUE(pipeline.ok()) << pipeline.error().to_string();
 
     deferred::SoakSettings soak;

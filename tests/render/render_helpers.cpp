@@ -2,6 +2,8 @@
 
 #include "loom_test/test_support.hpp"
 
+#include "loom/image_io/image_io.hpp"
+
 namespace loom::test {
 
 const char* const kPositionVert = R"(#version 450
@@ -17,8 +19,8 @@ void main() { frag_color = pc.color; }
 
 Result<rhi::ShaderHandle> make_shader(rhi::Device& device, rhi::ShaderStage stage, const std::string& name,
                                       const std::string& code) {
-    rhi::ShaderCompiler compiler;
-    auto module = compiler.compile(rhi::ShaderSource{name, stage, code, {}});
+    shader_compiler::ShaderCompiler compiler;
+    auto module = compiler.compile(shader_compiler::ShaderSource{name, stage, code, {}});
     if (!module.ok()) return module.take_error();
     return device.create_shader(*module);
 }
@@ -97,7 +99,7 @@ std::array<int, 4> rgba8_at(const rhi::Image& image, uint32_t x, uint32_t y) {
 
 void save_picture(const rhi::Image& image, const std::string& name) {
     const auto path = output_dir() / "render" / (name + ".png");
-    auto status = rhi::write_png(image, path);
+    auto status = image_io::write_png(image, path);
     EXPECT_TRUE(status.ok()) << status.error().to_string();
 }
 

@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "loom/rhi/device.hpp"
-#include "loom/rhi/shader_compiler.hpp"
+#include "loom/shader_compiler/shader_compiler.hpp"
 
 /// Assigns the value of a Result expression to `lhs`, or fails the test with its error.
 #define LOOM_CONCAT_INNER(a, b) a##b

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string>
 
+#include "loom/image_io/image_io.hpp"
 #include "loom/rhi/image.hpp"
 #include "loom_test/render_fixture.hpp"
 
@@ -27,7 +28,7 @@ TEST_P(TriangleSampleTest, WritesTheTrianglePng) {
     const std::filesystem::path png = output_dir() / "samples" / ("triangle_" + backend + ".png");
     std::filesystem::remove(png);
     ASSERT_EQ(run("--backend " + backend + " --size 160x120 --out \"" + png.string() + "\""), 0);
-    auto image = rhi::read_png(png);
+    auto image = image_io::read_png(png);
     ASSERT_TRUE(image.ok()) << image.error().to_string();
     ASSERT_EQ(image->width, 160u);
     ASSERT_EQ(image->height, 120u);

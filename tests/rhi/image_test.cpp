@@ -142,31 +142,6 @@ TEST(ImageCompare, SizeOrFormatMismatchIsAnError) {
     EXPECT_NE(format.error().message.find("RGBA8Unorm vs R8Unorm"), std::string::npos);
 }
 
-TEST(ImagePng, WriteReadRoundTripAndReportOnDifference) {
-    Image a(3, 2, Format::RGBA8Unorm);
-    a.store(0, 0, {1, 0, 0, 1});
-    a.store(2, 1, {0, 0, 1, 1});
-    const auto dir = loom::test::output_dir() / "image_test";
-    const auto path = dir / "roundtrip.png";
-    ASSERT_TRUE(write_png(a, path).ok());
-    auto back = read_png(path);
-    ASSERT_TRUE(back.ok()) << back.error().to_string();
-    EXPECT_EQ(back->pixels, a.pixels);
-
-    Image b = a;
-    b.store(1, 1, {0, 1, 0, 1});
-    std::filesystem::remove(dir / "case.diff.png");
-    auto cmp = compare_and_report(a, b, dir, "case");
-    ASSERT_TRUE(cmp.ok());
-    EXPECT_FALSE(cmp->equal());
-    EXPECT_TRUE(std::filesystem::exists(dir / "case.diff.png"));
-    EXPECT_TRUE(std::filesystem::exists(dir / "case.a.png"));
-
-    auto missing = read_png(dir / "does-not-exist.png");
-    ASSERT_FALSE(missing.ok());
-    EXPECT_EQ(missing.error().code, ErrorCode::Io);
-}
-
 TEST(ImagePng, DepthImagesAreNormalisedForDisplay) {
     Image depth(3, 1, Format::Depth32F);
     depth.store(0, 0, {0.2, 0, 0, 0});

@@ -33,7 +33,7 @@ TEST(BuiltinShaders, EveryBuiltinLoadsWithValidGlSource) {
         EXPECT_FALSE(module.spirv.empty()) << name;
         EXPECT_EQ(module.spirv[0], 0x07230203u) << name;
         EXPECT_EQ(module.stage, name.ends_with(".vert") ? ShaderStage::Vertex : ShaderStage::Fragment) << name;
-        auto status = rhi::ShaderCompiler::check_gl_source(module);
+        auto status = shader_compiler::ShaderCompiler::check_gl_source(module);
         EXPECT_TRUE(status.ok()) << name << ": " << status.error().message;
     }
 }
@@ -82,9 +82,9 @@ TEST(BuiltinShaders, EmbeddedSnippetsComposeShadersAtRunTime) {
     ASSERT_TRUE(files.contains("loom/common.glsl"));
     EXPECT_THAT(files.at("loom/common.glsl"), HasSubstr("linear_to_srgb"));
 
-    rhi::ShaderCompilerOptions options;
+    shader_compiler::ShaderCompilerOptions options;
     options.virtual_files = files;
-    rhi::ShaderCompiler compiler(options);
+    shader_compiler::ShaderCompiler compiler(options);
     auto module = compile_ok(compiler, source("tonemap.frag", ShaderStage::Fragment, R"(#version 450
 #include "loom/common.glsl"
 layout(set = 0, binding = 0) uniform sampler2D hdr;
@@ -95,7 +95,7 @@ void main() {
     color = vec4(linear_to_srgb(c / (1.0 + luminance(c))), 1.0);
 }
 )"));
-    EXPECT_TRUE(rhi::ShaderCompiler::check_gl_source(module).ok());
+    EXPECT_TRUE(shader_compiler::ShaderCompiler::check_gl_source(module).ok());
 }
 
 }  // namespace

@@ -15,7 +15,7 @@ constexpr const char* kCode =
     "void main() { color = vec4(VALUE); }\n";
 
 TEST(ShaderCache, SameSourceHitsTheCache) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     EXPECT_EQ(compiler.cache_size(), 0u);
     auto first = compiler.compile_cached(source("cached.frag", ShaderStage::Fragment, kCode, {{"VALUE", "1.0"}}));
     ASSERT_TRUE(first.ok()) << first.error().to_string();
@@ -28,7 +28,7 @@ TEST(ShaderCache, SameSourceHitsTheCache) {
 }
 
 TEST(ShaderCache, EveryPartOfTheKeyMatters) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto compile = [&](std::string name, ShaderStage stage, std::string code,
                        std::vector<std::pair<std::string, std::string>> defines) {
         auto module = compiler.compile_cached(source(std::move(name), stage, std::move(code), std::move(defines)));
@@ -50,7 +50,7 @@ TEST(ShaderCache, EveryPartOfTheKeyMatters) {
 }
 
 TEST(ShaderCache, FailuresAreNotCached) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto bad = compiler.compile_cached(source("bad.frag", ShaderStage::Fragment, kCode));  // VALUE undefined
     ASSERT_FALSE(bad.ok());
     EXPECT_EQ(compiler.cache_size(), 0u);
@@ -60,7 +60,7 @@ TEST(ShaderCache, FailuresAreNotCached) {
 }
 
 TEST(ShaderDefines, ValuesReachTheShader) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     const std::string code =
         "#version 450\n"
         "layout(set = 0, binding = 0) uniform Lights { vec4 colors[LIGHT_COUNT]; } lights;\n"

@@ -13,7 +13,7 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 
 TEST(ShaderCompileErrors, ReportsFileAndLine) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     const std::string message = compile_error(compiler, source("err.frag", ShaderStage::Fragment,
                                                                 "#version 450\n"
                                                                 "layout(location = 0) out vec4 color;\n"
@@ -27,7 +27,7 @@ TEST(ShaderCompileErrors, ReportsFileAndLine) {
 }
 
 TEST(ShaderCompileErrors, ReportsEveryDiagnosticOnItsOwnLine) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     const std::string message = compile_error(compiler, source("two.frag", ShaderStage::Fragment,
                                                                 "#version 450\n"
                                                                 "layout(location = 0) out vec4 color;\n"
@@ -43,7 +43,7 @@ TEST(ShaderCompileErrors, ReportsEveryDiagnosticOnItsOwnLine) {
 }
 
 TEST(ShaderCompileErrors, DefinesDoNotShiftLines) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     const std::string code =
         "#version 450\n"
         "layout(location = 0) out vec4 color;\n"
@@ -58,7 +58,7 @@ TEST(ShaderCompileErrors, DefinesDoNotShiftLines) {
 }
 
 TEST(ShaderCompileErrors, MissingVersionGetsVersion450AndKeepsLines) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     const std::string code =
         "layout(location = 0) out vec4 color;\n"
         "void main() {\n"
@@ -78,7 +78,7 @@ TEST(ShaderCompileErrors, MissingVersionGetsVersion450AndKeepsLines) {
 }
 
 TEST(ShaderCompileErrors, UndefinedMacroWithoutItsDefineFails) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     const std::string code =
         "#version 450\n"
         "layout(location = 0) out vec4 color;\n"
@@ -90,7 +90,7 @@ TEST(ShaderCompileErrors, UndefinedMacroWithoutItsDefineFails) {
 }
 
 TEST(ShaderCompileErrors, StageMismatchIsAnError) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     // gl_Position does not exist in a fragment shader.
     const std::string message = compile_error(compiler, source("wrong_stage.frag", ShaderStage::Fragment,
                                                                 "#version 450\n"
@@ -99,7 +99,7 @@ TEST(ShaderCompileErrors, StageMismatchIsAnError) {
 }
 
 TEST(ShaderCompileErrors, LinkErrorNamesTheShader) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     // No main(): parsing succeeds, linking fails.
     const std::string message = compile_error(compiler, source("nomain.vert", ShaderStage::Vertex,
                                                                 "#version 450\n"

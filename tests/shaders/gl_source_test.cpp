@@ -29,7 +29,7 @@ void main() {
 )";
 
 TEST(ShaderGlSource, BindingsAreRemapped) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("bindings.vert", ShaderStage::Vertex, kBindingsVertex));
     const std::string& gl = module.gl_source;
     static_assert(rhi::gl_binding_point(1, 1) == 17);
@@ -44,7 +44,7 @@ TEST(ShaderGlSource, BindingsAreRemapped) {
 }
 
 TEST(ShaderGlSource, PushConstantsBecomeAUniformBufferAtTheReservedBinding) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("bindings.vert", ShaderStage::Vertex, kBindingsVertex));
     static_assert(rhi::kGlPushConstantBinding == 64);
     EXPECT_THAT(module.gl_source, HasSubstr("layout(binding = 64, std140) uniform Push"));
@@ -52,7 +52,7 @@ TEST(ShaderGlSource, PushConstantsBecomeAUniformBufferAtTheReservedBinding) {
 }
 
 TEST(ShaderGlSource, SamplersAndImagesAreRemapped) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("textures.frag", ShaderStage::Fragment, R"(#version 450
 layout(set = 3, binding = 4) uniform sampler2D albedo;
 layout(set = 1, binding = 0, rgba8) uniform writeonly image2D target;
@@ -67,11 +67,11 @@ void main() {
     EXPECT_THAT(module.gl_source, HasSubstr("layout(binding = 16, rgba8) uniform writeonly image2D target;"));
     EXPECT_THAT(module.gl_source, HasSubstr("layout(location = 0) in vec2 uv;"));
     EXPECT_THAT(module.gl_source, HasSubstr("layout(location = 1) out vec4 color;"));
-    EXPECT_TRUE(rhi::ShaderCompiler::check_gl_source(module).ok());
+    EXPECT_TRUE(shader_compiler::ShaderCompiler::check_gl_source(module).ok());
 }
 
 TEST(ShaderGlSource, KeepsLocationsAndAddsNoClipSpaceFixups) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("bindings.vert", ShaderStage::Vertex, kBindingsVertex));
     const std::string& gl = module.gl_source;
     EXPECT_THAT(gl, HasSubstr("layout(location = 0) in vec3 position;"));
@@ -85,7 +85,7 @@ TEST(ShaderGlSource, KeepsLocationsAndAddsNoClipSpaceFixups) {
 }
 
 TEST(ShaderGlSource, VertexAndInstanceIndexHaveVulkanSemantics) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("indices.vert", ShaderStage::Vertex, R"(#version 450
 void main() {
     gl_Position = vec4(float(gl_VertexIndex), float(gl_InstanceIndex), 0.0, 1.0);
@@ -95,12 +95,12 @@ void main() {
     EXPECT_THAT(module.gl_source, HasSubstr("float(gl_VertexID)"));
     // gl_InstanceID does not include the base instance: SPIRV-Cross adds it back.
     EXPECT_THAT(module.gl_source, HasSubstr("gl_InstanceID + SPIRV_Cross_BaseInstance"));
-    EXPECT_TRUE(rhi::ShaderCompiler::check_gl_source(module).ok());
+    EXPECT_TRUE(shader_compiler::ShaderCompiler::check_gl_source(module).ok());
 }
 
 TEST(ShaderGlSource, ValidGlslForEveryKindOfResource) {
-    rhi::ShaderCompiler compiler;
-    const std::vector<rhi::ShaderSource> sources = {
+    shader_compiler::ShaderCompiler compiler;
+    const std::vector<shader_compiler::ShaderSource> sources = {
         source("bindings.vert", ShaderStage::Vertex, kBindingsVertex),
         source("compute.comp", ShaderStage::Compute, R"(#version 450
 layout(local_size_x = 16, local_size_y = 16) in;
@@ -130,7 +130,7 @@ void main() {
     };
     for (const auto& src : sources) {
         auto module = compile_ok(compiler, src);
-        auto status = rhi::ShaderCompiler::check_gl_source(module);
+        auto status = shader_compiler::ShaderCompiler::check_gl_source(module);
         EXPECT_TRUE(status.ok()) << src.name << ": " << status.error().message << "\n" << module.gl_source;
     }
 }
@@ -138,7 +138,7 @@ void main() {
 TEST(ShaderGlSource, PushConstantsThatStd140CannotExpressAreAnError) {
     // std430 gives float[4] a stride of 4; a GL uniform block (std140) cannot: the bytes the
     // backends upload would land in the wrong members, so this must not compile.
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     const std::string message = compile_error(compiler, source("weights.frag", ShaderStage::Fragment, R"(#version 450
 layout(push_constant) uniform Push { float weights[4]; } push;
 layout(location = 0) out vec4 color;
@@ -158,7 +158,7 @@ TEST(ShaderGlSource, CheckRejectsInvalidGlsl) {
         "layout(push_constant) uniform Push { vec4 c; } push;\n"
         "layout(location = 0) out vec4 color;\n"
         "void main() { color = push.c; }\n";
-    auto status = rhi::ShaderCompiler::check_gl_source(module);
+    auto status = shader_compiler::ShaderCompiler::check_gl_source(module);
     ASSERT_FALSE(status.ok());
     EXPECT_EQ(status.error().code, ErrorCode::ShaderCompile);
     EXPECT_THAT(status.error().message, HasSubstr("vulkan_only.frag:2:"));

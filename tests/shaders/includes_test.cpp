@@ -27,29 +27,29 @@ constexpr const char* kUsesCommon =
     "}\n";
 
 TEST(ShaderIncludes, VirtualFileIsIncluded) {
-    rhi::ShaderCompilerOptions options;
+    shader_compiler::ShaderCompilerOptions options;
     options.virtual_files["lib/common.glsl"] = "float half_of(float x) { return x * 0.5; }\n";
-    rhi::ShaderCompiler compiler(options);
+    shader_compiler::ShaderCompiler compiler(options);
     auto module = compile_ok(compiler, source("main.frag", ShaderStage::Fragment, kUsesCommon));
     EXPECT_FALSE(module.spirv.empty());
 }
 
 TEST(ShaderIncludes, ErrorInsideIncludedFileNamesThatFileAndLine) {
-    rhi::ShaderCompilerOptions options;
+    shader_compiler::ShaderCompilerOptions options;
     options.virtual_files["lib/common.glsl"] =
         "// helpers\n"
         "float half_of(float x) {\n"
         "    return x * not_declared;\n"
         "}\n";
-    rhi::ShaderCompiler compiler(options);
+    shader_compiler::ShaderCompiler compiler(options);
     const std::string message = compile_error(compiler, source("main.frag", ShaderStage::Fragment, kUsesCommon));
     EXPECT_THAT(message, HasSubstr("lib/common.glsl:3: 'not_declared' : undeclared identifier"));
 }
 
 TEST(ShaderIncludes, LinesAfterAnIncludeKeepTheirNumbers) {
-    rhi::ShaderCompilerOptions options;
+    shader_compiler::ShaderCompilerOptions options;
     options.virtual_files["lib/common.glsl"] = "// one\n// two\n// three\nfloat half_of(float x) { return x * 0.5; }\n";
-    rhi::ShaderCompiler compiler(options);
+    shader_compiler::ShaderCompiler compiler(options);
     const std::string code =
         "#version 450\n"
         "#include \"lib/common.glsl\"\n"
@@ -64,7 +64,7 @@ TEST(ShaderIncludes, LinesAfterAnIncludeKeepTheirNumbers) {
 }
 
 TEST(ShaderIncludes, MissingIncludeNamesItAndTheIncluder) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     const std::string message = compile_error(compiler, source("needs_lib.frag", ShaderStage::Fragment,
                                                                 "#version 450\n"
                                                                 "\n"
@@ -78,11 +78,11 @@ TEST(ShaderIncludes, MissingIncludeNamesItAndTheIncluder) {
 TEST(ShaderIncludes, IncludeDirectoryAndRelativeToIncluder) {
     // uses_include.frag includes "lib/tint.glsl" (found in data/include), which includes
     // "scale.glsl" relative to itself.
-    rhi::ShaderCompilerOptions options;
+    shader_compiler::ShaderCompilerOptions options;
     options.include_dirs = {kDataDir / "include"};
     std::vector<fs::path> seen;
     options.on_include = [&](const fs::path& resolved) { seen.push_back(resolved); };
-    rhi::ShaderCompiler compiler(options);
+    shader_compiler::ShaderCompiler compiler(options);
     const std::string code = read_text(kDataDir / "uses_include.frag");
     ASSERT_FALSE(code.empty());
     auto module = compile_ok(compiler, source((kDataDir / "uses_include.frag").string(), ShaderStage::Fragment, code));
@@ -93,11 +93,11 @@ TEST(ShaderIncludes, IncludeDirectoryAndRelativeToIncluder) {
 }
 
 TEST(ShaderIncludes, VirtualFilesComeBeforeIncludeDirectories) {
-    rhi::ShaderCompilerOptions options;
+    shader_compiler::ShaderCompilerOptions options;
     options.include_dirs = {kDataDir / "include"};
     // Shadows data/include/lib/tint.glsl; the disk version would compile, this one must not.
     options.virtual_files["lib/tint.glsl"] = "vec3 tint(vec3 c) { return c * from_virtual_file; }\n";
-    rhi::ShaderCompiler compiler(options);
+    shader_compiler::ShaderCompiler compiler(options);
     const std::string code = read_text(kDataDir / "uses_include.frag");
     const std::string message = compile_error(compiler, source("uses_include.frag", ShaderStage::Fragment, code));
     EXPECT_THAT(message, HasSubstr("lib/tint.glsl:1: 'from_virtual_file' : undeclared identifier"));
@@ -110,9 +110,9 @@ TEST(ShaderIncludes, ErrorInFileFromIncludeDirectoryNamesItsPath) {
         std::ofstream out(dir / "inc" / "bad.glsl");
         out << "// line 1\n// line 2\nvec3 broken() { return vec3(oops); }\n";
     }
-    rhi::ShaderCompilerOptions options;
+    shader_compiler::ShaderCompilerOptions options;
     options.include_dirs = {dir / "inc"};
-    rhi::ShaderCompiler compiler(options);
+    shader_compiler::ShaderCompiler compiler(options);
     const std::string message = compile_error(compiler, source("user.frag", ShaderStage::Fragment,
                                                                 "#version 450\n"
                                                                 "#include \"bad.glsl\"\n"

@@ -42,7 +42,7 @@ void main() {
 )";
 
 TEST(ShaderReflection, UniformBlockStd140Layout) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("material.frag", ShaderStage::Fragment, kMaterialShader));
     const auto& blocks = module.reflection.uniform_blocks;
     ASSERT_EQ(blocks.size(), 2u);
@@ -70,7 +70,7 @@ TEST(ShaderReflection, UniformBlockStd140Layout) {
 }
 
 TEST(ShaderReflection, FragmentOutputsAndNoInputs) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("material.frag", ShaderStage::Fragment, kMaterialShader));
     EXPECT_TRUE(module.reflection.inputs.empty());  // only vertex inputs are reflected
     ASSERT_EQ(module.reflection.outputs.size(), 2u);
@@ -79,7 +79,7 @@ TEST(ShaderReflection, FragmentOutputsAndNoInputs) {
 }
 
 TEST(ShaderReflection, VertexInputs) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("inputs.vert", ShaderStage::Vertex, R"(#version 450
 layout(location = 3) in vec4 weights;
 layout(location = 0) in vec3 position;
@@ -103,7 +103,7 @@ void main() {
 }
 
 TEST(ShaderReflection, StorageBuffers) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("particles.comp", ShaderStage::Compute, R"(#version 450
 layout(local_size_x = 64) in;
 struct Particle { vec4 position; vec4 velocity; };
@@ -142,7 +142,7 @@ void main() {
 }
 
 TEST(ShaderReflection, SamplerKinds) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("samplers.frag", ShaderStage::Fragment, R"(#version 450
 layout(set = 0, binding = 0) uniform sampler2D albedo;
 layout(set = 0, binding = 1) uniform sampler2DArray layers;
@@ -177,7 +177,7 @@ void main() {
 }
 
 TEST(ShaderReflection, StorageImages) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("images.comp", ShaderStage::Compute, R"(#version 450
 layout(local_size_x = 8, local_size_y = 4, local_size_z = 2) in;
 layout(set = 0, binding = 0, rgba8) uniform writeonly image2D target;
@@ -205,7 +205,7 @@ void main() {
 }
 
 TEST(ShaderReflection, PushConstants) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("push.vert", ShaderStage::Vertex, R"(#version 450
 layout(push_constant) uniform Push {
     mat4 model;
@@ -231,9 +231,9 @@ void main() {
 }
 
 TEST(ShaderReflection, FromSpirvGivesTheSameReflection) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("material.frag", ShaderStage::Fragment, kMaterialShader));
-    auto rebuilt = rhi::ShaderCompiler::from_spirv("material.frag", ShaderStage::Fragment, module.spirv);
+    auto rebuilt = shader_compiler::ShaderCompiler::from_spirv("material.frag", ShaderStage::Fragment, module.spirv);
     ASSERT_TRUE(rebuilt.ok()) << rebuilt.error().to_string();
     const auto& a = module.reflection;
     const auto& b = rebuilt->reflection;
@@ -252,10 +252,10 @@ TEST(ShaderReflection, FromSpirvGivesTheSameReflection) {
 }
 
 TEST(ShaderReflection, DebugInfoKeepsTheReflection) {
-    rhi::ShaderCompiler plain;
-    rhi::ShaderCompilerOptions options;
+    shader_compiler::ShaderCompiler plain;
+    shader_compiler::ShaderCompilerOptions options;
     options.debug_info = true;
-    rhi::ShaderCompiler debug(options);
+    shader_compiler::ShaderCompiler debug(options);
     auto a = compile_ok(plain, source("material.frag", ShaderStage::Fragment, kMaterialShader));
     auto b = compile_ok(debug, source("material.frag", ShaderStage::Fragment, kMaterialShader));
     EXPECT_GT(b.spirv.size(), a.spirv.size());  // line info and source were added
@@ -264,27 +264,27 @@ TEST(ShaderReflection, DebugInfoKeepsTheReflection) {
 }
 
 TEST(ShaderReflection, FromSpirvRejectsWrongStageAndGarbage) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto module = compile_ok(compiler, source("material.frag", ShaderStage::Fragment, kMaterialShader));
-    auto wrong = rhi::ShaderCompiler::from_spirv("material.frag", ShaderStage::Vertex, module.spirv);
+    auto wrong = shader_compiler::ShaderCompiler::from_spirv("material.frag", ShaderStage::Vertex, module.spirv);
     ASSERT_FALSE(wrong.ok());
     EXPECT_EQ(wrong.error().code, ErrorCode::ShaderCompile);
     EXPECT_THAT(wrong.error().message, HasSubstr("material.frag"));
     EXPECT_THAT(wrong.error().message, HasSubstr("vertex"));
 
     const std::vector<uint32_t> garbage = {1, 2, 3, 4, 5, 6};
-    auto bad = rhi::ShaderCompiler::from_spirv("garbage.spv", ShaderStage::Vertex, garbage);
+    auto bad = shader_compiler::ShaderCompiler::from_spirv("garbage.spv", ShaderStage::Vertex, garbage);
     ASSERT_FALSE(bad.ok());
     EXPECT_THAT(bad.error().message, HasSubstr("garbage.spv"));
 
     std::vector<uint32_t> truncated(module.spirv.begin(), module.spirv.begin() + 20);
-    auto cut = rhi::ShaderCompiler::from_spirv("truncated.spv", ShaderStage::Fragment, truncated);
+    auto cut = shader_compiler::ShaderCompiler::from_spirv("truncated.spv", ShaderStage::Fragment, truncated);
     ASSERT_FALSE(cut.ok());
     EXPECT_THAT(cut.error().message, HasSubstr("truncated.spv"));
 }
 
 TEST(ShaderReflection, SetOutOfRangeNamesShaderAndResource) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     const std::string message = compile_error(compiler, source("far_set.frag", ShaderStage::Fragment, R"(#version 450
 layout(set = 4, binding = 0) uniform sampler2D too_far;
 layout(location = 0) out vec4 color;
@@ -296,7 +296,7 @@ void main() { color = texture(too_far, vec2(0.5)); }
 }
 
 TEST(ShaderReflection, BindingOutOfRangeNamesShaderAndResource) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     const std::string message = compile_error(compiler, source("far_binding.vert", ShaderStage::Vertex, R"(#version 450
 layout(set = 3, binding = 16) uniform Far { vec4 v; } far;
 void main() { gl_Position = far.v; }
@@ -316,7 +316,7 @@ void main() { gl_Position = edge.v; }
 }
 
 TEST(ShaderReflection, SeparateImagesAndSamplersAreRejected) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     const std::string message = compile_error(compiler, source("separate.frag", ShaderStage::Fragment, R"(#version 450
 layout(set = 0, binding = 0) uniform texture2D color_texture;
 layout(set = 0, binding = 1) uniform sampler linear_sampler;

@@ -11,25 +11,25 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "loom/rhi/shader_compiler.hpp"
+#include "loom/shader_compiler/shader_compiler.hpp"
 #include "loom_test/test_support.hpp"
 
 namespace loom::test {
 
-inline rhi::ShaderSource source(std::string name, rhi::ShaderStage stage, std::string code,
+inline shader_compiler::ShaderSource source(std::string name, rhi::ShaderStage stage, std::string code,
                                 std::vector<std::pair<std::string, std::string>> defines = {}) {
-    return rhi::ShaderSource{std::move(name), stage, std::move(code), std::move(defines)};
+    return shader_compiler::ShaderSource{std::move(name), stage, std::move(code), std::move(defines)};
 }
 
 /// Compiles and fails the test (returning an empty module) when compilation fails.
-inline rhi::ShaderModule compile_ok(rhi::ShaderCompiler& compiler, const rhi::ShaderSource& src) {
+inline rhi::ShaderModule compile_ok(shader_compiler::ShaderCompiler& compiler, const shader_compiler::ShaderSource& src) {
     auto module = compiler.compile(src);
     EXPECT_TRUE(module.ok()) << (module.ok() ? "" : module.error().to_string());
     return module.ok() ? std::move(module).value() : rhi::ShaderModule{};
 }
 
 /// Compiles expecting failure; returns the error message ("" and a test failure on success).
-inline std::string compile_error(rhi::ShaderCompiler& compiler, const rhi::ShaderSource& src) {
+inline std::string compile_error(shader_compiler::ShaderCompiler& compiler, const shader_compiler::ShaderSource& src) {
     auto module = compiler.compile(src);
     EXPECT_FALSE(module.ok()) << "expected " << src.name << " not to compile";
     if (module.ok()) return "";

@@ -149,7 +149,7 @@ TEST_F(VulkanDeviceTest, ReadbackInTheMiddleOfAFrameSeesEarlierCommands) {
 }
 
 TEST_F(VulkanDeviceTest, TransientUniformRingGrowsWithinAFrame) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     LOOM_VK_ASSIGN(auto vs_module, compiler.compile({"fill.vert", rhi::ShaderStage::Vertex, R"(#version 450
 void main() {
     vec2 p = vec2(gl_VertexIndex == 1 ? 3.0 : -1.0, gl_VertexIndex == 2 ? 3.0 : -1.0);

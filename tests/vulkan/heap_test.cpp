@@ -122,7 +122,7 @@ TEST_F(VulkanHeapTest, SamplingAnAliasWhoseBytesWereTakenOverIsInvalidState) {
     LOOM_VK_ASSIGN(auto target, device.create_texture(target_desc));
     LOOM_VK_ASSIGN(auto fill, make_fill_pipeline(device, rhi::Format::RGBA8Unorm));
 
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     LOOM_VK_ASSIGN(auto vs_module, compiler.compile({"fs.vert", rhi::ShaderStage::Vertex, R"(#version 450
 void main() {
     vec2 p = vec2(gl_VertexIndex == 1 ? 3.0 : -1.0, gl_VertexIndex == 2 ? 3.0 : -1.0);

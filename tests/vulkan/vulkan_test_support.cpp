@@ -15,7 +15,7 @@ std::unique_ptr<rhi::Device> make_vulkan_device() {
 }
 
 Result<rhi::PipelineHandle> make_fill_pipeline(rhi::Device& device, rhi::Format format) {
-    rhi::ShaderCompiler compiler;
+    shader_compiler::ShaderCompiler compiler;
     auto vs = compiler.compile({"fill.vert", rhi::ShaderStage::Vertex, R"(#version 450
 void main() {
     vec2 p = vec2(gl_VertexIndex == 1 ? 3.0 : -1.0, gl_VertexIndex == 2 ? 3.0 : -1.0);

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "loom/rhi/device.hpp"
-#include "loom/rhi/shader_compiler.hpp"
+#include "loom/shader_compiler/shader_compiler.hpp"
 
 namespace loom::test {
 

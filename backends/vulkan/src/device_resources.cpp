@@ -489,7 +489,7 @@ loom::Status VulkanDevice::destroy(rhi::SamplerHandle handle) {
 loom::Result<rhi::ShaderHandle> VulkanDevice::create_shader(const rhi::ShaderModule& module) {
     const std::string name = "shader " + in_quotes(module.name);
     if (module.spirv.empty() || module.spirv.front() != 0x07230203u) {
-        return Error{ErrorCode::InvalidArgument, name + ": no SPIR-V (the module must come from rhi::ShaderCompiler)"};
+        return Error{ErrorCode::InvalidArgument, name + ": no SPIR-V (the module must come from shader_compiler::ShaderCompiler)"};
     }
     auto info = vk_init<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
     info.codeSize = module.spirv.size() * sizeof(uint32_t);

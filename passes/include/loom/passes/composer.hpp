@@ -17,7 +17,7 @@
 #include "loom/passes/object.hpp"
 #include "loom/passes/shader_part.hpp"
 #include "loom/rhi/result.hpp"
-#include "loom/rhi/shader_compiler.hpp"
+#include "loom/shader_compiler/shader_compiler.hpp"
 
 namespace loom::passes {
 
@@ -36,9 +36,9 @@ struct Composition {
 /// pass, kind or part name or a code origin that is empty or holds a control character, '"' or
 /// '\\' (they are written into #line directives), a define whose name is not a GLSL identifier
 /// or whose value holds a control character; each names the pass, the kind and the stage.
-Result<rhi::ShaderSource> compose_stage(const Composition& composition, rhi::ShaderStage stage);
+Result<shader_compiler::ShaderSource> compose_stage(const Composition& composition, rhi::ShaderStage stage);
 
-/// Compiles composed sources: one rhi::ShaderCompiler with loom's shader snippets
+/// Compiles composed sources: one shader_compiler::ShaderCompiler with loom's shader snippets
 /// (shaders::include_files()) as virtual files and its cache (compile_cached), shared by the
 /// passes of a renderer so that equal sources compile once.
 class ShaderLibrary {
@@ -50,7 +50,7 @@ public:
 
     /// Compiles (or finds in the cache) a composed stage. A ShaderCompile error is prefixed with
     /// `context` (e.g. "pass 'deferred', object kind 'none', fragment stage").
-    Result<rhi::ShaderModule> compile(const rhi::ShaderSource& source, const std::string& context);
+    Result<rhi::ShaderModule> compile(const shader_compiler::ShaderSource& source, const std::string& context);
 
     /// Sources compiled so far (cache misses).
     [[nodiscard]] uint64_t compilations() const { return compilations_; }
@@ -58,7 +58,7 @@ public:
     [[nodiscard]] uint64_t requests() const { return requests_; }
 
 private:
-    std::unique_ptr<rhi::ShaderCompiler> compiler_;
+    std::unique_ptr<shader_compiler::ShaderCompiler> compiler_;
     uint64_t compilations_ = 0;
     uint64_t requests_ = 0;
 };

@@ -158,7 +158,7 @@ public:
     /// Composes and compiles the program for `kind` (null: the pass's own program).
     virtual Result<std::shared_ptr<const Program>> make_program(const ObjectKind* kind);
     /// The composed source of one stage for `kind` (null: the pass's own).
-    [[nodiscard]] virtual Result<rhi::ShaderSource> coerce_shader(const ObjectKind* kind, rhi::ShaderStage stage) const;
+    [[nodiscard]] virtual Result<shader_compiler::ShaderSource> coerce_shader(const ObjectKind* kind, rhi::ShaderStage stage) const;
     /// Draws one object; by default calls object.render(context). A pass overrides it to take
     /// control of how objects are drawn.
     virtual Status render_with(DrawContext& context, const Object& object);

@@ -1,14 +1,14 @@
 #pragma once
 // CPU-side images: what a texture readback returns (rows top-first, tightly packed, in the
-// texture's own format), PNG input/output, and the comparison utility that tests and tools
-// share to prove two renderings equal.
+// texture's own format), their conversion for viewing, and the comparison that tests and tools
+// share to prove two renderings equal. Encoded files (PNG, JPEG) are loom::image_io's.
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <filesystem>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "loom/rhi/format.hpp"
@@ -60,12 +60,6 @@ struct DisplayOptions {
 /// An RGBA8Unorm copy of `image` suitable for viewing (see DisplayOptions).
 Image to_rgba8(const Image& image, const DisplayOptions& options = {});
 
-/// Writes `image` as PNG (converted with to_rgba8 unless it is RGBA8/RGBA8Srgb already).
-Status write_png(const Image& image, const std::filesystem::path& path, const DisplayOptions& options = {});
-
-/// Reads a PNG into an RGBA8Unorm image.
-Result<Image> read_png(const std::filesystem::path& path);
-
 /// How compare_images compares.
 struct ImageCompareOptions {
     /// A pixel counts as different when any channel differs by more than this, in the
@@ -97,10 +91,5 @@ struct ImageComparison {
 /// Compares two images of the same size and format; an InvalidArgument error says which of
 /// size or format differs.
 Result<ImageComparison> compare_images(const Image& a, const Image& b, const ImageCompareOptions& options = {});
-
-/// Compares and, when the images differ, writes `<stem>.a.png`, `<stem>.b.png` and
-/// `<stem>.diff.png` (the heat map) next to each other under `dir`.
-Result<ImageComparison> compare_and_report(const Image& a, const Image& b, const std::filesystem::path& dir,
-                                           const std::string& stem, const ImageCompareOptions& options = {});
 
 }  // namespace loom::rhi

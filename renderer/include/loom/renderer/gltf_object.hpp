@@ -1,0 +1,58 @@
+#pragma once
+// glTF draw items as objects of the pass/object protocol: the object kind "gltf-mesh" and
+// GltfObject, one primitive placed in the world with its material.
+//
+// "gltf-mesh" is made of two object parts (shaders/include/loom/parts/): "gltf-geometry" (the
+// vertex layout of loom::scene::Vertex, the model and normal matrices, the tangent frame and
+// second UV set for the material) and "gltf-material" (metallic-roughness with base colour,
+// metallic-roughness, normal, occlusion and emissive textures, factors, UV sets, vertex colours,
+// alpha MASK / BLEND, double-sided lighting). Its programs compose with the standard passes:
+// the shadow map (vertex part only), the G-buffer, the forward pass, and the transparent pass
+// of this library (which reads object_alpha()).
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "loom/passes/object.hpp"
+#include "loom/passes/view.hpp"
+#include "loom/rhi/result.hpp"
+#include "loom/scene/material.hpp"
+#include "loom/renderer/gpu_scene.hpp"
+
+namespace loom::renderer {
+
+/// The kind "gltf-mesh" (one shared instance): parts "gltf-geometry" and "gltf-material", the
+/// vertex buffer layout of loom::scene::Vertex.
+const std::shared_ptr<const passes::ObjectKind>& gltf_mesh_kind();
+
+/// One draw item of a GpuScene's scene.
+class GltfObject final : public passes::Object {
+public:
+    /// `draw_item` indexes gpu->scene().draw_items (a programming error when out of range).
+    GltfObject(std::shared_ptr<const GpuScene> gpu, uint32_t draw_item);
+
+    [[nodiscard]] const std::shared_ptr<const passes::ObjectKind>& kind() const override { return gltf_mesh_kind(); }
+    /// "<node name or node N>: <mesh name or mesh N> #<primitive>".
+    [[nodiscard]] std::string name() const override { return name_; }
+    /// No culling for double-sided materials, back faces culled otherwise; clockwise front
+    /// faces where the world matrix mirrors (DrawItem::flips_winding).
+    [[nodiscard]] rhi::RasterState raster() const override;
+    /// Binds GltfObjectUniforms and the material's textures (the fallback texture where it has
+    /// none; only what the program has: the shadow map's has no textures), the scene's buffers,
+    /// and draws the primitive's range.
+    Status render(passes::DrawContext& context) const override;
+
+    [[nodiscard]] const scene::DrawItem& item() const;
+    [[nodiscard]] const scene::Material& material() const;
+    [[nodiscard]] scene::AlphaMode alpha_mode() const { return material().alpha_mode; }
+    /// World bounds of the primitive (for sorting and framing).
+    [[nodiscard]] passes::Bounds world_bounds() const;
+
+private:
+    std::shared_ptr<const GpuScene> gpu_;
+    uint32_t draw_item_;
+    std::string name_;
+};
+
+}  // namespace loom::renderer

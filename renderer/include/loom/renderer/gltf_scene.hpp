@@ -1,0 +1,36 @@
+#pragma once
+// glTF files as pipeline scenes: loom::scene imports the file, loom::scene_objects turns its
+// draw items into GltfObjects ("gltf-mesh") and uploads geometry and textures once per device;
+// the camera is the file's (first, or the one asked for) or one that frames the scene, and the
+// light is a sun behind the viewer (files bring none).
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "loom/renderer/deferred_pipeline.hpp"
+#include "loom/rhi/result.hpp"
+#include "loom/renderer/gpu_scene.hpp"
+#include "loom/renderer/scene_objects.hpp"
+
+namespace loom::renderer {
+
+/// Imports `path` (load_gltf) and prepares it for upload (prepare_scene). Errors are the
+/// importer's: one line naming the file and what is wrong.
+Result<std::shared_ptr<const renderer::PreparedScene>> load_gltf_scene(const std::filesystem::path& path);
+
+/// The pipeline scene of `gpu`'s scene seen from `viewpoint`: opaque and masked objects go to
+/// the geometry (or forward) pass and cast shadows (masked ones through the masked shadow pass,
+/// cut out), blended ones go to the transparent pass and cast none. The GpuScene may be shared
+/// by several pipelines on its device.
+PipelineScene gltf_pipeline_scene(const std::shared_ptr<const renderer::GpuScene>& gpu,
+                                  const renderer::SceneViewpoint& viewpoint);
+
+/// "3 opaque and 1 blended draw item(s), 2 material(s), 4 image(s); camera 0 'name'": what
+/// `content` (made from `scene`) draws and from where.
+std::string describe_gltf_scene(const scene::Scene& scene, const PipelineScene& content,
+                                const renderer::SceneViewpoint& viewpoint);
+
+}  // namespace loom::renderer

@@ -1,0 +1,39 @@
+#include "loom/renderer/gltf_scene.hpp"
+
+#include "loom/scene/gltf.hpp"
+
+namespace loom::renderer {
+
+Result<std::shared_ptr<const renderer::PreparedScene>> load_gltf_scene(const std::filesystem::path& path) {
+    auto scene = scene::load_gltf(path);
+    if (!scene) return scene.take_error();
+    return renderer::prepare_scene(std::move(*scene));
+}
+
+PipelineScene gltf_pipeline_scene(const std::shared_ptr<const renderer::GpuScene>& gpu,
+                                  const renderer::SceneViewpoint& viewpoint) {
+    const renderer::SceneObjects objects = renderer::make_scene_objects(gpu);
+    PipelineScene scene;
+    scene.name = gpu->scene().source;
+    for (const auto& object : objects.opaque) {
+        // Cut-out surfaces cast cut-out shadows: through the masked shadow pass.
+        (object->alpha_mode() == scene::AlphaMode::Mask ? scene.masked_shadow_casters : scene.shadow_casters).push_back(object);
+        scene.opaque.push_back(object);
+    }
+    for (const auto& object : objects.blended) scene.blended.push_back(BlendedObject{object, object->world_bounds()});
+    scene.camera = [viewpoint](float aspect) { return viewpoint.camera(aspect); };
+    // The camera's orientation does not depend on the aspect ratio; only its distance may.
+    scene.light = renderer::viewer_sun(viewpoint.camera(1.0f));
+    scene.bounds = objects.bounds;
+    scene.shadow_bounds = objects.bounds;
+    return scene;
+}
+
+std::string describe_gltf_scene(const scene::Scene& scene, const PipelineScene& content,
+                                const renderer::SceneViewpoint& viewpoint) {
+    return std::to_string(content.opaque.size()) + " opaque and " + std::to_string(content.blended.size()) +
+           " blended draw item(s), " + std::to_string(scene.materials.size()) + " material(s), " +
+           std::to_string(scene.images.size()) + " image(s); " + viewpoint.describe();
+}
+
+}  // namespace loom::renderer

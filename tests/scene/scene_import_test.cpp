@@ -1,0 +1,454 @@
+// Import features on synthetic files with known content: index types, topologies, normalised
+// and quantised attributes, interleaved views, sparse accessors without a buffer view,
+// hierarchies, samplers, materials, cameras, skipped primitives and buffer layouts.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "loom/image_io/image_io.hpp"
+#include "loom/scene/gltf.hpp"
+#include "loom_test/test_support.hpp"
+#include "scene_test_util.hpp"
+
+namespace loom::test {
+namespace {
+
+using Layout = GltfBuilder::Layout;
+using scene::Scene;
+
+Scene load_ok(const std::filesystem::path& path, const scene::LoadOptions& options = {}) {
+    auto scene = scene::load_gltf(path, options);
+    EXPECT_TRUE(scene) << scene.error().to_string();
+    return scene ? std::move(*scene) : Scene{};
+}
+
+std::string current_test() {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    return std::string(info->test_suite_name()) + "." + info->name();
+}
+
+TEST(SceneImport, EveryIndexTypeAndNoIndicesGiveTheSameTriangles) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    std::vector<Scene> scenes;
+    for (const int type : {kUnsignedByte, kUnsignedShort, kUnsignedInt, 0}) {
+        GltfBuilder builder;
+        // Two triangles, unshared vertices, so that a non-indexed primitive can express them.
+        const int positions = builder.add_floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3");
+        const int normals = builder.add_floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
+        nlohmann::json primitive = {{"attributes", {{"POSITION", positions}, {"NORMAL", normals}}}};
+        if (type != 0) primitive["indices"] = builder.add_indices({0, 1, 2, 3, 4, 5}, type);
+        builder.set_scene({builder.add_node({{"mesh", builder.add_mesh(nlohmann::json::array({primitive}))}})});
+        scenes.push_back(load_ok(builder.write(dir, "indices" + std::to_string(type), Layout::External)));
+    }
+    ASSERT_EQ(scenes.front().meshes.at(0).primitives.at(0).indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5}));
+    for (std::size_t i = 1; i < scenes.size(); ++i) expect_same_scene(scenes.front(), scenes[i]);
+}
+
+TEST(SceneImport, StripsAndFansBecomeListsWithTheirWinding) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    const int positions = builder.add_floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0}, "VEC3");
+    const int strip = builder.add_indices({0, 1, 2, 3, 4});
+    const nlohmann::json primitives = {
+        {{"attributes", {{"POSITION", positions}}}, {"indices", strip}, {"mode", 5}},
+        {{"attributes", {{"POSITION", positions}}}, {"indices", strip}, {"mode", 6}},
+        {{"attributes", {{"POSITION", positions}}}, {"mode", 5}},  // non-indexed strip
+    };
+    builder.set_scene({builder.add_node({{"mesh", builder.add_mesh(primitives)}})});
+    scene::LoadOptions options;
+    options.normals = scene::NormalGeneration::Smooth;  // keeps the indices as they are
+    const Scene scene = load_ok(builder.write(dir, "topologies", Layout::Embedded), options);
+    ASSERT_EQ(scene.meshes.at(0).primitives.size(), 3u);
+    const std::vector<uint32_t> strip_list = {0, 1, 2, 2, 1, 3, 2, 3, 4};
+    EXPECT_EQ(scene.meshes[0].primitives[0].indices, strip_list);
+    EXPECT_EQ(scene.meshes[0].primitives[1].indices, (std::vector<uint32_t>{1, 2, 0, 2, 3, 0, 3, 4, 0}));
+    EXPECT_EQ(scene.meshes[0].primitives[2].indices, strip_list);
+    // Every strip triangle faces +Z (counter-clockwise): the smooth normals say so.
+    for (const scene::Vertex& vertex : scene.meshes[0].primitives[0].vertices) {
+        EXPECT_EQ(vertex.normal, glm::vec3(0.0f, 0.0f, 1.0f));
+    }
+    EXPECT_EQ(scene.draw_items.size(), 3u);
+}
+
+TEST(SceneImport, PointsAndLinesAreSkippedWithAWarning) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    const int positions = builder.add_floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const nlohmann::json primitives = {
+        {{"attributes", {{"POSITION", positions}}}, {"mode", 0}},
+        {{"attributes", {{"POSITION", positions}}}, {"mode", 1}},
+        {{"attributes", {{"POSITION", positions}}}, {"mode", 4}},
+        {{"attributes", {{"TEXCOORD_0", builder.add_floats({0, 0, 1, 0, 0, 1}, "VEC2")}}}},  // no POSITION
+    };
+    builder.set_scene({builder.add_node({{"mesh", builder.add_mesh(primitives)}})});
+    ScopedLogCapture capture;
+    const Scene scene = load_ok(builder.write(dir, "points", Layout::External));
+    ASSERT_EQ(scene.meshes.at(0).primitives.size(), 1u);
+    EXPECT_EQ(scene.draw_items.size(), 1u);
+    ASSERT_EQ(scene.warnings.size(), 3u);
+    EXPECT_NE(scene.warnings[0].find("/meshes/0/primitives/0/mode: mode 0 (points) is not supported"), std::string::npos)
+        << scene.warnings[0];
+    EXPECT_NE(scene.warnings[1].find("/meshes/0/primitives/1/mode: mode 1 (lines)"), std::string::npos) << scene.warnings[1];
+    EXPECT_NE(scene.warnings[2].find("/meshes/0/primitives/3/attributes: primitive has no POSITION"), std::string::npos);
+    // The warnings were logged too.
+    EXPECT_EQ(capture.messages().size(), 3u);
+}
+
+TEST(SceneImport, NormalisedIntegerAttributesAndColours) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    const int positions = builder.add_floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    // TEXCOORD_0: normalised u8, padded to 4 bytes per element (vertex attribute alignment).
+    const int uv0_view = builder.add_view(std::vector<uint8_t>{0, 255, 0, 0, 255, 0, 0, 0, 51, 102, 0, 0}, 4);
+    const int uv0 = builder.add_accessor(uv0_view, kUnsignedByte, 3, "VEC2", 0, true);
+    // TEXCOORD_1: normalised u16.
+    const int uv1 = builder.add_accessor(builder.add_view(std::vector<uint16_t>{0, 65535, 65535, 0, 13107, 26214}), kUnsignedShort,
+                                         3, "VEC2", 0, true);
+    // COLOR_0: normalised u16 VEC3 (alpha becomes 1).
+    const int color = builder.add_accessor(
+        builder.add_view(std::vector<uint16_t>{65535, 0, 0, 0, 0, 65535, 0, 0, 0, 0, 65535, 0}, 8), kUnsignedShort, 3, "VEC3", 0,
+        true);
+    const nlohmann::json primitive = {
+        {"attributes", {{"POSITION", positions}, {"TEXCOORD_0", uv0}, {"TEXCOORD_1", uv1}, {"COLOR_0", color}}}};
+    builder.set_scene({builder.add_node({{"mesh", builder.add_mesh(nlohmann::json::array({primitive}))}})});
+    const Scene scene = load_ok(builder.write(dir, "normalized", Layout::Binary));
+    const auto& vertices = scene.meshes.at(0).primitives.at(0).vertices;
+    ASSERT_EQ(vertices.size(), 3u);
+    EXPECT_EQ(vertices[0].uv0, glm::vec2(0.0f, 1.0f));
+    EXPECT_EQ(vertices[1].uv0, glm::vec2(1.0f, 0.0f));
+    EXPECT_EQ(vertices[2].uv0, glm::vec2(0.2f, 0.4f));
+    EXPECT_EQ(vertices[2].uv1, glm::vec2(0.2f, 0.4f));
+    EXPECT_EQ(vertices[0].uv1, glm::vec2(0.0f, 1.0f));
+    EXPECT_EQ(vertices[0].color, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+    EXPECT_EQ(vertices[2].color, glm::vec4(0.0f, 0.0f, 1.0f, 1.0f));
+    EXPECT_EQ(scene.meshes[0].primitives[0].from_file,
+              scene::kAttributeUv0 | scene::kAttributeUv1 | scene::kAttributeColor);
+}
+
+TEST(SceneImport, FloatVec4ColoursAndInterleavedViews) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    // One interleaved view: position (12 bytes) + colour (16 bytes) per vertex, stride 28.
+    const std::vector<float> interleaved = {0, 0, 0, 1, 0, 0, 0.5f,   //
+                                            1, 0, 0, 0, 1, 0, 0.25f,  //
+                                            0, 1, 0, 0, 0, 1, 1};
+    const int view = builder.add_view(interleaved, 28);
+    const int positions = builder.add_accessor(view, kFloat, 3, "VEC3");
+    const int colors = builder.add_accessor(view, kFloat, 3, "VEC4", 12);
+    const nlohmann::json primitive = {{"attributes", {{"POSITION", positions}, {"COLOR_0", colors}}}};
+    builder.set_scene({builder.add_node({{"mesh", builder.add_mesh(nlohmann::json::array({primitive}))}})});
+    const Scene scene = load_ok(builder.write(dir, "interleaved", Layout::External));
+    // Flat normals de-index: the vertices keep their order for a non-indexed triangle.
+    const auto& vertices = scene.meshes.at(0).primitives.at(0).vertices;
+    ASSERT_EQ(vertices.size(), 3u);
+    EXPECT_EQ(vertices[1].position, glm::vec3(1.0f, 0.0f, 0.0f));
+    EXPECT_EQ(vertices[1].color, glm::vec4(0.0f, 1.0f, 0.0f, 0.25f));
+    EXPECT_EQ(vertices[2].color, glm::vec4(0.0f, 0.0f, 1.0f, 1.0f));
+}
+
+TEST(SceneImport, MeshQuantizationAttributes) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    builder.json()["extensionsUsed"] = {"KHR_mesh_quantization"};
+    builder.json()["extensionsRequired"] = {"KHR_mesh_quantization"};
+    // Positions as plain shorts (padded to 8 bytes), normals as normalised bytes, texture
+    // coordinates as plain unsigned bytes.
+    const int positions = builder.add_accessor(builder.add_view(std::vector<int16_t>{0, 0, 0, 0, 100, 0, 0, 0, 0, -100, 0, 0}, 8),
+                                               kShort, 3, "VEC3");
+    const int normals = builder.add_accessor(builder.add_view(std::vector<int8_t>{0, 0, 127, 0, 0, 0, -128, 0, 0, -127, 0, 0}, 4),
+                                             kByte, 3, "VEC3", 0, true);
+    const int uvs = builder.add_accessor(builder.add_view(std::vector<uint8_t>{0, 0, 0, 0, 2, 0, 0, 0, 0, 3, 0, 0}, 4),
+                                         kUnsignedByte, 3, "VEC2");
+    const nlohmann::json primitive = {{"attributes", {{"POSITION", positions}, {"NORMAL", normals}, {"TEXCOORD_0", uvs}}}};
+    // The node scales the quantised positions back.
+    builder.set_scene({builder.add_node({{"mesh", builder.add_mesh(nlohmann::json::array({primitive}))}, {"scale", {0.01, 0.01, 0.01}}})});
+    const Scene scene = load_ok(builder.write(dir, "quantized", Layout::Embedded));
+    const auto& vertices = scene.meshes.at(0).primitives.at(0).vertices;
+    EXPECT_EQ(vertices[1].position, glm::vec3(100.0f, 0.0f, 0.0f));
+    EXPECT_EQ(vertices[2].position, glm::vec3(0.0f, -100.0f, 0.0f));
+    EXPECT_EQ(vertices[0].normal, glm::vec3(0.0f, 0.0f, 1.0f));
+    EXPECT_EQ(vertices[1].normal, glm::vec3(0.0f, 0.0f, -1.0f));  // -128 clamps to -1
+    EXPECT_EQ(vertices[2].normal, glm::vec3(0.0f, -1.0f, 0.0f));
+    EXPECT_EQ(vertices[1].uv0, glm::vec2(2.0f, 0.0f));
+    EXPECT_NEAR(scene.bounds.max.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(scene.bounds.min.y, -1.0f, 1e-6f);
+
+    // Without the extension the same attributes are errors.
+    const std::filesystem::path without = builder.write(dir, "unquantized", Layout::Embedded, [](nlohmann::json& doc) {
+        doc.erase("extensionsUsed");
+        doc.erase("extensionsRequired");
+    });
+    auto result = scene::load_gltf(without);
+    ASSERT_FALSE(result);
+    EXPECT_NE(result.error().message.find("/meshes/0/primitives/0/attributes/NORMAL: accessor 1 is VEC3 BYTE normalized"),
+              std::string::npos)
+        << result.error().message;
+}
+
+TEST(SceneImport, SparseAccessorWithoutABufferView) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    // All-zero positions, three of which a sparse substitution (u16 indices) moves.
+    const int indices = builder.add_view(std::vector<uint16_t>{0, 2, 3, 0});
+    const int values = builder.add_view(std::vector<float>{1, 0, 0, 0, 1, 0, 1, 1, 0});
+    builder.json()["accessors"].push_back({{"componentType", kFloat},
+                                           {"count", 4},
+                                           {"type", "VEC3"},
+                                           {"sparse",
+                                            {{"count", 3},
+                                             {"indices", {{"bufferView", indices}, {"componentType", kUnsignedShort}}},
+                                             {"values", {{"bufferView", values}}}}}});
+    const nlohmann::json primitive = {{"attributes", {{"POSITION", 0}}}, {"indices", builder.add_indices({1, 0, 2, 0, 3, 2})}};
+    builder.set_scene({builder.add_node({{"mesh", builder.add_mesh(nlohmann::json::array({primitive}))}})});
+    scene::LoadOptions options;
+    options.normals = scene::NormalGeneration::Smooth;
+    const Scene scene = load_ok(builder.write(dir, "sparse", Layout::External), options);
+    const auto& vertices = scene.meshes.at(0).primitives.at(0).vertices;
+    ASSERT_EQ(vertices.size(), 4u);
+    EXPECT_EQ(vertices[0].position, glm::vec3(1.0f, 0.0f, 0.0f));
+    EXPECT_EQ(vertices[1].position, glm::vec3(0.0f));
+    EXPECT_EQ(vertices[2].position, glm::vec3(0.0f, 1.0f, 0.0f));
+    EXPECT_EQ(vertices[3].position, glm::vec3(1.0f, 1.0f, 0.0f));
+}
+
+TEST(SceneImport, NodeHierarchyWorldMatricesAndMirroring) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    const int mesh = builder.add_quad(true);  // node 0 holds it
+    builder.json()["nodes"][0] = {{"translation", {1, 2, 3}}, {"children", {1}}};
+    builder.add_node({{"rotation", {0, 0.7071067811865476, 0, 0.7071067811865476}}, {"children", {2}}});  // 90 deg about Y
+    builder.add_node({{"scale", {-2, 1, 1}}, {"mesh", mesh}});
+    const Scene scene = load_ok(builder.write(dir, "hierarchy", Layout::External));
+    ASSERT_EQ(scene.draw_items.size(), 1u);
+    const scene::DrawItem& item = scene.draw_items[0];
+    EXPECT_EQ(item.node, 2u);
+    EXPECT_EQ(scene.nodes[2].parent, std::optional<uint32_t>(1));
+    EXPECT_EQ(scene.nodes[1].parent, std::optional<uint32_t>(0));
+    // Local (1,0,0) -> scale (-2,0,0) -> rotate about Y (0,0,2) -> translate (1,2,5).
+    const glm::vec4 moved = item.world * glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(moved.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(moved.y, 2.0f, 1e-6f);
+    EXPECT_NEAR(moved.z, 5.0f, 1e-6f);
+    EXPECT_TRUE(item.flips_winding);  // the negative scale mirrors
+    // The quad's +Z normal: mirrored in x does not change it, the rotation turns it to +X.
+    const glm::vec3 normal = glm::normalize(item.normal_matrix * glm::vec3(0.0f, 0.0f, 1.0f));
+    EXPECT_NEAR(normal.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(normal.z, 0.0f, 1e-6f);
+    // Exact world bounds of the quad (0..1 in x and y): x -> z in [3, 5], y in [2, 3].
+    EXPECT_NEAR(item.world_bounds.min.z, 3.0f, 1e-6f);
+    EXPECT_NEAR(item.world_bounds.max.z, 5.0f, 1e-6f);
+    EXPECT_NEAR(item.world_bounds.min.y, 2.0f, 1e-6f);
+    EXPECT_NEAR(item.world_bounds.max.y, 3.0f, 1e-6f);
+    EXPECT_EQ(scene.bounds, item.world_bounds);
+}
+
+TEST(SceneImport, FilesWithoutScenesShowEveryRoot) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    const int mesh = builder.add_quad(true);
+    builder.json().erase("scenes");
+    builder.json().erase("scene");
+    builder.add_node({{"mesh", mesh}, {"translation", {5, 0, 0}}});
+    const Scene scene = load_ok(builder.write(dir, "no_scenes", Layout::External));
+    EXPECT_EQ(scene.draw_items.size(), 2u);
+    EXPECT_EQ(scene.bounds.max.x, 6.0f);
+
+    // LoadOptions::scene picks a scene; one that does not exist is an InvalidArgument error.
+    builder.json()["scenes"] = nlohmann::json::array({{{"nodes", {0}}}, {{"nodes", {1}}}});
+    scene::LoadOptions options;
+    options.scene = 1;
+    const Scene second = load_ok(builder.write(dir, "two_scenes", Layout::External), options);
+    ASSERT_EQ(second.draw_items.size(), 1u);
+    EXPECT_EQ(second.draw_items[0].node, 1u);
+    options.scene = 2;
+    auto missing = scene::load_gltf(dir / "two_scenes.gltf", options);
+    ASSERT_FALSE(missing);
+    EXPECT_EQ(missing.error().code, ErrorCode::InvalidArgument);
+}
+
+TEST(SceneImport, UnsupportedUsedExtensionsAreIgnoredWithAWarning) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    builder.add_quad(true);
+    builder.json()["extensionsUsed"] = {"KHR_mesh_quantization", "KHR_texture_transform"};
+    ScopedLogCapture capture;
+    const Scene scene = load_ok(builder.write(dir, "extensions", Layout::External));
+    ASSERT_EQ(scene.warnings.size(), 1u);
+    EXPECT_NE(scene.warnings[0].find("/extensionsUsed/1: extension 'KHR_texture_transform' is not supported"),
+              std::string::npos)
+        << scene.warnings[0];
+    EXPECT_EQ(scene.draw_items.size(), 1u);
+}
+
+TEST(SceneImport, SamplersMapToRhiSamplerDescriptions) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    struct Case {
+        nlohmann::json sampler;
+        rhi::Filter min, mag, mip;
+        float max_lod;
+        rhi::AddressMode u, v;
+    };
+    using F = rhi::Filter;
+    using A = rhi::AddressMode;
+    const std::vector<Case> cases = {
+        {nlohmann::json::object(), F::Linear, F::Linear, F::Linear, 1000.0f, A::Repeat, A::Repeat},
+        {{{"magFilter", 9728}, {"minFilter", 9728}}, F::Nearest, F::Nearest, F::Nearest, 0.0f, A::Repeat, A::Repeat},
+        {{{"minFilter", 9729}, {"wrapS", 33071}, {"wrapT", 33648}}, F::Linear, F::Linear, F::Nearest, 0.0f, A::ClampToEdge,
+         A::MirroredRepeat},
+        {{{"minFilter", 9984}}, F::Nearest, F::Linear, F::Nearest, 1000.0f, A::Repeat, A::Repeat},
+        {{{"minFilter", 9985}}, F::Linear, F::Linear, F::Nearest, 1000.0f, A::Repeat, A::Repeat},
+        {{{"minFilter", 9986}, {"magFilter", 9728}}, F::Nearest, F::Nearest, F::Linear, 1000.0f, A::Repeat, A::Repeat},
+        {{{"minFilter", 9987}, {"wrapS", 10497}, {"wrapT", 33071}}, F::Linear, F::Linear, F::Linear, 1000.0f, A::Repeat,
+         A::ClampToEdge},
+    };
+    GltfBuilder builder;
+    builder.add_quad(true, 0);
+    rhi::Image pixel(1, 1, rhi::Format::RGBA8Unorm);
+    ASSERT_TRUE(image_io::write_png(pixel, dir / "pixel.png").ok());
+    builder.json()["images"] = nlohmann::json::array({{{"uri", "pixel.png"}}});
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        builder.json()["samplers"].push_back(cases[i].sampler);
+        builder.json()["textures"].push_back({{"source", 0}, {"sampler", i}});
+    }
+    builder.json()["textures"].push_back({{"source", 0}});  // no sampler at all: glTF defaults
+    // One material per texture, so that every texture is used.
+    for (std::size_t i = 0; i <= cases.size(); ++i) {
+        builder.json()["materials"].push_back({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", i}}}}}});
+    }
+    const Scene scene = load_ok(builder.write(dir, "samplers", Layout::External));
+    ASSERT_EQ(scene.textures.size(), cases.size() + 1);
+    ASSERT_EQ(scene.images.size(), 1u);  // one decoded image shared by all
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const rhi::SamplerDesc& desc = scene.textures[i].sampler;
+        SCOPED_TRACE(cases[i].sampler.dump());
+        EXPECT_EQ(desc.min_filter, cases[i].min);
+        EXPECT_EQ(desc.mag_filter, cases[i].mag);
+        EXPECT_EQ(desc.mipmap_filter, cases[i].mip);
+        EXPECT_EQ(desc.max_lod, cases[i].max_lod);
+        EXPECT_EQ(desc.address_u, cases[i].u);
+        EXPECT_EQ(desc.address_v, cases[i].v);
+    }
+    const rhi::SamplerDesc& fallback = scene.textures.back().sampler;
+    EXPECT_EQ(fallback.min_filter, rhi::Filter::Linear);
+    EXPECT_EQ(fallback.mipmap_filter, rhi::Filter::Linear);
+    EXPECT_EQ(fallback.address_u, rhi::AddressMode::Repeat);
+}
+
+TEST(SceneImport, MaterialFactorsTexturesAndUvSets) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    builder.add_quad(true, 0);
+    // A second UV set for the occlusion texture.
+    builder.json()["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = builder.add_floats({0, 0, 1, 0, 1, 1, 0, 1}, "VEC2");
+    rhi::Image pixel(2, 1, rhi::Format::RGBA8Unorm);
+    pixel.store(1, 0, {0.0, 1.0, 0.0, 1.0});
+    ASSERT_TRUE(image_io::write_png(pixel, dir / "two pixels.png").ok());
+    builder.json()["images"] = nlohmann::json::array({{{"uri", "two%20pixels.png"}, {"name", "pixels"}}});
+    builder.json()["textures"] = nlohmann::json::array({{{"source", 0}}, {{"source", 0}, {"name", "orm"}}});
+    builder.json()["materials"] = nlohmann::json::array({{
+        {"name", "everything"},
+        {"pbrMetallicRoughness",
+         {{"baseColorFactor", {0.5, 0.25, 1.0, 0.75}},
+          {"baseColorTexture", {{"index", 0}}},
+          {"metallicFactor", 0.5},
+          {"roughnessFactor", 0.125},
+          {"metallicRoughnessTexture", {{"index", 1}}}}},
+        {"normalTexture", {{"index", 1}, {"scale", 0.5}}},
+        {"occlusionTexture", {{"index", 1}, {"texCoord", 1}, {"strength", 0.25}}},
+        {"emissiveTexture", {{"index", 0}}},
+        {"emissiveFactor", {1.0, 0.5, 0.0}},
+        {"alphaMode", "MASK"},
+        {"alphaCutoff", 0.3},
+        {"doubleSided", true},
+    }});
+    const Scene scene = load_ok(builder.write(dir, "material", Layout::Binary));
+    const scene::Material& material = scene.materials.at(0);
+    EXPECT_EQ(material.name, "everything");
+    EXPECT_EQ(material.base_color_factor, glm::vec4(0.5f, 0.25f, 1.0f, 0.75f));
+    EXPECT_EQ(material.metallic_factor, 0.5f);
+    EXPECT_EQ(material.roughness_factor, 0.125f);
+    EXPECT_EQ(material.emissive_factor, glm::vec3(1.0f, 0.5f, 0.0f));
+    EXPECT_EQ(material.normal_scale, 0.5f);
+    EXPECT_EQ(material.occlusion_strength, 0.25f);
+    EXPECT_EQ(material.alpha_mode, scene::AlphaMode::Mask);
+    EXPECT_EQ(material.alpha_cutoff, 0.3f);
+    EXPECT_TRUE(material.double_sided);
+    ASSERT_TRUE(material.base_color_texture && material.emissive_texture && material.metallic_roughness_texture &&
+                material.normal_texture && material.occlusion_texture);
+    // glTF texture 0 in sRGB (base colour, emissive) and glTF texture 1 in linear (the rest).
+    EXPECT_EQ(material.base_color_texture->texture, material.emissive_texture->texture);
+    EXPECT_EQ(material.metallic_roughness_texture->texture, material.normal_texture->texture);
+    EXPECT_EQ(material.normal_texture->texture, material.occlusion_texture->texture);
+    EXPECT_NE(material.base_color_texture->texture, material.normal_texture->texture);
+    EXPECT_EQ(material.occlusion_texture->uv_set, 1u);
+    EXPECT_EQ(material.normal_texture->uv_set, 0u);
+    ASSERT_EQ(scene.textures.size(), 2u);
+    ASSERT_EQ(scene.images.size(), 2u);  // the same image decoded once per colour space
+    const scene::TextureImage& srgb = scene.images[scene.textures[material.base_color_texture->texture].image];
+    const scene::TextureImage& linear = scene.images[scene.textures[material.normal_texture->texture].image];
+    EXPECT_EQ(srgb.image.format, rhi::Format::RGBA8Srgb);
+    EXPECT_EQ(linear.image.format, rhi::Format::RGBA8Unorm);
+    EXPECT_EQ(srgb.name, "pixels");
+    EXPECT_EQ(scene.textures[material.normal_texture->texture].name, "orm");
+    EXPECT_EQ(srgb.image.pixels, linear.image.pixels);
+    // Row 0, pixel 1 is green, as written.
+    EXPECT_EQ(linear.image.load(1, 0), (std::array<double, 4>{0.0, 1.0, 0.0, 1.0}));
+    // The quad has NORMAL but no TANGENT and a normal map: tangents are generated from UV set 0.
+    const scene::Primitive& primitive = scene.meshes.at(0).primitives.at(0);
+    EXPECT_EQ(primitive.generated, scene::kAttributeTangent);
+    EXPECT_EQ(primitive.vertices[0].tangent, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+}
+
+TEST(SceneImport, PerspectiveCameraWithoutAspectOrFarPlane) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    builder.add_quad(true);
+    builder.json()["cameras"] = nlohmann::json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 1.0}, {"znear", 0.5}}}}});
+    builder.json()["nodes"].push_back({{"camera", 0}, {"translation", {0, 0, 4}}, {"name", "eye"}});
+    builder.json()["scenes"][0]["nodes"].push_back(1);
+    const Scene scene = load_ok(builder.write(dir, "camera", Layout::External));
+    ASSERT_EQ(scene.cameras.size(), 1u);
+    const scene::Camera& camera = scene.cameras[0];
+    EXPECT_EQ(camera.name, "eye");
+    const auto& perspective = std::get<scene::PerspectiveProjection>(camera.projection);
+    EXPECT_FALSE(perspective.aspect_ratio.has_value());
+    EXPECT_FALSE(perspective.zfar.has_value());
+    // The viewport's aspect is used; depth is 0 at the near plane and approaches 1 far away.
+    const glm::mat4 projection = camera.projection_matrix(2.0f);
+    EXPECT_FLOAT_EQ(projection[0][0], 1.0f / std::tan(0.5f) / 2.0f);
+    EXPECT_FLOAT_EQ(projection[1][1], 1.0f / std::tan(0.5f));
+    const glm::vec4 near_point = projection * glm::vec4(0.0f, 0.0f, -0.5f, 1.0f);
+    EXPECT_NEAR(near_point.z / near_point.w, 0.0f, 1e-6f);
+    const glm::vec4 far_point = projection * glm::vec4(0.0f, 0.0f, -1e6f, 1.0f);
+    EXPECT_GT(far_point.z / far_point.w, 0.999f);
+    EXPECT_LT(far_point.z / far_point.w, 1.0f);
+    // The origin (the quad's corner) lies straight ahead of the camera at (0, 0, 4).
+    const glm::vec4 clip = camera.view_projection(2.0f) * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(clip.x / clip.w, 0.0f, 1e-6f);
+    EXPECT_NEAR(clip.y / clip.w, 0.0f, 1e-6f);
+}
+
+TEST(SceneImport, LayoutsGiveIdenticalScenes) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    builder.add_quad(false, 0);
+    rhi::Image pixel(1, 1, rhi::Format::RGBA8Unorm);
+    ASSERT_TRUE(image_io::write_png(pixel, dir / "pixel.png").ok());
+    const std::vector<unsigned char> png_bytes = read_bytes(dir / "pixel.png");
+    builder.json()["images"] = nlohmann::json::array({{{"bufferView", builder.add_view(png_bytes)}, {"mimeType", "image/png"}}});
+    builder.json()["textures"] = nlohmann::json::array({{{"source", 0}}});
+    builder.json()["materials"] = nlohmann::json::array({{{"normalTexture", {{"index", 0}}}}});
+    const Scene external = load_ok(builder.write(dir, "external", Layout::External));
+    const Scene embedded = load_ok(builder.write(dir, "embedded", Layout::Embedded));
+    const Scene binary = load_ok(builder.write(dir, "binary", Layout::Binary));
+    EXPECT_EQ(external.vertex_count(), 6u);  // flat normals for the quad without them
+    EXPECT_EQ(external.meshes.at(0).primitives.at(0).generated, scene::kAttributeNormal | scene::kAttributeTangent);
+    expect_same_scene(external, embedded);
+    expect_same_scene(external, binary);
+}
+
+}  // namespace
+}  // namespace loom::test
