@@ -18,9 +18,10 @@
 #   gl               loom::gl                                 rhi, epoxy (pkg-config), glfw3
 #   vulkan           loom::vulkan                             rhi, Vulkan, glfw3
 #   backends         loom::backends (rhi::create_device)      rhi and every backend built
-#   passes           loom::passes                             framegraph, shaders, shader_compiler, glm
-#   scene            loom::scene                              rhi, image_io, glm, tinygltf, nlohmann_json
-#   renderer         loom::renderer                           scene, passes
+#   passes           loom::passes                             framegraph, shaders, shader_compiler, scene, glm
+#   scene            loom::scene                              rhi, glm
+#   gltf             loom::gltf                               scene, image_io, tinygltf, nlohmann_json
+#   renderer         loom::renderer                           gltf, scene, passes
 #
 # Targets keep their in-tree names (loom::rhi is the alias of loom_rhi); EXPORT_NAME gives the
 # installed ones the same names.
@@ -32,7 +33,7 @@ set(LOOM_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/loom" CACHE STRING
     "Where the CMake package config of loom is installed, relative to the prefix")
 
 # Components in dependency order: the config loads them in this order.
-set(LOOM_ALL_COMPONENTS rhi shader_compiler image_io shaders framegraph gl vulkan backends passes scene renderer)
+set(LOOM_ALL_COMPONENTS rhi shader_compiler image_io shaders framegraph gl vulkan backends scene passes gltf renderer)
 
 set(LOOM_PACKAGE_COMPONENTS "")
 set(LOOM_PACKAGE_COMPONENT_NEEDS "")
@@ -98,9 +99,10 @@ _loom_install_component(framegraph TARGETS loom_framegraph NEEDS rhi)
 _loom_install_component(gl TARGETS loom_gl NEEDS rhi)
 _loom_install_component(vulkan TARGETS loom_vulkan NEEDS rhi)
 _loom_install_component(backends TARGETS loom_backends NEEDS rhi ${_loom_backend_components})
-_loom_install_component(passes TARGETS loom_passes NEEDS framegraph shaders shader_compiler)
-_loom_install_component(scene TARGETS loom_scene NEEDS rhi image_io)
-_loom_install_component(renderer TARGETS loom_renderer NEEDS scene passes framegraph)
+_loom_install_component(scene TARGETS loom_scene NEEDS rhi)
+_loom_install_component(passes TARGETS loom_passes NEEDS framegraph shaders shader_compiler scene)
+_loom_install_component(gltf TARGETS loom_gltf NEEDS scene image_io)
+_loom_install_component(renderer TARGETS loom_renderer NEEDS gltf scene passes framegraph)
 
 configure_package_config_file(
   "${CMAKE_CURRENT_LIST_DIR}/loomConfig.cmake.in"

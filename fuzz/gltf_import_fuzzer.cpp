@@ -1,4 +1,4 @@
-// Fuzz harness: a glTF file with its buffers and images -> load_gltf -> the CPU work a renderer
+// Fuzz harness: a glTF file with its buffers and images -> gltf::load -> the CPU work a renderer
 // does with the scene before any upload (packed geometry, every image's mip chain, the camera
 // that frames it). Any input must give a scene or a clean one-line error naming the file: no
 // crash, hang, leak or undefined behaviour (docs/fuzzing.md).
@@ -25,7 +25,7 @@
 
 #include "loom/rhi/log.hpp"
 #include "loom/scene/camera.hpp"
-#include "loom/scene/gltf.hpp"
+#include "loom/gltf/gltf.hpp"
 #include "loom/scene/packed_geometry.hpp"
 #include "loom/scene/mip_chain.hpp"
 
@@ -127,17 +127,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string_view input(reinterpret_cast<const char*>(data), size);
     const std::filesystem::path path = scratch.write(input);
 
-    loom::scene::LoadOptions options;
+    loom::gltf::LoadOptions options;
     // Small enough that a legal but huge file (a sparse accessor of 2^24 zeros, a 16384^2
     // image) fails cleanly instead of making the fuzzer run out of memory or time.
     options.max_accessor_elements = uint64_t{1} << 16;
     options.max_image_dimension = 512;
     const uint8_t last = size == 0 ? 0 : data[size - 1];
-    options.normals = (last & 1) != 0 ? loom::scene::NormalGeneration::Smooth : loom::scene::NormalGeneration::Flat;
+    options.normals = (last & 1) != 0 ? loom::gltf::NormalGeneration::Smooth : loom::gltf::NormalGeneration::Flat;
     options.tangents =
-        (last & 2) != 0 ? loom::scene::TangentGeneration::Always : loom::scene::TangentGeneration::WhenNormalMapped;
+        (last & 2) != 0 ? loom::gltf::TangentGeneration::Always : loom::gltf::TangentGeneration::WhenNormalMapped;
 
-    auto scene = loom::scene::load_gltf(path, options);
+    auto scene = loom::gltf::load(path, options);
     if (!scene) {
         const std::string& message = scene.error().message;
         require_one_line("the error", message);

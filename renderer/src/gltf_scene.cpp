@@ -1,11 +1,11 @@
 #include "loom/renderer/gltf_scene.hpp"
 
-#include "loom/scene/gltf.hpp"
+#include "loom/gltf/gltf.hpp"
 
 namespace loom::renderer {
 
 Result<std::shared_ptr<const renderer::PreparedScene>> load_gltf_scene(const std::filesystem::path& path) {
-    auto scene = scene::load_gltf(path);
+    auto scene = gltf::load(path);
     if (!scene) return scene.take_error();
     return renderer::prepare_scene(std::move(*scene));
 }

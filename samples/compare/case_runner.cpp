@@ -8,7 +8,7 @@
 #include "loom/image_io/image_io.hpp"
 #include "loom/renderer/gltf_scene.hpp"
 #include "loom/rhi/log.hpp"
-#include "loom/scene/gltf.hpp"
+#include "loom/gltf/gltf.hpp"
 #include "log_router.hpp"
 
 namespace loom::compare {
@@ -76,7 +76,7 @@ CaseResult CaseRunner::expect_error(const SceneFile& file) {
     LogRouter router;
     std::vector<std::string> messages;
     router.route(&messages);
-    auto scene = scene::load_gltf(file.path);
+    auto scene = gltf::load(file.path);
     router.route(nullptr);
     for (const std::string& message : messages) result.failures.push_back("logged while loading: " + message);
     if (scene) {

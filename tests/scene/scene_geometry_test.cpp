@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "loom/scene/geometry.hpp"
-#include "loom/scene/gltf.hpp"
+#include "loom/gltf/gltf.hpp"
 #include "loom_test/test_support.hpp"
 #include "scene_test_util.hpp"
 

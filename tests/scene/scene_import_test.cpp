@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "loom/image_io/image_io.hpp"
-#include "loom/scene/gltf.hpp"
+#include "loom/gltf/gltf.hpp"
 #include "loom_test/test_support.hpp"
 #include "scene_test_util.hpp"
 
@@ -19,8 +19,8 @@ namespace {
 using Layout = GltfBuilder::Layout;
 using scene::Scene;
 
-Scene load_ok(const std::filesystem::path& path, const scene::LoadOptions& options = {}) {
-    auto scene = scene::load_gltf(path, options);
+Scene load_ok(const std::filesystem::path& path, const gltf::LoadOptions& options = {}) {
+    auto scene = gltf::load(path, options);
     EXPECT_TRUE(scene) << scene.error().to_string();
     return scene ? std::move(*scene) : Scene{};
 }
@@ -58,8 +58,8 @@ TEST(SceneImport, StripsAndFansBecomeListsWithTheirWinding) {
         {{"attributes", {{"POSITION", positions}}}, {"mode", 5}},  // non-indexed strip
     };
     builder.set_scene({builder.add_node({{"mesh", builder.add_mesh(primitives)}})});
-    scene::LoadOptions options;
-    options.normals = scene::NormalGeneration::Smooth;  // keeps the indices as they are
+    gltf::LoadOptions options;
+    options.normals = gltf::NormalGeneration::Smooth;  // keeps the indices as they are
     const Scene scene = load_ok(builder.write(dir, "topologies", Layout::Embedded), options);
     ASSERT_EQ(scene.meshes.at(0).primitives.size(), 3u);
     const std::vector<uint32_t> strip_list = {0, 1, 2, 2, 1, 3, 2, 3, 4};
@@ -181,7 +181,7 @@ TEST(SceneImport, MeshQuantizationAttributes) {
         doc.erase("extensionsUsed");
         doc.erase("extensionsRequired");
     });
-    auto result = scene::load_gltf(without);
+    auto result = gltf::load(without);
     ASSERT_FALSE(result);
     EXPECT_NE(result.error().message.find("/meshes/0/primitives/0/attributes/NORMAL: accessor 1 is VEC3 BYTE normalized"),
               std::string::npos)
@@ -203,8 +203,8 @@ TEST(SceneImport, SparseAccessorWithoutABufferView) {
                                              {"values", {{"bufferView", values}}}}}});
     const nlohmann::json primitive = {{"attributes", {{"POSITION", 0}}}, {"indices", builder.add_indices({1, 0, 2, 0, 3, 2})}};
     builder.set_scene({builder.add_node({{"mesh", builder.add_mesh(nlohmann::json::array({primitive}))}})});
-    scene::LoadOptions options;
-    options.normals = scene::NormalGeneration::Smooth;
+    gltf::LoadOptions options;
+    options.normals = gltf::NormalGeneration::Smooth;
     const Scene scene = load_ok(builder.write(dir, "sparse", Layout::External), options);
     const auto& vertices = scene.meshes.at(0).primitives.at(0).vertices;
     ASSERT_EQ(vertices.size(), 4u);
@@ -258,13 +258,13 @@ TEST(SceneImport, FilesWithoutScenesShowEveryRoot) {
 
     // LoadOptions::scene picks a scene; one that does not exist is an InvalidArgument error.
     builder.json()["scenes"] = nlohmann::json::array({{{"nodes", {0}}}, {{"nodes", {1}}}});
-    scene::LoadOptions options;
+    gltf::LoadOptions options;
     options.scene = 1;
     const Scene second = load_ok(builder.write(dir, "two_scenes", Layout::External), options);
     ASSERT_EQ(second.draw_items.size(), 1u);
     EXPECT_EQ(second.draw_items[0].node, 1u);
     options.scene = 2;
-    auto missing = scene::load_gltf(dir / "two_scenes.gltf", options);
+    auto missing = gltf::load(dir / "two_scenes.gltf", options);
     ASSERT_FALSE(missing);
     EXPECT_EQ(missing.error().code, ErrorCode::InvalidArgument);
 }

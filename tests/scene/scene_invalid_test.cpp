@@ -13,7 +13,7 @@
 
 #include "loom/image_io/image_io.hpp"
 #include "loom/rhi/image.hpp"
-#include "loom/scene/gltf.hpp"
+#include "loom/gltf/gltf.hpp"
 #include "loom_test/test_support.hpp"
 #include "scene_test_util.hpp"
 
@@ -55,8 +55,8 @@ bool is_model_file(const std::filesystem::path& path) {
 }
 
 // Loads `path`, expecting a clean error: the right code, one line, naming the file.
-Error expect_load_error(const std::filesystem::path& path, const scene::LoadOptions& options = {}) {
-    auto result = scene::load_gltf(path, options);
+Error expect_load_error(const std::filesystem::path& path, const gltf::LoadOptions& options = {}) {
+    auto result = gltf::load(path, options);
     if (result) {
         ADD_FAILURE() << path << " loaded although it is broken";
         return Error{};
@@ -137,7 +137,7 @@ protected:
     // and a message containing the file followed by `pointer` (or a longer pointer starting
     // with it), and `phrase`.
     void expect_error(const std::function<void(nlohmann::json&)>& edit, const std::string& pointer, const std::string& phrase,
-                      ErrorCode code = ErrorCode::Parse, const scene::LoadOptions& options = {}) {
+                      ErrorCode code = ErrorCode::Parse, const gltf::LoadOptions& options = {}) {
         for (const Layout layout : {Layout::External, Layout::Embedded, Layout::Binary}) {
             // A fresh name per file: rewriting one file is slow where freed blocks are discarded.
             const std::filesystem::path path = builder_.write(dir_, "broken" + std::to_string(written_++), layout, edit);
@@ -157,7 +157,7 @@ protected:
 
 TEST_F(BrokenFile, TheUnbrokenFileLoads) {
     for (const Layout layout : {Layout::External, Layout::Embedded, Layout::Binary}) {
-        auto scene = scene::load_gltf(builder_.write(dir_, "valid" + std::to_string(static_cast<int>(layout)), layout));
+        auto scene = gltf::load(builder_.write(dir_, "valid" + std::to_string(static_cast<int>(layout)), layout));
         ASSERT_TRUE(scene) << scene.error().to_string();
         EXPECT_EQ(scene->draw_items.size(), 1u);
         EXPECT_EQ(scene->cameras.size(), 1u);
@@ -283,7 +283,7 @@ TEST_F(BrokenFile, OverflowSizedCountsAndOffsets) {
     expect_error([](nlohmann::json& doc) { doc["meshes"][0]["primitives"][0]["material"] = 4294967296ull; },
                  "/meshes/0/primitives/0/material", "must be at most 2147483647");
     // Even with the element limit lifted, a huge accessor fails on its range, not on memory.
-    scene::LoadOptions unlimited;
+    gltf::LoadOptions unlimited;
     unlimited.max_accessor_elements = std::numeric_limits<uint64_t>::max();
     expect_error([&](nlohmann::json& doc) { doc["accessors"][0]["count"] = huge; }, "/accessors/0", "needs bytes [0, ",
                  ErrorCode::Parse, unlimited);
@@ -428,7 +428,7 @@ TEST_F(BrokenFile, UndecodableImage) {
 }
 
 TEST_F(BrokenFile, ImageLargerThanTheLimit) {
-    scene::LoadOptions options;
+    gltf::LoadOptions options;
     options.max_image_dimension = 1;  // the test image is 2x2
     expect_error([](nlohmann::json&) {}, "/images/0", "image size 2x2 exceeds the importer's limit of 1", ErrorCode::Parse,
                  options);

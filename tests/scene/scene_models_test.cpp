@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "loom/scene/gltf.hpp"
+#include "loom/gltf/gltf.hpp"
 #include "loom/scene/packed_geometry.hpp"
 #include "loom_test/test_support.hpp"
 #include "scene_test_util.hpp"
@@ -250,9 +250,9 @@ TEST(SceneModels, CamerasParametersPlacementAndFlatNormals) {
 
 TEST(SceneModels, SimpleSparseAccessorSubstitutesValues) {
     LOOM_REQUIRE_DATA_DIR(data);
-    scene::LoadOptions options;
-    options.normals = scene::NormalGeneration::Smooth;  // keeps the 14 shared vertices
-    auto scene = scene::load_gltf(model_file(data, "SimpleSparseAccessor", "glTF"), options);
+    gltf::LoadOptions options;
+    options.normals = gltf::NormalGeneration::Smooth;  // keeps the 14 shared vertices
+    auto scene = gltf::load(model_file(data, "SimpleSparseAccessor", "glTF"), options);
     ASSERT_TRUE(scene) << scene.error().to_string();
     const scene::Primitive& primitive = scene->meshes.at(0).primitives.at(0);
     ASSERT_EQ(primitive.vertices.size(), 14u);

@@ -12,7 +12,7 @@
 
 #include "loom/image_io/image_io.hpp"
 #include "loom/rhi/log.hpp"
-#include "loom/scene/gltf.hpp"
+#include "loom/gltf/gltf.hpp"
 #include "loom_test/test_support.hpp"
 #include "scene_test_util.hpp"
 
@@ -31,7 +31,7 @@ struct Outcome {
 
 // Loads `path` and checks that a failure is clean; counts the outcome.
 void load_and_check(const std::filesystem::path& path, Outcome& outcome, const std::string& what) {
-    auto result = scene::load_gltf(path);
+    auto result = gltf::load(path);
     if (result) {
         ++outcome.loaded;
         return;
@@ -88,7 +88,7 @@ TEST(SceneRobustness, EveryNumberReplacedByHostileValues) {
     const std::filesystem::path dir = synthetic_dir("hostile_numbers");
     const GltfBuilder builder = complete_document(dir);
     ScopedLogCapture capture;  // some replacements only cause warnings
-    ASSERT_TRUE(scene::load_gltf(builder.write(dir, "intact", Layout::Binary)))
+    ASSERT_TRUE(gltf::load(builder.write(dir, "intact", Layout::Binary)))
         << "the intact document must load";
     std::vector<nlohmann::json::json_pointer> pointers;
     number_pointers(builder.document(Layout::Binary, ""), nlohmann::json::json_pointer(), pointers);
@@ -145,7 +145,7 @@ TEST(SceneRobustness, UnknownPngChunkTypeBytesStayOneLine) {
     builder.json()["textures"] = nlohmann::json::array({{{"source", 0}}});
     builder.json()["materials"] = nlohmann::json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
     const std::filesystem::path path = builder.write(dir, "chunk", Layout::Binary);
-    auto result = scene::load_gltf(path);
+    auto result = gltf::load(path);
     ASSERT_FALSE(result.ok());
     EXPECT_EQ(result.error().code, ErrorCode::Parse);
     EXPECT_EQ(result.error().message.find('\n'), std::string::npos) << result.error().message;

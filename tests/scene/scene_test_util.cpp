@@ -187,7 +187,7 @@ const scene::Scene* load_cached(const std::filesystem::path& path) {
     std::lock_guard lock(mutex);
     auto& slot = cache[path];
     if (!slot) {
-        auto loaded = scene::load_gltf(path);
+        auto loaded = gltf::load(path);
         if (!loaded) {
             ADD_FAILURE() << "loading " << path << " failed: " << loaded.error().to_string();
             cache.erase(path);

@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "loom/scene/gltf.hpp"
+#include "loom/gltf/gltf.hpp"
 #include "loom/scene/scene.hpp"
 
 namespace loom::test {

@@ -1,6 +1,6 @@
-// Draws a glTF file through the installed (or subproject) loom::scene and loom::renderer, the
+// Draws a glTF file through the installed (or subproject) loom::gltf and loom::renderer, the
 // way an engine would: writes a small model (a red square facing +Z, with its buffer in a .bin
-// file), imports it (scene::load_gltf), uploads it once per backend (renderer::GpuScene), and
+// file), imports it (gltf::load), uploads it once per backend (renderer::GpuScene), and
 // renders the Figure 2 pipeline (renderer::DeferredPipeline) from a camera that frames it.
 // Checks two texels of the picture: the middle is the square's red, a corner is the hazy sky.
 // Exit status 0 when every backend drew both.
@@ -13,13 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "loom/gltf/gltf.hpp"
 #include "loom/renderer/deferred_pipeline.hpp"
 #include "loom/renderer/gltf_scene.hpp"
 #include "loom/renderer/gpu_scene.hpp"
 #include "loom/renderer/scene_objects.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/log.hpp"
-#include "loom/scene/gltf.hpp"
 
 namespace {
 
@@ -110,7 +110,7 @@ int main() {
         std::fprintf(stderr, "render_gltf: %s\n", written.error().to_string().c_str());
         return 1;
     }
-    auto scene = scene::load_gltf(dir / "square.gltf");
+    auto scene = gltf::load(dir / "square.gltf");
     if (!scene) {
         std::fprintf(stderr, "render_gltf: %s\n", scene.error().to_string().c_str());
         return 1;

@@ -17,7 +17,7 @@
 
 namespace loom::renderer {
 
-/// Imports `path` (load_gltf) and prepares it for upload (prepare_scene). Errors are the
+/// Imports `path` (gltf::load) and prepares it for upload (prepare_scene). Errors are the
 /// importer's: one line naming the file and what is wrong.
 Result<std::shared_ptr<const renderer::PreparedScene>> load_gltf_scene(const std::filesystem::path& path);
 

@@ -5,7 +5,8 @@
 #include <cstdint>
 #include <string_view>
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
 
 namespace component_type {
 inline constexpr int kByte = 5120;
@@ -84,4 +85,4 @@ struct ElementType {
     return column_bytes * type.columns;
 }
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

@@ -15,9 +15,10 @@
 #include <nlohmann/json.hpp>
 
 #include "loom/rhi/result.hpp"
-#include "loom/scene/gltf.hpp"
+#include "loom/gltf/gltf.hpp"
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
 
 /// What the validator needs to know about the file besides its JSON.
 struct ValidationInput {
@@ -47,4 +48,4 @@ struct ValidationOutput {
 [[nodiscard]] std::string located_message(const std::string& file_label, const std::string& pointer,
                                           const std::string& what);
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

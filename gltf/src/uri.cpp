@@ -3,7 +3,8 @@
 #include <array>
 #include <cctype>
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
 namespace {
 
 constexpr std::string_view kDataScheme = "data:";
@@ -195,4 +196,4 @@ std::string tinygltf_url_decode(std::string_view uri) {
     return result;
 }
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

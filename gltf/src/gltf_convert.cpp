@@ -14,7 +14,10 @@
 #include "json_pointer.hpp"
 #include "loom/scene/geometry.hpp"
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
+using namespace loom::scene;  // the importer builds the scene model's types
+
 namespace {
 
 // A vector element by a tinygltf index, or nullptr when the index is out of range (the
@@ -559,4 +562,4 @@ Result<Scene> convert_model(const tinygltf::Model& model, const std::string& fil
     return converter.run();
 }
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

@@ -10,16 +10,17 @@
 #include <tiny_gltf.h>
 
 #include "loom/rhi/result.hpp"
-#include "loom/scene/gltf.hpp"
+#include "loom/gltf/gltf.hpp"
 #include "loom/scene/scene.hpp"
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
 
 /// Converts `model` (which validate_document() accepted and tinygltf loaded; encoded image
 /// bytes are in Image::image). Data checks that need the data itself — index values, sparse
 /// indices, non-finite floats, image decoding — are made here, with the same message format.
 /// Warnings are appended to `warnings`.
-[[nodiscard]] Result<Scene> convert_model(const tinygltf::Model& model, const std::string& file_label,
+[[nodiscard]] Result<scene::Scene> convert_model(const tinygltf::Model& model, const std::string& file_label,
                                           const LoadOptions& options, std::vector<std::string>& warnings);
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

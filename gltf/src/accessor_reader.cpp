@@ -10,7 +10,10 @@
 #include "gltf_constants.hpp"
 #include "gltf_validate.hpp"
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
+using namespace loom::scene;  // the importer builds the scene model's types
+
 namespace {
 
 static_assert(std::endian::native == std::endian::little, "glTF data is little-endian; big-endian hosts need byte swaps");
@@ -190,4 +193,4 @@ Result<std::vector<uint32_t>> AccessorReader::read_indices(int index) const {
     return read<uint32_t>(index, 1);
 }
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

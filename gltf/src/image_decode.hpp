@@ -9,7 +9,8 @@
 #include "loom/rhi/image.hpp"
 #include "loom/rhi/result.hpp"
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
 
 /// Decodes `encoded` to an image of `format` (RGBA8Unorm or RGBA8Srgb: the bytes are the same,
 /// the format says how to read them). Images wider or taller than `max_dimension` are
@@ -17,4 +18,4 @@ namespace loom::scene::detail {
 [[nodiscard]] Result<rhi::Image> decode_image(std::span<const unsigned char> encoded, rhi::Format format,
                                               uint32_t max_dimension);
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

@@ -26,7 +26,7 @@
 #include "loom/rhi/result.hpp"
 #include "loom/scene/scene.hpp"
 
-namespace loom::scene {
+namespace loom::gltf {
 
 /// How normals are generated for primitives that have none.
 enum class NormalGeneration : uint8_t {
@@ -41,7 +41,7 @@ enum class TangentGeneration : uint8_t {
     Never,             ///< Vertex::tangent keeps its default
 };
 
-/// Options of load_gltf().
+/// Options of load().
 struct LoadOptions {
     /// Which glTF scene to flatten into draw items; by default the file's `scene`, else scene
     /// 0, else (a file without scenes) every root node.
@@ -57,8 +57,8 @@ struct LoadOptions {
 };
 
 /// Loads a .gltf or .glb file (the format is recognised by the GLB magic, and files named
-/// *.glb must be GLB) and everything it references. Warnings go to Scene::warnings and are
+/// *.glb must be GLB) and everything it references. Warnings go to scene::Scene::warnings and are
 /// logged through loom::log at Warning level (source "scene"); errors are returned, not logged.
-Result<Scene> load_gltf(const std::filesystem::path& path, const LoadOptions& options = {});
+Result<scene::Scene> load(const std::filesystem::path& path, const LoadOptions& options = {});
 
-}  // namespace loom::scene
+}  // namespace loom::gltf

@@ -5,7 +5,8 @@
 #include <cstdint>
 #include <optional>
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
 
 /// a + b, or nullopt when the sum does not fit in 64 bits.
 [[nodiscard]] inline std::optional<uint64_t> checked_add(uint64_t a, uint64_t b) {
@@ -36,4 +37,4 @@ namespace loom::scene::detail {
     return checked_add(*body, element_size);
 }
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

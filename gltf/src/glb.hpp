@@ -9,7 +9,8 @@
 
 #include "loom/rhi/result.hpp"
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
 
 /// The chunks of a valid GLB file (views into the file's bytes).
 struct GlbChunks {
@@ -25,4 +26,4 @@ struct GlbChunks {
 /// says what is wrong, without naming the file.
 [[nodiscard]] Result<GlbChunks> parse_glb(std::span<const unsigned char> file);
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

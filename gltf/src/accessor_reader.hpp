@@ -12,7 +12,8 @@
 #include "json_pointer.hpp"
 #include "loom/rhi/result.hpp"
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
 
 /// Reads accessors of one model; errors name the file and the accessor's JSON pointer.
 class AccessorReader {
@@ -43,4 +44,4 @@ private:
     uint64_t max_elements_;
 };
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

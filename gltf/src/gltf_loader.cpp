@@ -1,4 +1,4 @@
-// load_gltf(): reads the file, checks the GLB container and the JSON, validates the document
+// load(): reads the file, checks the GLB container and the JSON, validates the document
 // (gltf_validate), lets tinygltf load it with the files the validator already read, and
 // converts the result (gltf_convert).
 #include <algorithm>
@@ -18,9 +18,12 @@
 #include "gltf_convert.hpp"
 #include "gltf_validate.hpp"
 #include "loom/rhi/log.hpp"
-#include "loom/scene/gltf.hpp"
+#include "loom/gltf/gltf.hpp"
 
-namespace loom::scene {
+namespace loom::gltf {
+
+using namespace loom::scene;  // the importer builds the scene model's types
+
 namespace {
 
 using detail::located_message;
@@ -115,7 +118,7 @@ bool keep_encoded_image(tinygltf::Image* image, const int, std::string* err, std
     return true;
 }
 
-Result<Scene> load(const std::filesystem::path& path, const LoadOptions& options) {
+Result<Scene> load_file(const std::filesystem::path& path, const LoadOptions& options) {
     const std::string file_label = path.string();
     auto bytes = read_file(path, file_label);
     if (!bytes) return bytes.take_error();
@@ -194,11 +197,11 @@ Result<Scene> load(const std::filesystem::path& path, const LoadOptions& options
 
 }  // namespace
 
-Result<Scene> load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
+Result<Scene> load(const std::filesystem::path& path, const LoadOptions& options) {
     // Nothing below throws for a bad file; this only turns the unexpected (allocation failure,
     // a library exception) into an error instead of terminating the program.
     try {
-        return load(path, options);
+        return load_file(path, options);
     } catch (const std::bad_alloc&) {
         return make_error(ErrorCode::OutOfMemory, path.string() + ": out of memory while loading");
     } catch (const std::exception& e) {
@@ -206,4 +209,4 @@ Result<Scene> load_gltf(const std::filesystem::path& path, const LoadOptions& op
     }
 }
 
-}  // namespace loom::scene
+}  // namespace loom::gltf

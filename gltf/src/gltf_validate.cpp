@@ -14,7 +14,10 @@
 #include "json_pointer.hpp"
 #include "uri.hpp"
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
+using namespace loom::scene;  // the importer builds the scene model's types
+
 
 std::string located_message(const std::string& file_label, const std::string& pointer, const std::string& what) {
     if (pointer.empty()) return file_label + ": " + what;
@@ -1115,4 +1118,4 @@ Result<ValidationOutput> validate_document(const nlohmann::json& root, const Val
     return output;
 }
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

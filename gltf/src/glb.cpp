@@ -4,7 +4,8 @@
 
 #include "checked_math.hpp"
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
 namespace {
 
 constexpr uint32_t kMagic = 0x46546C67;      // "glTF"
@@ -89,4 +90,4 @@ Result<GlbChunks> parse_glb(std::span<const unsigned char> file) {
     return chunks;
 }
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

@@ -8,7 +8,8 @@
 
 #include "loom/rhi/result.hpp"
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
 
 /// True when `uri` uses the data: scheme.
 [[nodiscard]] bool is_data_uri(std::string_view uri);
@@ -41,4 +42,4 @@ struct DataUri {
 /// '+' turned into a space. Used only to serve tinygltf the file the importer resolved.
 [[nodiscard]] std::string tinygltf_url_decode(std::string_view uri);
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

@@ -6,7 +6,8 @@
 #include <string>
 #include <string_view>
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
 
 /// An immutable JSON pointer built by appending object keys and array indices.
 class JsonPointer {
@@ -46,4 +47,4 @@ private:
     std::string text_;
 };
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail

@@ -4,7 +4,8 @@
 
 #include "loom/image_io/image_io.hpp"
 
-namespace loom::scene::detail {
+namespace loom::gltf::detail {
+
 
 Result<rhi::Image> decode_image(std::span<const unsigned char> encoded, rhi::Format format, uint32_t max_dimension) {
     auto size = image_io::encoded_image_size(encoded);
@@ -17,4 +18,4 @@ Result<rhi::Image> decode_image(std::span<const unsigned char> encoded, rhi::For
     return image_io::decode_image(encoded, format);
 }
 
-}  // namespace loom::scene::detail
+}  // namespace loom::gltf::detail
