@@ -78,11 +78,7 @@ Result<std::shared_ptr<GpuMesh>> GpuMesh::create(rhi::Device& device, std::span<
     LOOM_TRY(device.write_buffer(mesh->indices_, 0, std::as_bytes(indices)));
     mesh->vertex_count_ = static_cast<uint32_t>(vertices.size());
     mesh->index_count_ = static_cast<uint32_t>(indices.size());
-    mesh->bounds_ = Bounds{vertices[0].position, vertices[0].position};
-    for (const MeshVertex& v : vertices) {
-        mesh->bounds_.min = glm::min(mesh->bounds_.min, v.position);
-        mesh->bounds_.max = glm::max(mesh->bounds_.max, v.position);
-    }
+    for (const MeshVertex& v : vertices) mesh->bounds_.extend(v.position);
     return mesh;
 }
 
@@ -148,17 +144,8 @@ Status MeshObject::render(DrawContext& context) const {
     return {};
 }
 
-Bounds MeshObject::world_bounds() const {
-    const Bounds& local = mesh_->bounds();
-    Bounds out{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
-    for (int i = 0; i < 8; ++i) {
-        const glm::vec3 corner((i & 1) ? local.max.x : local.min.x, (i & 2) ? local.max.y : local.min.y,
-                               (i & 4) ? local.max.z : local.min.z);
-        const glm::vec3 world = glm::vec3(model_ * glm::vec4(corner, 1.0f));
-        out.min = glm::min(out.min, world);
-        out.max = glm::max(out.max, world);
-    }
-    return out;
+scene::Bounds MeshObject::world_bounds() const {
+    return mesh_->bounds().transformed(model_);
 }
 
 }  // namespace loom::passes

@@ -2,7 +2,7 @@
 
 namespace loom::passes {
 
-CameraUniforms camera_uniforms(const Camera& camera) {
+CameraUniforms camera_uniforms(const scene::CameraMatrices& camera) {
     return CameraUniforms{camera.view_projection(), glm::vec4(camera.position, 1.0f)};
 }
 

@@ -8,7 +8,7 @@
 
 namespace loom::passes {
 
-glm::mat4 fit_directional_shadow(const glm::vec3& towards_light, const Bounds& bounds) {
+glm::mat4 fit_directional_shadow(const glm::vec3& towards_light, const scene::Bounds& bounds) {
     const glm::vec3 direction = glm::normalize(towards_light);
     const glm::vec3 center = (bounds.min + bounds.max) * 0.5f;
     const float radius = std::max(glm::length(bounds.max - bounds.min) * 0.5f, 1e-3f);

@@ -82,10 +82,7 @@ rhi::RasterState GltfObject::raster() const {
     return state;
 }
 
-passes::Bounds GltfObject::world_bounds() const {
-    const scene::Aabb& bounds = item().world_bounds;
-    return passes::Bounds{bounds.min, bounds.max};
-}
+scene::Bounds GltfObject::world_bounds() const { return item().world_bounds; }
 
 Status GltfObject::render(passes::DrawContext& context) const {
     const scene::DrawItem& draw = item();

@@ -11,15 +11,15 @@ SceneObjects make_scene_objects(std::shared_ptr<const GpuScene> gpu) {
     SceneObjects objects;
     objects.gpu = gpu;
     const scene::Scene& scene = gpu->scene();
-    scene::Aabb bounds;
+    scene::Bounds bounds;
     for (uint32_t i = 0; i < scene.draw_items.size(); ++i) {
         if (gpu->prepared().geometry.range(scene.draw_items[i]).index_count == 0) continue;
         auto object = std::make_shared<const GltfObject>(gpu, i);
         bounds.extend(scene.draw_items[i].world_bounds);
         (object->alpha_mode() == scene::AlphaMode::Blend ? objects.blended : objects.opaque).push_back(std::move(object));
     }
-    if (bounds.empty()) bounds = scene::Aabb{glm::vec3(-0.5f), glm::vec3(0.5f)};
-    objects.bounds = passes::Bounds{bounds.min, bounds.max};
+    if (bounds.empty()) bounds = scene::Bounds{glm::vec3(-0.5f), glm::vec3(0.5f)};
+    objects.bounds = bounds;
     return objects;
 }
 
@@ -43,9 +43,9 @@ Result<SceneViewpoint> SceneViewpoint::choose(const scene::Scene& scene, std::op
     return viewpoint;
 }
 
-passes::Camera SceneViewpoint::camera(float aspect) const {
+scene::CameraMatrices SceneViewpoint::camera(float aspect) const {
     const scene::Camera camera = file_camera_ ? *file_camera_ : scene::frame_bounds(bounds_, aspect);
-    return passes::Camera{camera.view_matrix(), camera.projection_matrix(aspect), camera.position()};
+    return camera.matrices(aspect);
 }
 
 std::string SceneViewpoint::describe() const {
@@ -55,7 +55,7 @@ std::string SceneViewpoint::describe() const {
     return text;
 }
 
-passes::DirectionalLight viewer_sun(const passes::Camera& camera) {
+passes::DirectionalLight viewer_sun(const scene::CameraMatrices& camera) {
     // Rows of the view matrix's rotation: the camera's right and backward axes in world space.
     const glm::vec3 right(camera.view[0][0], camera.view[1][0], camera.view[2][0]);
     const glm::vec3 back(camera.view[0][2], camera.view[1][2], camera.view[2][2]);

@@ -60,7 +60,7 @@ TransparentPass::TransparentPass(const passes::PassConfig& config, passes::Light
     add(blend_render_part(config));
 }
 
-Status TransparentPass::register_object(std::shared_ptr<const passes::Object> object, const passes::Bounds& world_bounds) {
+Status TransparentPass::register_object(std::shared_ptr<const passes::Object> object, const scene::Bounds& world_bounds) {
     LOOM_TRY(ShaderPass::register_object(std::move(object)));
     centres_.push_back((world_bounds.min + world_bounds.max) * 0.5f);
     return {};

@@ -120,21 +120,17 @@ MeshData make_torus(float major_radius, float minor_radius, uint32_t segments, u
     });
 }
 
-passes::Bounds scene_bounds(const std::vector<SceneItem>& items, bool only_casters) {
-    passes::Bounds bounds{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
+scene::Bounds scene_bounds(const std::vector<SceneItem>& items, bool only_casters) {
+    scene::Bounds bounds;
     for (const SceneItem& item : items) {
         if (only_casters && !item.casts_shadow) continue;
-        for (const passes::MeshVertex& v : item.mesh.vertices) {
-            const glm::vec3 p = glm::vec3(item.model * glm::vec4(v.position, 1.0f));
-            bounds.min = glm::min(bounds.min, p);
-            bounds.max = glm::max(bounds.max, p);
-        }
+        for (const passes::MeshVertex& v : item.mesh.vertices) bounds.extend(glm::vec3(item.model * glm::vec4(v.position, 1.0f)));
     }
     return bounds;
 }
 
-passes::Bounds shadow_region(const passes::Bounds& casters, const glm::vec3& towards_light) {
-    passes::Bounds region = casters;
+scene::Bounds shadow_region(const scene::Bounds& casters, const glm::vec3& towards_light) {
+    scene::Bounds region = casters;
     region.min.y = std::min(region.min.y, 0.0f);
     const glm::vec3 l = glm::normalize(towards_light);
     if (l.y <= 1e-3f) return region;
@@ -207,7 +203,7 @@ Result<renderer::PipelineScene> procedural_pipeline_scene(rhi::Device& device, c
     const glm::vec3 eye = content.eye, target = content.target;
     const float yfov = content.yfov;
     scene.camera = [eye, target, yfov](float aspect) {
-        passes::Camera camera;
+        scene::CameraMatrices camera;
         camera.view = glm::lookAtRH(eye, target, glm::vec3(0.0f, 1.0f, 0.0f));
         camera.projection = glm::perspectiveRH_ZO(yfov, aspect, 0.1f, 150.0f);
         camera.position = eye;

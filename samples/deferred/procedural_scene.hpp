@@ -43,10 +43,10 @@ struct SceneContent {
     glm::vec3 target{0.0f};
     float yfov = 0.7853982f;
     /// World bounds of every item.
-    passes::Bounds bounds;
+    scene::Bounds bounds;
     /// What the shadow map covers: the shadow casters and where their shadows fall on the
     /// ground (the ground reaches far beyond; outside this box it is lit).
-    passes::Bounds shadow_bounds;
+    scene::Bounds shadow_bounds;
 };
 
 // Mesh generators (unit-sized, centred on the origin; normals point outwards).
@@ -58,10 +58,10 @@ MeshData make_torus(float major_radius, float minor_radius, uint32_t segments, u
 
 /// World bounds of the items' transformed vertices (of those with `casts_shadow` set, when
 /// `only_casters`).
-passes::Bounds scene_bounds(const std::vector<SceneItem>& items, bool only_casters = false);
+scene::Bounds scene_bounds(const std::vector<SceneItem>& items, bool only_casters = false);
 
 /// `casters` and their shadows on the plane y = 0 under a light from `towards_light`.
-passes::Bounds shadow_region(const passes::Bounds& casters, const glm::vec3& towards_light);
+scene::Bounds shadow_region(const scene::Bounds& casters, const glm::vec3& towards_light);
 
 /// The default scene.
 SceneContent procedural_scene();

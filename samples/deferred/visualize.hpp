@@ -13,7 +13,7 @@ namespace loom::deferred {
 /// How to show the HDR colour maps: the composite pass's exposure and curve, without bloom.
 struct DisplaySettings {
     float exposure = 1.0f;
-    passes::Bounds scene_bounds;  ///< positions are shown relative to these
+    scene::Bounds scene_bounds;  ///< positions are shown relative to these
 };
 
 /// An RGBA8 picture of the texture read back as `name` ("pass.port"); `all` holds every

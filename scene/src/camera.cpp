@@ -65,7 +65,11 @@ glm::mat4 infinite_perspective(float yfov, float aspect, float znear) {
     return m;
 }
 
-Camera frame_bounds(const Aabb& bounds, float viewport_aspect, const FramingOptions& options) {
+CameraMatrices Camera::matrices(float viewport_aspect) const {
+    return CameraMatrices{view_matrix(), projection_matrix(viewport_aspect), position()};
+}
+
+Camera frame_bounds(const Bounds& bounds, float viewport_aspect, const FramingOptions& options) {
     glm::vec3 center(0.0f);
     glm::vec3 half(0.5f);  // empty bounds: a unit box around the origin
     if (!bounds.empty()) {
@@ -96,7 +100,7 @@ Camera frame_bounds(const Aabb& bounds, float viewport_aspect, const FramingOpti
     // d - dot(o, direction); it is inside the view when |dot(o, right)| <= depth * tan_x and
     // |dot(o, camera_up)| <= depth * tan_y. The smallest d satisfying every corner (with the
     // margin) frames the box tightly.
-    Aabb box{center - half, center + half};
+    Bounds box{center - half, center + half};
     float distance = 0.0f;
     float max_toward = -std::numeric_limits<float>::infinity();
     for (const glm::vec3& corner : box.corners()) {

@@ -63,7 +63,7 @@ TEST(SceneViewpoint, TakesTheFirstCameraOrTheOneAskedForOrFramesTheBounds) {
     ASSERT_TRUE(view.ok());
     EXPECT_EQ(view->describe(), "framing the bounds");
     // Every corner of the quad lies inside the view.
-    const passes::Camera camera = view->camera(16.0f / 9.0f);
+    const scene::CameraMatrices camera = view->camera(16.0f / 9.0f);
     for (const glm::vec3& corner : framed.bounds.corners()) {
         const glm::vec4 clip = camera.view_projection() * glm::vec4(corner, 1.0f);
         EXPECT_LE(std::abs(clip.x / clip.w), 1.0f);
@@ -88,7 +88,7 @@ TEST(ViewerSun, ShinesFromAboveAndBehindTheViewer) {
     b.quad(b.material({}));
     b.camera(3.0f);
     const scene::Scene scene = b.build();
-    const passes::Camera camera = renderer::SceneViewpoint::choose(scene)->camera(1.0f);
+    const scene::CameraMatrices camera = renderer::SceneViewpoint::choose(scene)->camera(1.0f);
     const passes::DirectionalLight sun = renderer::viewer_sun(camera);
     EXPECT_NEAR(glm::length(sun.direction), 1.0f, 1e-6f);
     EXPECT_GT(sun.direction.y, 0.5f);  // above
@@ -141,7 +141,7 @@ TEST(TransparentPass, NeedsBoundsToSortBy) {
     EXPECT_NE(refused.error().message.find("needs world bounds"), std::string::npos) << refused.error().message;
     EXPECT_TRUE(pass.objects().empty());
     // With bounds it composes the program (gltf-mesh with blend-render) and keeps the object.
-    Status accepted = pass.register_object(std::make_shared<Nothing>(), passes::Bounds{});
+    Status accepted = pass.register_object(std::make_shared<Nothing>(), scene::Bounds{});
     ASSERT_TRUE(accepted.ok()) << accepted.error().to_string();
     EXPECT_EQ(pass.objects().size(), 1u);
     EXPECT_EQ(pass.program_count(), 1u);

@@ -180,13 +180,13 @@ TEST_P(FlagshipTest, ThePictureIsLitShadowedAndBlooms) {
     std::vector<Sphere> spheres;  // the two spheres, exactly
     for (const char* name : {"chrome sphere", "blue sphere"}) {
         const deferred::SceneItem& sphere = item(scene, name);
-        const passes::Bounds b = deferred::scene_bounds({sphere});
+        const scene::Bounds b = deferred::scene_bounds({sphere});
         spheres.push_back({glm::vec3(sphere.model[3]), (b.max.x - b.min.x) * 0.5f});
     }
     std::vector<Sphere> casters;  // every caster's bounding sphere
     for (const deferred::SceneItem& i : scene.items) {
         if (!i.casts_shadow) continue;
-        const passes::Bounds b = deferred::scene_bounds({i});
+        const scene::Bounds b = deferred::scene_bounds({i});
         casters.push_back({(b.min + b.max) * 0.5f, glm::length(b.max - b.min) * 0.5f});
     }
     auto ray_distance = [&](const glm::vec3& from, const Sphere& s) {

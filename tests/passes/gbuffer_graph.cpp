@@ -2,7 +2,7 @@
 
 namespace loom::test {
 
-GBufferGraph::GBufferGraph(rhi::Device& device, uint32_t size, const passes::Camera& camera, std::string name)
+GBufferGraph::GBufferGraph(rhi::Device& device, uint32_t size, const scene::CameraMatrices& camera, std::string name)
     : device_(&device), executor_(device) {
     auto pass = std::make_unique<passes::GeometryPass>(passes::PassConfig{}, name);
     pass->set_camera(camera);

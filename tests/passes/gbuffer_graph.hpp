@@ -17,7 +17,7 @@ namespace loom::test {
 class GBufferGraph {
 public:
     /// A graph of a GeometryPass named `name` seeing through `camera`, frames of size x size.
-    GBufferGraph(rhi::Device& device, uint32_t size, const passes::Camera& camera, std::string name = "geometry");
+    GBufferGraph(rhi::Device& device, uint32_t size, const scene::CameraMatrices& camera, std::string name = "geometry");
 
     [[nodiscard]] passes::GeometryPass& pass() { return *pass_; }
     [[nodiscard]] fg::Executor& executor() { return executor_; }

@@ -51,7 +51,7 @@ struct ObjectScene {
     std::vector<SceneMesh> meshes;
     std::vector<SceneMaterial> materials;
     std::vector<SceneObject> objects;  ///< in submission order (shuffled)
-    passes::Camera camera;             ///< sees the whole grid, for a square frame
+    scene::CameraMatrices camera;             ///< sees the whole grid, for a square frame
 };
 
 /// The scene for `spec` (deterministic for a seed). Objects sit in the cells of a square grid,

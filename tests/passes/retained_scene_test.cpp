@@ -341,7 +341,7 @@ TEST_P(RetainedSceneTest, UploadsOnlyTheSetsThatChanged) {
 
     // The camera moves: the pass's own set (80 bytes), nothing of the scene.
     retained.reset_stats();
-    passes::Camera camera = scene.camera;
+    scene::CameraMatrices camera = scene.camera;
     camera.position += glm::vec3(0.5f, 0.0f, 0.0f);
     camera.view = glm::translate(camera.view, glm::vec3(-0.5f, 0.0f, 0.0f));
     graph.pass().set_camera(camera);
@@ -370,7 +370,7 @@ TEST_P(RetainedSceneTest, LazyTransformsFollowTheirParent) {
     auto parent = std::make_shared<InputParam<glm::mat4>>(glm::mat4(1.0f));
     std::vector<std::shared_ptr<passes::ComputedParam<glm::mat4, glm::mat4>>> children;
     RetainedScene retained;
-    passes::Camera camera;
+    scene::CameraMatrices camera;
     camera.position = glm::vec3(0.0f, 10.0f, 0.01f);
     camera.view = glm::lookAtRH(camera.position, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));
     camera.projection = glm::orthoRH_ZO(-4.0f, 4.0f, -4.0f, 4.0f, 0.1f, 20.0f);
@@ -535,7 +535,7 @@ TEST_P(RetainedSceneTest, SeparateVertexStreamsShareTheirOwnPool) {
     auto blue = quad("blue quad", {0, 0, 1});
     ASSERT_TRUE(red.ok() && blue.ok()) << (red.ok() ? blue.error().to_string() : red.error().to_string());
     auto plain = std::make_shared<passes::Material>("plain", nullptr);
-    passes::Camera camera;
+    scene::CameraMatrices camera;
     camera.position = glm::vec3(0.0f, 10.0f, 0.0f);
     camera.view = glm::lookAtRH(camera.position, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));
     camera.projection = glm::orthoRH_ZO(-2.0f, 2.0f, -2.0f, 2.0f, 0.1f, 20.0f);

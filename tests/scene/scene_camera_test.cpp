@@ -10,7 +10,7 @@
 namespace loom::test {
 namespace {
 
-using scene::Aabb;
+using scene::Bounds;
 using scene::Camera;
 
 glm::vec3 project(const glm::mat4& view_projection, const glm::vec3& point) {
@@ -67,11 +67,11 @@ TEST(SceneCamera, ViewMatrixIgnoresScaleInTheWorldTransform) {
     EXPECT_EQ(camera.forward(), glm::vec3(0, 0, -1));
 }
 
-void expect_framed(const Aabb& bounds, float aspect, const scene::FramingOptions& options = {}) {
+void expect_framed(const Bounds& bounds, float aspect, const scene::FramingOptions& options = {}) {
     const Camera camera = scene::frame_bounds(bounds, aspect, options);
     const glm::mat4 view_projection = camera.view_projection(aspect);
     float largest = 0.0f;
-    const Aabb box = bounds.empty() ? Aabb{glm::vec3(-0.5f), glm::vec3(0.5f)} : bounds;
+    const Bounds box = bounds.empty() ? Bounds{glm::vec3(-0.5f), glm::vec3(0.5f)} : bounds;
     for (const glm::vec3& corner : box.corners()) {
         const glm::vec3 ndc = project(view_projection, corner);
         EXPECT_LE(std::abs(ndc.x), 1.0f);
@@ -89,14 +89,14 @@ void expect_framed(const Aabb& bounds, float aspect, const scene::FramingOptions
 }
 
 TEST(SceneCamera, FramingFitsBoundsOfEveryShapeAndAspect) {
-    const std::vector<Aabb> boxes = {
+    const std::vector<Bounds> boxes = {
         {glm::vec3(-1), glm::vec3(1)},
         {glm::vec3(100, 200, -50), glm::vec3(101, 260, -49)},  // tall, far from the origin
         {glm::vec3(-1000, 0, -1000), glm::vec3(1000, 1, 1000)},  // flat and wide
         {glm::vec3(0.001f, 0.001f, 0.001f), glm::vec3(0.002f, 0.002f, 0.002f)},  // tiny
         {glm::vec3(5, 5, 5), glm::vec3(5, 5, 5)},  // a single point
     };
-    for (const Aabb& box : boxes) {
+    for (const Bounds& box : boxes) {
         for (const float aspect : {0.25f, 1.0f, 2.5f}) {
             SCOPED_TRACE(std::to_string(box.min.x) + " aspect " + std::to_string(aspect));
             if (box.size() == glm::vec3(0.0f)) {
@@ -116,14 +116,14 @@ TEST(SceneCamera, FramingFitsBoundsOfEveryShapeAndAspect) {
 }
 
 TEST(SceneCamera, FramingEmptyBoundsAndDirections) {
-    expect_framed(Aabb{}, 1.0f);
+    expect_framed(Bounds{}, 1.0f);
     scene::FramingOptions from_above;
     from_above.direction = glm::vec3(0, 1, 0);  // parallel to up: another up vector is chosen
-    expect_framed(Aabb{glm::vec3(-1), glm::vec3(1)}, 1.5f, from_above);
-    const Camera camera = scene::frame_bounds(Aabb{glm::vec3(-1), glm::vec3(1)}, 1.5f, from_above);
+    expect_framed(Bounds{glm::vec3(-1), glm::vec3(1)}, 1.5f, from_above);
+    const Camera camera = scene::frame_bounds(Bounds{glm::vec3(-1), glm::vec3(1)}, 1.5f, from_above);
     EXPECT_NEAR(camera.forward().y, -1.0f, 1e-5f);
     // The default direction looks from the front right, above: +X, +Y, +Z of the centre.
-    const Camera front = scene::frame_bounds(Aabb{glm::vec3(-1), glm::vec3(1)}, 1.0f);
+    const Camera front = scene::frame_bounds(Bounds{glm::vec3(-1), glm::vec3(1)}, 1.0f);
     EXPECT_GT(front.position().x, 0.0f);
     EXPECT_GT(front.position().y, 0.0f);
     EXPECT_GT(front.position().z, 0.0f);

@@ -172,7 +172,7 @@ TEST(SceneGeometry, VertexBufferLayoutMatchesTheVertexStruct) {
 }
 
 TEST(SceneGeometry, AabbOperations) {
-    scene::Aabb box;
+    scene::Bounds box;
     EXPECT_TRUE(box.empty());
     EXPECT_TRUE(box.transformed(glm::mat4(1.0f)).empty());
     box.extend(glm::vec3(1, 2, 3));
@@ -182,7 +182,7 @@ TEST(SceneGeometry, AabbOperations) {
     EXPECT_EQ(box.max, glm::vec3(1, 2, 5));
     EXPECT_EQ(box.center(), glm::vec3(0, 1, 4));
     EXPECT_EQ(box.corners()[5], glm::vec3(1, 0, 5));
-    scene::Aabb other;
+    scene::Bounds other;
     box.extend(other);  // empty: no change
     EXPECT_EQ(box.max, glm::vec3(1, 2, 5));
     glm::mat4 shift(1.0f);

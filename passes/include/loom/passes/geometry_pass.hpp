@@ -15,12 +15,12 @@ class GeometryPass final : public ShaderPass {
 public:
     explicit GeometryPass(const PassConfig& config = {}, std::string name = "geometry");
 
-    void set_camera(const Camera& camera) { camera_ = camera; }
+    void set_camera(const scene::CameraMatrices& camera) { camera_ = camera; }
 
     Status execute(fg::PassContext& context) override;
 
 private:
-    Camera camera_;
+    scene::CameraMatrices camera_;
 };
 
 }  // namespace loom::passes

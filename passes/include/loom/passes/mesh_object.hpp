@@ -49,8 +49,8 @@ public:
     [[nodiscard]] rhi::BufferHandle index_buffer() const { return indices_; }
     [[nodiscard]] uint32_t vertex_count() const { return vertex_count_; }
     [[nodiscard]] uint32_t index_count() const { return index_count_; }
-    /// Bounds of the vertex positions (object space).
-    [[nodiscard]] const Bounds& bounds() const { return bounds_; }
+    /// scene::Bounds of the vertex positions (object space).
+    [[nodiscard]] const scene::Bounds& bounds() const { return bounds_; }
 
 private:
     GpuMesh(rhi::Device& device, std::string name) : device_(&device), name_(std::move(name)) {}
@@ -61,7 +61,7 @@ private:
     rhi::BufferHandle indices_;
     uint32_t vertex_count_ = 0;
     uint32_t index_count_ = 0;
-    Bounds bounds_;
+    scene::Bounds bounds_;
 };
 
 /// A metallic-roughness material (glTF factors) plus the second colour of patterned kinds.
@@ -105,7 +105,7 @@ public:
     [[nodiscard]] const MeshMaterial& material() const { return material_; }
     void set_material(const MeshMaterial& material) { material_ = material; }
     /// World-space bounds (of the transformed corners of the mesh's bounds).
-    [[nodiscard]] Bounds world_bounds() const;
+    [[nodiscard]] scene::Bounds world_bounds() const;
 
 private:
     std::string name_;

@@ -53,7 +53,7 @@ static_assert(sizeof(CameraUniforms) == 80 && sizeof(ShadowCasterUniforms) == 64
               sizeof(ShadowUniforms) == 80 && sizeof(HighPassUniforms) == 16);
 
 /// The camera block for `camera`.
-CameraUniforms camera_uniforms(const Camera& camera);
+CameraUniforms camera_uniforms(const scene::CameraMatrices& camera);
 /// The lighting block for `view` (its camera, light and environment).
 LightingUniforms lighting_uniforms(const SceneView& view);
 /// The shadow-receiving block for `settings` and a square shadow map of `map_size` texels.

@@ -6,22 +6,10 @@
 
 #include <glm/glm.hpp>
 
+#include "loom/scene/bounds.hpp"
+#include "loom/scene/camera.hpp"
+
 namespace loom::passes {
-
-/// An axis-aligned box in world space.
-struct Bounds {
-    glm::vec3 min{0.0f};
-    glm::vec3 max{0.0f};
-};
-
-/// A camera: world-to-view and view-to-clip matrices (clip depth 0..1, NDC y up) and its position.
-struct Camera {
-    glm::mat4 view{1.0f};
-    glm::mat4 projection{1.0f};
-    glm::vec3 position{0.0f};
-
-    [[nodiscard]] glm::mat4 view_projection() const { return projection * view; }
-};
 
 /// A light infinitely far away (the sun).
 struct DirectionalLight {
@@ -53,7 +41,7 @@ struct ShadowSettings {
 
 /// Everything the lit passes need per frame.
 struct SceneView {
-    Camera camera;
+    scene::CameraMatrices camera;
     DirectionalLight light;
     Environment environment;
     ShadowSettings shadow;
@@ -62,6 +50,6 @@ struct SceneView {
 /// An orthographic view-projection of the light that encloses `bounds` tightly: looking along
 /// -towards_light at the centre of the box, x and y fit to the projected corners, depth 0..1
 /// spanning the box (nearest corner at 0). `towards_light` need not be unit length.
-glm::mat4 fit_directional_shadow(const glm::vec3& towards_light, const Bounds& bounds);
+glm::mat4 fit_directional_shadow(const glm::vec3& towards_light, const scene::Bounds& bounds);
 
 }  // namespace loom::passes

@@ -69,7 +69,7 @@ struct PipelineSettings {
 /// An object the transparent pass draws, with the world bounds it is sorted by.
 struct BlendedObject {
     std::shared_ptr<const passes::Object> object;
-    passes::Bounds bounds;
+    scene::Bounds bounds;
 };
 
 /// What the pipeline draws and how it looks at it, whatever kind the objects are: loom::passes'
@@ -87,13 +87,13 @@ struct PipelineScene {
     /// Drawn by the transparent pass; none: the pipeline has no transparent pass.
     std::vector<BlendedObject> blended;
     /// The camera of a frame of aspect ratio width / height.
-    std::function<passes::Camera(float aspect)> camera;
+    std::function<scene::CameraMatrices(float aspect)> camera;
     passes::DirectionalLight light;
     passes::Environment environment;
     /// World bounds of everything drawn (the position map is shown relative to them).
-    passes::Bounds bounds;
+    scene::Bounds bounds;
     /// What the shadow map covers.
-    passes::Bounds shadow_bounds;
+    scene::Bounds shadow_bounds;
 };
 
 /// A texture of the latest captured frame, by "pass.port".

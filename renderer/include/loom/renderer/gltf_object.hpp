@@ -47,7 +47,7 @@ public:
     [[nodiscard]] const scene::Material& material() const;
     [[nodiscard]] scene::AlphaMode alpha_mode() const { return material().alpha_mode; }
     /// World bounds of the primitive (for sorting and framing).
-    [[nodiscard]] passes::Bounds world_bounds() const;
+    [[nodiscard]] scene::Bounds world_bounds() const;
 
 private:
     std::shared_ptr<const GpuScene> gpu_;

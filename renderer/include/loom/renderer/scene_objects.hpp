@@ -24,7 +24,7 @@ struct SceneObjects {
     /// alphaMode BLEND: the transparent pass draws them, back to front; they cast no shadow.
     std::vector<std::shared_ptr<const GltfObject>> blended;
     /// World bounds of every object (the scene's bounds; empty scenes: a unit box at the origin).
-    passes::Bounds bounds;
+    scene::Bounds bounds;
 };
 
 /// One GltfObject per draw item of `gpu`'s scene (items with no indices are skipped).
@@ -41,18 +41,18 @@ public:
     static Result<SceneViewpoint> choose(const scene::Scene& scene, std::optional<uint32_t> camera = std::nullopt);
 
     /// The camera for a viewport of aspect ratio width / height.
-    [[nodiscard]] passes::Camera camera(float aspect) const;
+    [[nodiscard]] scene::CameraMatrices camera(float aspect) const;
     /// "camera 0 'name'" or "framing the bounds".
     [[nodiscard]] std::string describe() const;
 
 private:
     std::optional<scene::Camera> file_camera_;
     std::optional<uint32_t> index_;
-    scene::Aabb bounds_;
+    scene::Bounds bounds_;
 };
 
 /// The light of a glTF scene (files bring none): a white sun from above, behind and to the left
 /// of the viewer, so that the side the camera sees is lit and shadows fall away from it.
-passes::DirectionalLight viewer_sun(const passes::Camera& camera);
+passes::DirectionalLight viewer_sun(const scene::CameraMatrices& camera);
 
 }  // namespace loom::renderer

@@ -30,7 +30,7 @@ public:
                              std::string name = "transparent");
 
     /// Registers `object` (as ShaderPass::register_object) with the world bounds it is sorted by.
-    Status register_object(std::shared_ptr<const passes::Object> object, const passes::Bounds& world_bounds);
+    Status register_object(std::shared_ptr<const passes::Object> object, const scene::Bounds& world_bounds);
     /// Refused: the pass needs bounds to sort by (an InvalidArgument error naming the object).
     Status register_object(std::shared_ptr<const passes::Object> object) override;
     /// Drops every registered object and its bounds (hides ShaderPass::clear_objects, which

@@ -7,7 +7,7 @@
 #include <string>
 #include <variant>
 
-#include "loom/scene/aabb.hpp"
+#include "loom/scene/bounds.hpp"
 #include "loom/scene/glm.hpp"
 
 namespace loom::scene {
@@ -34,6 +34,17 @@ struct OrthographicProjection {
     friend bool operator==(const OrthographicProjection&, const OrthographicProjection&) = default;
 };
 
+/// What the passes draw a frame with: a camera's world-to-view and view-to-clip matrices
+/// (clip depth 0..1, NDC y up) and its position. Camera::matrices() makes them; a renderer with
+/// a camera model of its own fills them in directly.
+struct CameraMatrices {
+    glm::mat4 view{1.0f};
+    glm::mat4 projection{1.0f};
+    glm::vec3 position{0.0f};
+
+    [[nodiscard]] glm::mat4 view_projection() const { return projection * view; }
+};
+
 /// A camera placed in the world. Its local frame follows glTF: the lens looks along local -Z,
 /// +Y is up and +X is right.
 struct Camera {
@@ -55,6 +66,8 @@ struct Camera {
     [[nodiscard]] glm::vec3 position() const;
     /// Unit viewing direction in world space (local -Z).
     [[nodiscard]] glm::vec3 forward() const;
+    /// view_matrix(), projection_matrix(viewport_aspect) and position() together.
+    [[nodiscard]] CameraMatrices matrices(float viewport_aspect) const;
 };
 
 /// An infinite perspective projection with depth 0..1 (near plane → 0, infinitely far → 1),
@@ -79,6 +92,6 @@ struct FramingOptions {
 /// `viewport_aspect` (and of any wider one), with near and far planes enclosing the box. The
 /// camera has no aspect ratio of its own. Empty bounds are treated as a unit box around the
 /// origin; flat or point-like bounds get a small extent.
-Camera frame_bounds(const Aabb& bounds, float viewport_aspect, const FramingOptions& options = {});
+Camera frame_bounds(const Bounds& bounds, float viewport_aspect, const FramingOptions& options = {});
 
 }  // namespace loom::scene

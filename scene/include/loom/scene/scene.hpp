@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "loom/scene/aabb.hpp"
+#include "loom/scene/bounds.hpp"
 #include "loom/scene/camera.hpp"
 #include "loom/scene/glm.hpp"
 #include "loom/scene/material.hpp"
@@ -41,7 +41,7 @@ struct DrawItem {
     /// The world matrix mirrors (negative determinant): counter-clockwise front faces become
     /// clockwise, so the renderer must flip its front-face winding for this item.
     bool flips_winding = false;
-    Aabb world_bounds;  ///< exact bounds of the transformed vertex positions
+    Bounds world_bounds;  ///< exact bounds of the transformed vertex positions
 };
 
 /// A loaded scene. Indices between the vectors are always valid.
@@ -54,7 +54,7 @@ struct Scene {
     std::vector<TextureImage> images;  ///< decoded images the textures use
     std::vector<DrawItem> draw_items;  ///< the displayed glTF scene, flattened, in traversal order
     std::vector<Camera> cameras;       ///< camera instances of the displayed scene (node order)
-    Aabb bounds;                       ///< world bounds of all draw items
+    Bounds bounds;                       ///< world bounds of all draw items
     /// Non-fatal problems found while importing (also logged through loom::log at Warning).
     std::vector<std::string> warnings;
 
