@@ -148,7 +148,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         return 0;
     }
 
-    // What PreparedScene (scene_objects/gpu_scene.hpp) computes before uploading anything.
+    // What PreparedScene (loom/renderer/gpu_scene.hpp) computes before uploading anything.
     const loom::scene::PackedGeometry geometry = loom::scene::pack_geometry(*scene);
     for (const loom::scene::DrawItem& item : scene->draw_items) (void)geometry.range(item);
     for (const loom::scene::TextureImage& image : scene->images) (void)loom::scene::mip_chain(image.image);

@@ -1,8 +1,8 @@
 #pragma once
-// glTF files as pipeline scenes: loom::scene imports the file, loom::scene_objects turns its
-// draw items into GltfObjects ("gltf-mesh") and uploads geometry and textures once per device;
-// the camera is the file's (first, or the one asked for) or one that frames the scene, and the
-// light is a sun behind the viewer (files bring none).
+// glTF files as pipeline scenes: loom::gltf imports the file into loom::scene's model, this
+// library turns its draw items into GltfObjects ("gltf-mesh") and uploads geometry and textures
+// once per device (GpuScene); the camera is the file's (first, or the one asked for) or one that
+// frames the scene, and the light is a sun behind the viewer (files bring none).
 
 #include <cstdint>
 #include <filesystem>

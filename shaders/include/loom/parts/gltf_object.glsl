@@ -1,6 +1,6 @@
 // The per-draw uniforms of glTF mesh objects (object kind "gltf-mesh"): one block, declared by
 // the "gltf-geometry" part as its resource LOOM_BINDING(0) in set 1 and read by its vertex stage
-// and by the "gltf-material" part. Mirrored in C++ by loom::scene_objects (gltf_object.cpp).
+// and by the "gltf-material" part. Mirrored in C++ by loom::renderer (gltf_object.cpp).
 #ifndef LOOM_PARTS_GLTF_OBJECT_GLSL
 #define LOOM_PARTS_GLTF_OBJECT_GLSL
 
