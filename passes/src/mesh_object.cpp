@@ -105,13 +105,13 @@ std::shared_ptr<const ObjectKind> checker_mesh_kind() {
 }
 
 MeshObject::MeshObject(std::string name, std::shared_ptr<const ObjectKind> kind, std::shared_ptr<const GpuMesh> mesh,
-                       const glm::mat4& model, const MeshMaterial& material, MeshRange range)
-    : name_(std::move(name)), kind_(std::move(kind)), mesh_(std::move(mesh)), model_(model), material_(material),
+                       const glm::mat4& model, const MeshSurface& surface, MeshRange range)
+    : name_(std::move(name)), kind_(std::move(kind)), mesh_(std::move(mesh)), model_(model), surface_(surface),
       range_(range) {}
 
 rhi::RasterState MeshObject::raster() const {
     rhi::RasterState state;
-    state.cull = material_.double_sided ? rhi::CullMode::None : rhi::CullMode::Back;
+    state.cull = surface_.material.double_sided ? rhi::CullMode::None : rhi::CullMode::Back;
     state.front_face =
         glm::determinant(glm::mat3(model_)) < 0.0f ? rhi::FrontFace::Clockwise : rhi::FrontFace::CounterClockwise;
     return state;
@@ -122,10 +122,11 @@ Status MeshObject::render(DrawContext& context) const {
     ObjectUniforms uniforms;
     uniforms.model = model_;
     uniforms.normal_matrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(model_))));
-    uniforms.base_color = material_.base_color;
-    uniforms.secondary_color = material_.secondary_color;
-    uniforms.emissive = glm::vec4(material_.emissive, 0.0f);
-    uniforms.material = glm::vec4(material_.metallic, material_.roughness, material_.pattern_scale, 0.0f);
+    const scene::Material& material = surface_.material;
+    uniforms.base_color = material.base_color_factor;
+    uniforms.secondary_color = surface_.checker.secondary_color;
+    uniforms.emissive = glm::vec4(material.emissive_factor, 0.0f);
+    uniforms.material = glm::vec4(material.metallic_factor, material.roughness_factor, surface_.checker.cells_per_unit, 0.0f);
     Bindings object_set(context.program, context.commands, kObjectSet);
     LOOM_TRY(object_set.uniforms("ObjectUniforms", uniforms).bind());
 

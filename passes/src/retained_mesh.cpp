@@ -24,9 +24,12 @@ ObjectRecord object_record(const glm::mat4& model) {
     return ObjectRecord{model, glm::mat4(glm::transpose(glm::inverse(glm::mat3(model))))};
 }
 
-MeshMaterialUniforms mesh_material_uniforms(const MeshMaterial& material) {
-    return MeshMaterialUniforms{material.base_color, material.secondary_color, glm::vec4(material.emissive, 0.0f),
-                                glm::vec4(material.metallic, material.roughness, material.pattern_scale, 0.0f)};
+MeshSurfaceUniforms mesh_surface_uniforms(const MeshSurface& surface) {
+    const scene::Material& material = surface.material;
+    return MeshSurfaceUniforms{material.base_color_factor, surface.checker.secondary_color,
+                               glm::vec4(material.emissive_factor, 0.0f),
+                               glm::vec4(material.metallic_factor, material.roughness_factor,
+                                         surface.checker.cells_per_unit, 0.0f)};
 }
 
 rhi::VertexBufferLayout object_index_layout() {
@@ -48,20 +51,20 @@ std::shared_ptr<const ObjectKind> retained_checker_mesh_kind() {
                                                                   "loom/parts/checker_material.frag.glsl"));
 }
 
-std::shared_ptr<Material> make_mesh_material(std::string name, std::shared_ptr<Param<MeshMaterial>> params) {
-    const rhi::CullMode cull = params->value().double_sided ? rhi::CullMode::None : rhi::CullMode::Back;
+std::shared_ptr<Material> make_mesh_material(std::string name, std::shared_ptr<Param<MeshSurface>> params) {
+    const rhi::CullMode cull = params->value().material.double_sided ? rhi::CullMode::None : rhi::CullMode::Back;
     auto uniforms = std::make_shared<UniformSet>(
-        "MaterialUniforms", UpdateFrequency::PerMaterial, static_cast<uint32_t>(sizeof(MeshMaterialUniforms)),
+        "MaterialUniforms", UpdateFrequency::PerMaterial, static_cast<uint32_t>(sizeof(MeshSurfaceUniforms)),
         [params](std::span<std::byte> block) {
-            const MeshMaterialUniforms u = mesh_material_uniforms(params->value());
+            const MeshSurfaceUniforms u = mesh_surface_uniforms(params->value());
             std::memcpy(block.data(), &u, sizeof(u));
         },
         std::vector<std::shared_ptr<ParamNode>>{params});
     return std::make_shared<Material>(std::move(name), std::move(uniforms), std::vector<MaterialTexture>{}, cull);
 }
 
-std::shared_ptr<Material> make_mesh_material(std::string name, const MeshMaterial& value) {
-    return make_mesh_material(std::move(name), std::make_shared<InputParam<MeshMaterial>>(value));
+std::shared_ptr<Material> make_mesh_material(std::string name, const MeshSurface& value) {
+    return make_mesh_material(std::move(name), std::make_shared<InputParam<MeshSurface>>(value));
 }
 
 }  // namespace loom::passes

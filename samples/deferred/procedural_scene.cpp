@@ -67,13 +67,13 @@ glm::mat4 place(const glm::vec3& position, float yaw_degrees = 0.0f, const glm::
     return m;
 }
 
-passes::MeshMaterial material(const glm::vec3& albedo, float metallic, float roughness, float glow = 0.0f) {
-    passes::MeshMaterial m;
-    m.base_color = glm::vec4(albedo, 1.0f);
-    m.metallic = metallic;
-    m.roughness = roughness;
+passes::MeshSurface material(const glm::vec3& albedo, float metallic, float roughness, float glow = 0.0f) {
+    passes::MeshSurface m;
+    m.material.base_color_factor = glm::vec4(albedo, 1.0f);
+    m.material.metallic_factor = metallic;
+    m.material.roughness_factor = roughness;
     // Glowing materials emit in their own colour (what the G-buffer stores exactly).
-    m.emissive = albedo * glow;
+    m.material.emissive_factor = albedo * glow;
     return m;
 }
 
@@ -146,13 +146,13 @@ scene::Bounds shadow_region(const scene::Bounds& casters, const glm::vec3& towar
 
 SceneContent procedural_scene() {
     SceneContent scene;
-    auto add = [&](std::string name, MeshData mesh, passes::MeshMaterial m, glm::mat4 model, bool checker = false) {
+    auto add = [&](std::string name, MeshData mesh, passes::MeshSurface m, glm::mat4 model, bool checker = false) {
         scene.items.push_back(SceneItem{std::move(name), std::move(mesh), m, model, checker});
     };
 
-    passes::MeshMaterial ground = material({0.72f, 0.70f, 0.66f}, 0.0f, 0.8f);
-    ground.secondary_color = glm::vec4(0.20f, 0.22f, 0.26f, 1.0f);
-    ground.pattern_scale = 1.0f;
+    passes::MeshSurface ground = material({0.72f, 0.70f, 0.66f}, 0.0f, 0.8f);
+    ground.checker.secondary_color = glm::vec4(0.20f, 0.22f, 0.26f, 1.0f);
+    ground.checker.cells_per_unit = 1.0f;
     add("ground", make_plane(200.0f, 200.0f, 100), ground, glm::mat4(1.0f), true);
     scene.items.back().casts_shadow = false;  // nothing lies below it
 
@@ -195,7 +195,7 @@ Result<renderer::PipelineScene> procedural_pipeline_scene(rhi::Device& device, c
         auto mesh = passes::GpuMesh::create(device, item.mesh.vertices, item.mesh.indices, item.name);
         if (!mesh) return mesh.take_error();
         auto object = std::make_shared<passes::MeshObject>(item.name, item.checker ? checker : pbr, *mesh, item.model,
-                                                           item.material);
+                                                           item.surface);
         // Only casters go into the shadow map (the ground has nothing below it to shadow).
         if (item.casts_shadow) scene.shadow_casters.push_back(object);
         scene.opaque.push_back(object);

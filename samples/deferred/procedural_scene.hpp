@@ -28,7 +28,7 @@ struct MeshData {
 struct SceneItem {
     std::string name;
     MeshData mesh;
-    passes::MeshMaterial material;
+    passes::MeshSurface surface;
     glm::mat4 model{1.0f};
     bool checker = false;  ///< the "checker-mesh" kind instead of "pbr-mesh"
     bool casts_shadow = true;  ///< drawn into the shadow map

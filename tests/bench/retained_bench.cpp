@@ -197,8 +197,8 @@ BackendResult run_backend(rhi::Backend backend, const Options& options, const te
         }
         auto merged = passes::GpuMesh::create(**device, vertices, indices, "all objects");
         if (!merged) fail("merged mesh", merged.error());
-        passes::MeshMaterial material;
-        material.double_sided = true;  // mirrored objects' triangles wind the other way
+        passes::MeshSurface material = test::plain_surface();
+        material.material.double_sided = true;  // mirrored objects' triangles wind the other way
         auto object = std::make_shared<passes::MeshObject>("all objects", passes::pbr_mesh_kind(), *merged,
                                                            glm::mat4(1.0f), material);
         test::GBufferGraph graph(**device, options.size, scene.camera);

@@ -49,10 +49,17 @@ SceneMesh ellipsoid(std::string name, uint32_t rings, uint32_t segments, glm::ve
 auto state_key(const ObjectScene& scene, const SceneObject& object) {
     const SceneMaterial& material = scene.materials[object.material];
     const bool mirrored = glm::determinant(glm::mat3(object.model)) < 0.0f;
-    return std::make_tuple(material.checker, material.value.double_sided, mirrored, object.material);
+    return std::make_tuple(material.checker, material.value.material.double_sided, mirrored, object.material);
 }
 
 }  // namespace
+
+passes::MeshSurface plain_surface() {
+    passes::MeshSurface surface;
+    surface.material.metallic_factor = 0.0f;
+    surface.material.roughness_factor = 0.5f;
+    return surface;
+}
 
 ObjectScene make_object_scene(const ObjectSceneSpec& spec) {
     ObjectScene scene;
@@ -67,13 +74,14 @@ ObjectScene make_object_scene(const ObjectSceneSpec& spec) {
     }
     for (uint32_t i = 0; i < spec.materials; ++i) {
         SceneMaterial m;
-        m.value.base_color = glm::vec4(uniform(0.05f, 1.0f), uniform(0.05f, 1.0f), uniform(0.05f, 1.0f), 1.0f);
-        m.value.secondary_color = glm::vec4(uniform(0.0f, 0.3f), uniform(0.0f, 0.3f), uniform(0.0f, 0.3f), 1.0f);
-        m.value.metallic = uniform(0.0f, 1.0f);
-        m.value.roughness = uniform(0.1f, 1.0f);
-        m.value.pattern_scale = uniform(2.0f, 6.0f);
-        if (i % 7 == 3) m.value.emissive = glm::vec3(m.value.base_color) * 2.0f;
-        m.value.double_sided = i % 6 == 5;
+        scene::Material& material = m.value.material;
+        material.base_color_factor = glm::vec4(uniform(0.05f, 1.0f), uniform(0.05f, 1.0f), uniform(0.05f, 1.0f), 1.0f);
+        m.value.checker.secondary_color = glm::vec4(uniform(0.0f, 0.3f), uniform(0.0f, 0.3f), uniform(0.0f, 0.3f), 1.0f);
+        material.metallic_factor = uniform(0.0f, 1.0f);
+        material.roughness_factor = uniform(0.1f, 1.0f);
+        m.value.checker.cells_per_unit = uniform(2.0f, 6.0f);
+        if (i % 7 == 3) material.emissive_factor = glm::vec3(material.base_color_factor) * 2.0f;
+        material.double_sided = i % 6 == 5;
         m.checker = i % 5 == 2;
         scene.materials.push_back(m);
     }

@@ -36,8 +36,11 @@ struct SceneMesh {
     std::vector<uint32_t> indices;
 };
 
+/// A plain white dielectric surface (metallic 0, roughness 0.5) for tests that need one.
+passes::MeshSurface plain_surface();
+
 struct SceneMaterial {
-    passes::MeshMaterial value;
+    passes::MeshSurface value;
     bool checker = false;  ///< drawn with the checker kind
 };
 

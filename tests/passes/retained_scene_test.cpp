@@ -29,7 +29,7 @@ using passes::RetainedScene;
 using passes::Shape;
 
 constexpr uint64_t kRecordBytes = sizeof(passes::ObjectRecord);
-constexpr uint64_t kMaterialBytes = sizeof(passes::MeshMaterialUniforms);
+constexpr uint64_t kMaterialBytes = sizeof(passes::MeshSurfaceUniforms);
 
 class RetainedSceneTest : public RenderTest {
 protected:
@@ -259,7 +259,7 @@ TEST_P(RetainedSceneTest, SubmissionOrderQueueBindsAgainWheneverTheKeyChanges) {
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
         const SceneObject& object = scene.objects[i];
         const SceneMaterial& material = scene.materials[object.material];
-        const std::tuple<bool, bool, bool, uint32_t> key{material.checker, material.value.double_sided,
+        const std::tuple<bool, bool, bool, uint32_t> key{material.checker, material.value.material.double_sided,
                                                          glm::determinant(glm::mat3(object.model)) < 0.0f, object.material};
         if (i == 0 || key != previous) ++runs;
         previous = key;
@@ -324,15 +324,15 @@ TEST_P(RetainedSceneTest, UploadsOnlyTheSetsThatChanged) {
 
     // A material changes: its set alone.
     retained.reset_stats();
-    auto material_values = std::make_shared<InputParam<passes::MeshMaterial>>(scene.materials[0].value);
+    auto material_values = std::make_shared<InputParam<passes::MeshSurface>>(scene.materials[0].value);
     auto material = passes::make_mesh_material("changing", material_values);
     auto model = std::make_shared<InputParam<glm::mat4>>(glm::mat4(1.0f));
     auto extra = std::make_shared<Shape>("extra", passes::retained_pbr_mesh_kind(), objects->geometries[0], material, model);
     ASSERT_TRUE(retained.submit(extra).ok());
     ASSERT_TRUE(graph.frame().ok());
     retained.reset_stats();
-    passes::MeshMaterial changed = scene.materials[0].value;
-    changed.roughness = 0.25f;
+    passes::MeshSurface changed = scene.materials[0].value;
+    changed.material.roughness_factor = 0.25f;
     material_values->set(changed);
     ASSERT_TRUE(graph.frame().ok());
     EXPECT_EQ(retained.stats().material_uploads.sets, 1u);
@@ -365,7 +365,7 @@ TEST_P(RetainedSceneTest, LazyTransformsFollowTheirParent) {
     }
     auto geometry = passes::make_mesh_geometry("ball", vertices, indices);
     ASSERT_TRUE(geometry.ok());
-    passes::MeshMaterial white;
+    const passes::MeshSurface white = plain_surface();
     auto material = passes::make_mesh_material("white", white);
     auto parent = std::make_shared<InputParam<glm::mat4>>(glm::mat4(1.0f));
     std::vector<std::shared_ptr<passes::ComputedParam<glm::mat4, glm::mat4>>> children;
@@ -432,8 +432,8 @@ TEST_P(RetainedSceneTest, RetractingReleasesWhatOnlyThatShapeUsed) {
     // A second geometry of mesh 1's size, to take the ranges mesh 1 leaves.
     auto copy = passes::make_mesh_geometry("copy", source.meshes[1].vertices, source.meshes[1].indices);
     ASSERT_TRUE(copy.ok());
-    auto shared_material = passes::make_mesh_material("shared", passes::MeshMaterial{});
-    auto own_material = passes::make_mesh_material("own", passes::MeshMaterial{});
+    auto shared_material = passes::make_mesh_material("shared", plain_surface());
+    auto own_material = passes::make_mesh_material("own", plain_surface());
     auto model = [](float x) { return std::make_shared<InputParam<glm::mat4>>(glm::translate(glm::mat4(1.0f), glm::vec3(x, 0, 0))); };
     const auto kind = passes::retained_pbr_mesh_kind();
     auto a = std::make_shared<Shape>("a", kind, geometries[0], shared_material, model(0));
@@ -555,7 +555,7 @@ TEST_P(RetainedSceneTest, SeparateVertexStreamsShareTheirOwnPool) {
     ASSERT_TRUE(ball.ok());
     auto far_away = std::make_shared<InputParam<glm::mat4>>(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 50)));
     ASSERT_TRUE(retained.submit(std::make_shared<Shape>("ball", passes::retained_pbr_mesh_kind(), *ball,
-                                                        passes::make_mesh_material("m", passes::MeshMaterial{}), far_away))
+                                                        passes::make_mesh_material("m", plain_surface()), far_away))
                     .ok());
     auto status = graph.frame();
     ASSERT_TRUE(status.ok()) << status.error().to_string();
@@ -604,7 +604,7 @@ TEST_P(RetainedSceneTest, AShadowPassLeavesMaterialsOutOfItsKeys) {
     std::set<std::tuple<bool, bool, bool>> keys;
     for (const SceneObject& object : scene.objects) {
         const SceneMaterial& material = scene.materials[object.material];
-        keys.insert({material.checker, material.value.double_sided, glm::determinant(glm::mat3(object.model)) < 0.0f});
+        keys.insert({material.checker, material.value.material.double_sided, glm::determinant(glm::mat3(object.model)) < 0.0f});
     }
     EXPECT_EQ(retained.stats().batches_drawn, keys.size());
     EXPECT_EQ(retained.stats().state_changes, keys.size());
@@ -629,7 +629,7 @@ TEST_P(RetainedSceneTest, ErrorsNameTheShape) {
     const ObjectScene one = make_object_scene(ObjectSceneSpec{1, 1, 1, 1});
     auto geometry = passes::make_mesh_geometry("ball", one.meshes[0].vertices, one.meshes[0].indices);
     ASSERT_TRUE(geometry.ok());
-    auto material = passes::make_mesh_material("m", passes::MeshMaterial{});
+    auto material = passes::make_mesh_material("m", plain_surface());
     auto model = std::make_shared<InputParam<glm::mat4>>(glm::mat4(1.0f));
     RetainedScene retained;
 

@@ -15,6 +15,7 @@
 #include "loom/passes/view.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/result.hpp"
+#include "loom/scene/material.hpp"
 
 namespace loom::passes {
 
@@ -64,15 +65,19 @@ private:
     scene::Bounds bounds_;
 };
 
-/// A metallic-roughness material (glTF factors) plus the second colour of patterned kinds.
-struct MeshMaterial {
-    glm::vec4 base_color{1.0f};
+/// The pattern of the "checker-mesh" kind: cells of the material's base colour alternate with
+/// cells of `secondary_color`.
+struct CheckerPattern {
     glm::vec4 secondary_color{0.0f, 0.0f, 0.0f, 1.0f};
-    glm::vec3 emissive{0.0f};
-    float metallic = 0.0f;
-    float roughness = 0.5f;
-    float pattern_scale = 1.0f;  ///< checker cells per world unit
-    bool double_sided = false;   ///< drawn without back-face culling
+    float cells_per_unit = 1.0f;  ///< checker cells per world unit
+};
+
+/// What the built-in mesh kinds draw a surface with: a metallic-roughness material, of which
+/// they use the factors (base colour, metallic, roughness, emissive) and double_sided (drawn
+/// without back-face culling), not the textures; and the checker kind's pattern.
+struct MeshSurface {
+    scene::Material material;
+    CheckerPattern checker;
 };
 
 /// The kind "pbr-mesh": parts "mesh-geometry" and "pbr-material".
@@ -91,7 +96,7 @@ struct MeshRange {
 class MeshObject final : public Object {
 public:
     MeshObject(std::string name, std::shared_ptr<const ObjectKind> kind, std::shared_ptr<const GpuMesh> mesh,
-               const glm::mat4& model, const MeshMaterial& material, MeshRange range = {});
+               const glm::mat4& model, const MeshSurface& surface, MeshRange range = {});
 
     [[nodiscard]] const std::shared_ptr<const ObjectKind>& kind() const override { return kind_; }
     [[nodiscard]] std::string name() const override { return name_; }
@@ -102,8 +107,8 @@ public:
 
     [[nodiscard]] const glm::mat4& model() const { return model_; }
     void set_model(const glm::mat4& model) { model_ = model; }
-    [[nodiscard]] const MeshMaterial& material() const { return material_; }
-    void set_material(const MeshMaterial& material) { material_ = material; }
+    [[nodiscard]] const MeshSurface& surface() const { return surface_; }
+    void set_surface(const MeshSurface& surface) { surface_ = surface; }
     /// World-space bounds (of the transformed corners of the mesh's bounds).
     [[nodiscard]] scene::Bounds world_bounds() const;
 
@@ -112,7 +117,7 @@ private:
     std::shared_ptr<const ObjectKind> kind_;
     std::shared_ptr<const GpuMesh> mesh_;
     glm::mat4 model_;
-    MeshMaterial material_;
+    MeshSurface surface_;
     MeshRange range_;
 };
 

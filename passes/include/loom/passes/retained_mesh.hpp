@@ -37,19 +37,19 @@ static_assert(sizeof(ObjectRecord) == 128);
 
 /// The per-material set of the retained mesh kinds (std140), the members of ObjectUniforms'
 /// material half.
-struct MeshMaterialUniforms {
+struct MeshSurfaceUniforms {
     glm::vec4 base_color;
     glm::vec4 secondary_color;
     glm::vec4 emissive;
-    glm::vec4 material;  ///< metallic, roughness, pattern scale
+    glm::vec4 material;  ///< metallic, roughness, checker cells per unit
 };
-static_assert(sizeof(MeshMaterialUniforms) == 64);
+static_assert(sizeof(MeshSurfaceUniforms) == 64);
 
 /// The record of a model matrix: the matrix and its normal matrix (inverse transpose of its
 /// upper 3x3), computed as MeshObject computes them.
 ObjectRecord object_record(const glm::mat4& model);
-/// MeshMaterialUniforms of a MeshMaterial, as MeshObject packs them.
-MeshMaterialUniforms mesh_material_uniforms(const MeshMaterial& material);
+/// MeshSurfaceUniforms of a MeshSurface, as MeshObject packs them.
+MeshSurfaceUniforms mesh_surface_uniforms(const MeshSurface& surface);
 
 /// The per-instance vertex buffer slot carrying the object index (stride 4, one Uint at
 /// kObjectIndexLocation).
@@ -63,8 +63,8 @@ std::shared_ptr<const ObjectKind> retained_checker_mesh_kind();
 /// A material for the retained mesh kinds whose values follow `params` (set it to change
 /// them: only this material's set is uploaded again). Double-sided materials draw without
 /// culling (fixed at creation, from the value `params` has now).
-std::shared_ptr<Material> make_mesh_material(std::string name, std::shared_ptr<Param<MeshMaterial>> params);
+std::shared_ptr<Material> make_mesh_material(std::string name, std::shared_ptr<Param<MeshSurface>> params);
 /// make_mesh_material of a fixed value.
-std::shared_ptr<Material> make_mesh_material(std::string name, const MeshMaterial& value);
+std::shared_ptr<Material> make_mesh_material(std::string name, const MeshSurface& value);
 
 }  // namespace loom::passes
