@@ -191,7 +191,7 @@ Result<Scene> load_file(const std::filesystem::path& path, const LoadOptions& op
     auto scene = detail::convert_model(model, file_label, options, warnings);
     if (!scene) return scene.take_error();
     scene->warnings = std::move(warnings);
-    for (const std::string& warning : scene->warnings) log_warning("scene", warning);
+    for (const std::string& warning : scene->warnings) log_warning("gltf", warning);
     return scene;
 }
 

@@ -19,7 +19,7 @@ void LogRouter::route(std::vector<std::string>* messages) {
 
 void LogRouter::receive(LogLevel level, std::string_view source, std::string_view message) {
     std::lock_guard lock(mutex_);
-    const bool problem = level == LogLevel::Error || (level == LogLevel::Warning && source != "scene");
+    const bool problem = level == LogLevel::Error || (level == LogLevel::Warning && source != "gltf");
     if (messages_ == nullptr) {
         if (previous_) {
             previous_(level, source, message);

@@ -1,4 +1,4 @@
-// loom::renderer (and loom::scene's mip chains) without a GPU: mip chains, viewpoints, the transparent pass's contract.
+// loom::renderer without a GPU: viewpoints, the transparent pass's contract.
 #include <gtest/gtest.h>
 
 #include "loom/passes/forward_pass.hpp"
@@ -8,52 +8,10 @@
 #include "loom/renderer/gltf_object.hpp"
 #include "loom/renderer/scene_objects.hpp"
 #include "loom/renderer/transparent_pass.hpp"
-#include "loom/scene/mip_chain.hpp"
 #include "synthetic_scene.hpp"
 
 namespace loom::test {
 namespace {
-
-using scene::mip_chain;
-using scene::mip_level_count;
-
-TEST(MipChain, HalvesDownToOneTexelRoundingOddSizesDown) {
-    EXPECT_EQ(mip_level_count(1, 1), 1u);
-    EXPECT_EQ(mip_level_count(256, 256), 9u);
-    EXPECT_EQ(mip_level_count(5, 3), 3u);  // 5x3, 2x1, 1x1
-    EXPECT_EQ(mip_level_count(1, 1024), 11u);
-    const auto levels = mip_chain(rhi::Image(5, 3, rhi::Format::RGBA8Unorm));
-    ASSERT_EQ(levels.size(), 3u);
-    EXPECT_EQ(levels[1].width, 2u);
-    EXPECT_EQ(levels[1].height, 1u);
-    EXPECT_EQ(levels[2].width, 1u);
-    EXPECT_EQ(levels[2].height, 1u);
-}
-
-TEST(MipChain, AveragesTwoByTwoBlocksWithRounding) {
-    const rhi::Image image = image_of(4, 2, rhi::Format::RGBA8Unorm,
-                                      {{0, 10, 255, 255}, {1, 20, 255, 255}, {100, 0, 0, 0}, {200, 0, 0, 0},
-                                       {2, 30, 255, 255}, {4, 41, 255, 255}, {50, 0, 0, 0}, {51, 0, 0, 2}});
-    const auto levels = mip_chain(image);
-    ASSERT_EQ(levels.size(), 3u);
-    EXPECT_EQ(levels[0].pixels, image.pixels);
-    const auto texel = [](const rhi::Image& i, uint32_t x) {
-        std::array<int, 4> out{};
-        for (int c = 0; c < 4; ++c) out[c] = std::to_integer<int>(i.texel(x, 0)[c]);
-        return out;
-    };
-    EXPECT_EQ(texel(levels[1], 0), (std::array<int, 4>{2, 25, 255, 255}));  // (0+1+2+4)/4 = 1.75 -> 2, 101/4 -> 25
-    EXPECT_EQ(texel(levels[1], 1), (std::array<int, 4>{100, 0, 0, 1}));     // 401/4 = 100.25, 2/4 = 0.5 -> 1
-}
-
-TEST(MipChain, AveragesSrgbImagesInLinearLight) {
-    const auto levels = mip_chain(image_of(2, 1, rhi::Format::RGBA8Srgb, {{0, 0, 0, 0}, {255, 255, 255, 255}}));
-    ASSERT_EQ(levels.size(), 2u);
-    EXPECT_EQ(levels[1].format, rhi::Format::RGBA8Srgb);
-    // Linear 0.5 is sRGB 188; averaged as stored it would be 128. Alpha is linear: 128.
-    EXPECT_EQ(std::to_integer<int>(levels[1].texel(0, 0)[0]), 188);
-    EXPECT_EQ(std::to_integer<int>(levels[1].texel(0, 0)[3]), 128);
-}
 
 TEST(SceneViewpoint, TakesTheFirstCameraOrTheOneAskedForOrFramesTheBounds) {
     SceneBuilder b;

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "loom/scene/camera.hpp"
 
 namespace loom::test {
@@ -86,6 +88,21 @@ void expect_framed(const Bounds& bounds, float aspect, const scene::FramingOptio
     const glm::vec3 center = project(view_projection, box.center());
     EXPECT_NEAR(center.x, 0.0f, 1e-4f);
     EXPECT_NEAR(center.y, 0.0f, 1e-4f);
+}
+
+TEST(SceneCamera, MatricesAreTheViewProjectionAndPositionOfOneFrame) {
+    Camera camera;
+    camera.world = glm::translate(glm::mat4(1.0f), glm::vec3(1.0f, 2.0f, 3.0f)) *
+                   glm::rotate(glm::mat4(1.0f), 0.5f, glm::vec3(0.0f, 1.0f, 0.0f));
+    camera.projection = scene::PerspectiveProjection{0.9f, std::nullopt, 0.2f, 40.0f};
+    const scene::CameraMatrices m = camera.matrices(1.5f);
+    EXPECT_EQ(m.view, camera.view_matrix());
+    EXPECT_EQ(m.projection, camera.projection_matrix(1.5f));
+    EXPECT_EQ(m.position, glm::vec3(1.0f, 2.0f, 3.0f));
+    EXPECT_EQ(m.view_projection(), camera.view_projection(1.5f));
+    // The camera's own position lands on the view-space origin.
+    const glm::vec4 eye = m.view * glm::vec4(m.position, 1.0f);
+    EXPECT_NEAR(glm::length(glm::vec3(eye)), 0.0f, 1e-5f);
 }
 
 TEST(SceneCamera, FramingFitsBoundsOfEveryShapeAndAspect) {

@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "loom/scene/geometry.hpp"
 #include "loom/gltf/gltf.hpp"
+#include "loom/scene/geometry.hpp"
 #include "loom_test/test_support.hpp"
 #include "scene_test_util.hpp"
 
@@ -171,7 +171,7 @@ TEST(SceneGeometry, VertexBufferLayoutMatchesTheVertexStruct) {
     }
 }
 
-TEST(SceneGeometry, AabbOperations) {
+TEST(SceneGeometry, BoundsOperations) {
     scene::Bounds box;
     EXPECT_TRUE(box.empty());
     EXPECT_TRUE(box.transformed(glm::mat4(1.0f)).empty());

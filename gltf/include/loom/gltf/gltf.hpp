@@ -58,7 +58,7 @@ struct LoadOptions {
 
 /// Loads a .gltf or .glb file (the format is recognised by the GLB magic, and files named
 /// *.glb must be GLB) and everything it references. Warnings go to scene::Scene::warnings and are
-/// logged through loom::log at Warning level (source "scene"); errors are returned, not logged.
+/// logged through loom::log at Warning level (source "gltf"); errors are returned, not logged.
 Result<scene::Scene> load(const std::filesystem::path& path, const LoadOptions& options = {});
 
 }  // namespace loom::gltf

@@ -1,6 +1,7 @@
 #pragma once
-// Geometry processing the importer applies to primitives, public so that it can be reused and
-// tested on its own: primitive topologies to triangle lists, normal and tangent generation.
+// Geometry processing the glTF importer (loom::gltf) applies to primitives, public so that it
+// can be reused and tested on its own: primitive topologies to triangle lists, normal and
+// tangent generation.
 // The generators require valid primitives (every index < vertices.size()), which the importer
 // guarantees.
 
