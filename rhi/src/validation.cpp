@@ -425,7 +425,7 @@ Result<RenderPassShape> render_pass(const RenderPassDesc& desc, const Capabiliti
         }
         const Extent3D e = mip_extent(t, mip);
         if (!shape) {
-            shape = RenderPassShape{e.width, e.height, t.samples};
+            shape = RenderPassShape{e.width, e.height, t.samples, {}, Format::Undefined};
             first = name;
         } else if (e.width != shape->width || e.height != shape->height) {
             return Error{ErrorCode::InvalidArgument, what + tex + " is " + std::to_string(e.width) + "x" + std::to_string(e.height) + " but " +
@@ -433,6 +433,11 @@ Result<RenderPassShape> render_pass(const RenderPassDesc& desc, const Capabiliti
         } else if (t.samples != shape->samples) {
             return Error{ErrorCode::InvalidArgument, what + tex + " has " + count_of(t.samples, "sample") + " but " + first + " has " +
                                                          std::to_string(shape->samples)};
+        }
+        if (depth) {
+            shape->depth_format = t.format;
+        } else {
+            shape->color_formats.push_back(t.format);
         }
         return {};
     };
