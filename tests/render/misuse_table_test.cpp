@@ -566,6 +566,26 @@ void main() { result.value = textureLod(tex, vec2(0.5), 0.0); }
         invalid("set_bind_group: set 1 binding 16 is beyond the 16 bindings per set loom supports"));
     add("vertex buffer slot", frame([](rhi::Device&, rhi::CommandList& list) { list.set_vertex_buffer(16, {}); }),
         invalid("set_vertex_buffer: slot 16 is beyond the 16 slots loom supports"));
+    // Transitions of texture 'c' (RGBA8, ColorAttachment and Sampled) or 'd' (Depth32F) to `state`.
+    auto transition = [with_textures, target](bool depth, rhi::ResourceState state) {
+        return with_textures({depth ? target("d", 4, Format::Depth32F) : target("c")},
+                             [state](rhi::CommandList& list, const std::vector<rhi::TextureHandle>& t) {
+                                 list.transition(t[0], state);
+                             });
+    };
+    add("texture transition to a depth state", transition(false, rhi::ResourceState::DepthWrite),
+        invalid("transition: texture 'c' (RGBA8Unorm) cannot be in state DepthWrite"));
+    add("texture transition to a buffer state", transition(false, rhi::ResourceState::VertexBuffer),
+        invalid("transition: texture 'c' (RGBA8Unorm) cannot be in state VertexBuffer"));
+    add("texture transition without the usage", transition(false, rhi::ResourceState::Storage),
+        invalid("transition: texture 'c' to Storage needs Storage usage"));
+    add("depth texture transition to RenderTarget", transition(true, rhi::ResourceState::RenderTarget),
+        invalid("transition: texture 'd' (Depth32F) cannot be in state RenderTarget"));
+    auto to_render_target = [](rhi::CommandList& list, rhi::BufferHandle b) {
+        list.transition(b, rhi::ResourceState::RenderTarget);
+    };
+    add("buffer transition to an attachment state", with_b(rhi::BufferUsage::Storage, to_render_target),
+        invalid("transition: buffer 'b' cannot be in state RenderTarget"));
 
     // ---- command-list state (rhi::CommandListState): frames, render passes, bound state,
     // timers and debug groups. Each row records into a frame with a kit of objects: target 't'

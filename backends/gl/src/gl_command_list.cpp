@@ -542,6 +542,7 @@ void GlCommandList::transition(rhi::TextureHandle texture, ResourceState state) 
     auto found = device_->textures().get(texture);
     if (!found.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + found.error().message);
     GlTexture& t = **found;
+    if (!accepted(rhi::validation::texture_transition(t.desc, state, device_->capabilities()))) return;
     if (t.state == ResourceState::Storage) {
         // Storage writes are the only accesses GL does not order by itself.
         const GLbitfield bits = barrier_after_storage(state);
@@ -560,6 +561,7 @@ void GlCommandList::transition(rhi::BufferHandle buffer, ResourceState state) {
     auto found = device_->buffers().get(buffer);
     if (!found.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + found.error().message);
     GlBuffer& b = **found;
+    if (!accepted(rhi::validation::buffer_transition(b.desc, state))) return;
     if (b.state == ResourceState::Storage) {
         const GLbitfield bits = barrier_after_storage(state);
         if (bits != 0) {

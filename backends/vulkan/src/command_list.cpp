@@ -505,21 +505,12 @@ void VulkanCommandList::transition(rhi::TextureHandle handle, ResourceState stat
     auto texture = device_.textures().get(handle);
     if (!texture.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + texture.error().message);
     Texture& t = **texture;
-    const std::string tex = "texture " + in_quotes(t.desc.name);
-    if (!texture_state_access(state, t.depth_stencil).valid) {
-        return fail(ErrorCode::InvalidArgument, "transition: " + tex + " (" + std::string(rhi::format_name(t.desc.format)) +
-                                                    ") cannot be in state " + std::string(rhi::resource_state_name(state)));
-    }
-    auto needs = [&](rhi::TextureUsage usage, const char* name) {
-        if (rhi::has_all(t.desc.usage, usage)) return true;
-        fail(ErrorCode::InvalidArgument, "transition: " + tex + " to " + std::string(rhi::resource_state_name(state)) + " needs " + name + " usage");
-        return false;
-    };
-    if (state == ResourceState::RenderTarget && !needs(rhi::TextureUsage::ColorAttachment, "ColorAttachment")) return;
-    if (state == ResourceState::DepthWrite && !needs(rhi::TextureUsage::DepthStencilAttachment, "DepthStencilAttachment")) return;
-    if (state == ResourceState::Storage && !needs(rhi::TextureUsage::Storage, "Storage")) return;
+    if (!accepted(rhi::validation::texture_transition(t.desc, state, device_.capabilities()))) return;
     if ((state == ResourceState::ShaderRead || state == ResourceState::DepthRead) && !t.sampled_view) {
-        return fail(ErrorCode::Unsupported, "transition: " + tex + " has a format that cannot be sampled");
+        // Images loom did not make (the application's, the swapchain's) may lack SAMPLED usage.
+        return fail(ErrorCode::Unsupported, "transition: texture " + in_quotes(t.desc.name) + " to " +
+                                                std::string(rhi::resource_state_name(state)) +
+                                                ": the image has no SAMPLED usage");
     }
     if (state == ResourceState::Undefined) {
         // Nothing to do on the GPU: the next transition discards the contents.
@@ -536,9 +527,7 @@ void VulkanCommandList::transition(rhi::BufferHandle handle, ResourceState state
     auto buffer = device_.buffers().get(handle);
     if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + buffer.error().message);
     Buffer& b = **buffer;
-    if (!buffer_state_access(state).valid) {
-        return fail(ErrorCode::InvalidArgument, "transition: buffer " + in_quotes(b.desc.name) + " cannot be in state " + std::string(rhi::resource_state_name(state)));
-    }
+    if (!accepted(rhi::validation::buffer_transition(b.desc, state))) return;
     BarrierBatch batch;
     batch.buffer(b.buffer, b.state, state);
     b.state = state;

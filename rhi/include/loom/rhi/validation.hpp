@@ -185,6 +185,16 @@ Result<const BindingEntry*> binding(std::string_view command, std::string_view p
 Error state_for_binding(std::string_view command, std::string_view pipeline, const PipelineSlot& slot, std::string_view texture,
                         ResourceState state, std::string_view needed);
 
+/// CommandList::transition of a texture to `state`: a state textures have, for the texture's kind
+/// of format (RenderTarget and Present a colour format, DepthWrite and DepthRead a depth/stencil
+/// one), with the usage it needs (RenderTarget: ColorAttachment, DepthWrite:
+/// DepthStencilAttachment, Storage: Storage); ShaderRead and DepthRead where this device samples
+/// the format (Unsupported otherwise).
+Status texture_transition(const TextureDesc& texture, ResourceState state, const Capabilities& caps);
+/// CommandList::transition of a buffer to `state`: a state buffers have (not RenderTarget,
+/// DepthWrite, DepthRead or Present).
+Status buffer_transition(const BufferDesc& buffer, ResourceState state);
+
 /// CommandList::set_viewport: a positive size, depths within 0..1, nothing NaN.
 Status viewport(const Viewport& viewport);
 /// CommandList::push_constants: the bytes fit kMaxPushConstantBytes.
