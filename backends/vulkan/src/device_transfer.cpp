@@ -232,7 +232,7 @@ loom::Result<std::vector<std::byte>> VulkanDevice::read_buffer(rhi::BufferHandle
     LOOM_TRY(command_list_->state().check_outside_render_pass("read_buffer of buffer " + in_quotes(buffer.desc.name)));
     if (size == 0) return std::vector<std::byte>{};
     if (recording_external_frame()) {
-        return Error{ErrorCode::InvalidState, "read_buffer of " + in_quotes(buffer.desc.name) +
+        return Error{ErrorCode::InvalidState, "read_buffer of buffer " + in_quotes(buffer.desc.name) +
                                                   " while a frame is recorded into the application's command buffer: read "
                                                   "after end_frame, once the application has submitted the frame"};
     }
