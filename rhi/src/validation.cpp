@@ -425,7 +425,7 @@ Result<RenderPassShape> render_pass(const RenderPassDesc& desc, const Capabiliti
         }
         const Extent3D e = mip_extent(t, mip);
         if (!shape) {
-            shape = RenderPassShape{e.width, e.height, t.samples};
+            shape = RenderPassShape{e.width, e.height, t.samples, {}, Format::Undefined};
             first = name;
         } else if (e.width != shape->width || e.height != shape->height) {
             return Error{ErrorCode::InvalidArgument, what + tex + " is " + std::to_string(e.width) + "x" + std::to_string(e.height) + " but " +
@@ -433,6 +433,11 @@ Result<RenderPassShape> render_pass(const RenderPassDesc& desc, const Capabiliti
         } else if (t.samples != shape->samples) {
             return Error{ErrorCode::InvalidArgument, what + tex + " has " + count_of(t.samples, "sample") + " but " + first + " has " +
                                                          std::to_string(shape->samples)};
+        }
+        if (depth) {
+            shape->depth_format = t.format;
+        } else {
+            shape->color_formats.push_back(t.format);
         }
         return {};
     };
@@ -600,6 +605,69 @@ Error state_for_binding(std::string_view command, std::string_view pipeline, con
                         ResourceState state, std::string_view needed) {
     return Error{ErrorCode::InvalidState, slot_site(command, pipeline, slot) + ": texture " + in_quotes(texture) + " is in state " +
                                               std::string(resource_state_name(state)) + "; transition it to " + std::string(needed) + " first"};
+}
+
+namespace {
+
+// Whether a texture with (`depth_stencil`) or without a depth/stencil format can be in `state`.
+bool texture_has_state(ResourceState state, bool depth_stencil) {
+    switch (state) {
+        case ResourceState::Undefined:
+        case ResourceState::ShaderRead:
+        case ResourceState::Storage:
+        case ResourceState::CopySrc:
+        case ResourceState::CopyDst: return true;
+        case ResourceState::RenderTarget:
+        case ResourceState::Present: return !depth_stencil;
+        case ResourceState::DepthWrite:
+        case ResourceState::DepthRead: return depth_stencil;
+        case ResourceState::VertexBuffer:
+        case ResourceState::IndexBuffer:
+        case ResourceState::IndirectArgument: return false;
+    }
+    return false;
+}
+
+bool buffer_has_state(ResourceState state) {
+    switch (state) {
+        case ResourceState::RenderTarget:
+        case ResourceState::DepthWrite:
+        case ResourceState::DepthRead:
+        case ResourceState::Present: return false;
+        default: return true;
+    }
+}
+
+}  // namespace
+
+Status texture_transition(const TextureDesc& texture, ResourceState state, const Capabilities& caps) {
+    const std::string what = "transition: texture " + in_quotes(texture.name);
+    const std::string target(resource_state_name(state));
+    const std::string format(format_name(texture.format));
+    if (!texture_has_state(state, format_info(texture.format).is_depth_stencil())) {
+        return Error{ErrorCode::InvalidArgument, what + " (" + format + ") cannot be in state " + target};
+    }
+    auto needs = [&](TextureUsage usage, const char* name) -> Status {
+        if (has_all(texture.usage, usage)) return {};
+        return Error{ErrorCode::InvalidArgument, what + " to " + target + " needs " + name + " usage"};
+    };
+    if (state == ResourceState::RenderTarget) return needs(TextureUsage::ColorAttachment, "ColorAttachment");
+    if (state == ResourceState::DepthWrite) {
+        return needs(TextureUsage::DepthStencilAttachment, "DepthStencilAttachment");
+    }
+    if (state == ResourceState::Storage) return needs(TextureUsage::Storage, "Storage");
+    const bool sampled_state = state == ResourceState::ShaderRead || state == ResourceState::DepthRead;
+    if (sampled_state && !caps.format(texture.format).sampled) {
+        return Error{ErrorCode::Unsupported,
+                     what + " to " + target + ": " + format + " cannot be sampled on this device"};
+    }
+    return {};
+}
+
+Status buffer_transition(const BufferDesc& buffer, ResourceState state) {
+    if (buffer_has_state(state)) return {};
+    return Error{ErrorCode::InvalidArgument, "transition: buffer " + in_quotes(buffer.name) + " cannot be in state " +
+                                                 std::string(resource_state_name(state))};
 }
 
 Status viewport(const Viewport& v) {

@@ -1,11 +1,13 @@
-// The misuse table: every rule of the shared validation layer (loom/rhi/validation.hpp), broken
-// once on a real device of each backend, must give the same ErrorCode and the same message on
-// every backend. The expected message is written here in full; where it quotes a device limit
-// or depends on a device capability, the row computes it from the device's Capabilities, so the
-// same rule reads the same on two devices with the same limits.
+// The misuse table: every rule of the shared validation layer (loom/rhi/validation.hpp) and of
+// the command-list state tracker (loom/rhi/command_list_state.hpp), broken once on a real device
+// of each backend, must give the same ErrorCode and the same message on every backend. The
+// expected message is written here in full; where it quotes a device limit or depends on a
+// device capability, the row computes it from the device's Capabilities, so the same rule reads
+// the same on two devices with the same limits.
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +34,7 @@ struct Row {
     std::function<bool(const rhi::Capabilities&)> applies;
     /// The misuse; returns what the device said.
     std::function<Status(rhi::Device&)> misuse;
+    /// Asked after the misuse, which may note what the message quotes (a stale handle's words).
     std::function<Expected(const rhi::Capabilities&)> expected;
 };
 
@@ -45,6 +48,9 @@ std::function<Expected(const rhi::Capabilities&)> expect(Expected expected) {
 }
 std::function<Expected(const rhi::Capabilities&)> unsupported(std::string message) {
     return [message](const rhi::Capabilities&) { return Expected{ErrorCode::Unsupported, message}; };
+}
+std::function<Expected(const rhi::Capabilities&)> wrong_state(std::string message) {
+    return [message](const rhi::Capabilities&) { return Expected{ErrorCode::InvalidState, message}; };
 }
 
 rhi::TextureDesc texture(const std::string& name, uint32_t width = 4, uint32_t height = 4) {
@@ -560,6 +566,257 @@ void main() { result.value = textureLod(tex, vec2(0.5), 0.0); }
         invalid("set_bind_group: set 1 binding 16 is beyond the 16 bindings per set loom supports"));
     add("vertex buffer slot", frame([](rhi::Device&, rhi::CommandList& list) { list.set_vertex_buffer(16, {}); }),
         invalid("set_vertex_buffer: slot 16 is beyond the 16 slots loom supports"));
+    // Transitions of texture 'c' (RGBA8, ColorAttachment and Sampled) or 'd' (Depth32F) to `state`.
+    auto transition = [with_textures, target](bool depth, rhi::ResourceState state) {
+        return with_textures({depth ? target("d", 4, Format::Depth32F) : target("c")},
+                             [state](rhi::CommandList& list, const std::vector<rhi::TextureHandle>& t) {
+                                 list.transition(t[0], state);
+                             });
+    };
+    add("texture transition to a depth state", transition(false, rhi::ResourceState::DepthWrite),
+        invalid("transition: texture 'c' (RGBA8Unorm) cannot be in state DepthWrite"));
+    add("texture transition to a buffer state", transition(false, rhi::ResourceState::VertexBuffer),
+        invalid("transition: texture 'c' (RGBA8Unorm) cannot be in state VertexBuffer"));
+    add("texture transition without the usage", transition(false, rhi::ResourceState::Storage),
+        invalid("transition: texture 'c' to Storage needs Storage usage"));
+    add("depth texture transition to RenderTarget", transition(true, rhi::ResourceState::RenderTarget),
+        invalid("transition: texture 'd' (Depth32F) cannot be in state RenderTarget"));
+    auto to_render_target = [](rhi::CommandList& list, rhi::BufferHandle b) {
+        list.transition(b, rhi::ResourceState::RenderTarget);
+    };
+    add("buffer transition to an attachment state", with_b(rhi::BufferUsage::Storage, to_render_target),
+        invalid("transition: buffer 'b' cannot be in state RenderTarget"));
+
+    // ---- command-list state (rhi::CommandListState): frames, render passes, bound state,
+    // timers and debug groups. Each row records into a frame with a kit of objects: target 't'
+    // (4x4 RGBA8), graphics pipeline 'solid' (RGBA8, reads vertex slot 0), compute pipeline
+    // 'c', vertex buffer 'v' and index buffer 'i'.
+    struct Kit {
+        rhi::TextureHandle target;
+        rhi::PipelineHandle solid;
+        rhi::PipelineHandle compute;
+        rhi::BufferHandle vertices;
+        rhi::BufferHandle indices;
+    };
+    // Runs `record` in a frame with a kit; returns what `record` returns when that is an error
+    // (a Device call's), else end_frame's status.
+    using KitRecord = std::function<Status(rhi::Device&, rhi::CommandList&, const Kit&)>;
+    auto with_kit = [](KitRecord record) {
+        return [record](rhi::Device& d) -> Status {
+            auto t = make_target(d, "t", Format::RGBA8Unorm, 4, 4);
+            auto solid = make_solid_pipeline(d, Format::RGBA8Unorm);
+            auto cs = make_shader(d, rhi::ShaderStage::Compute, "c",
+                                  "#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+            if (!cs.ok()) return Error{ErrorCode::Backend, "setup: " + cs.error().to_string()};
+            auto compute = d.create_compute_pipeline({"c", *cs});
+            LOOM_TRY(d.destroy(*cs));
+            auto vertices = make_buffer_of(d, "v", rhi::BufferUsage::Vertex | rhi::BufferUsage::CopySrc,
+                                           std::vector<float>(9, 0.0f));
+            auto indices = make_buffer_of(d, "i", rhi::BufferUsage::Index | rhi::BufferUsage::CopyDst,
+                                          std::vector<uint16_t>{0, 1, 2, 0});
+            if (!t.ok() || !solid.ok() || !compute.ok() || !vertices.ok() || !indices.ok()) {
+                return Error{ErrorCode::Backend, "setup"};
+            }
+            const Kit kit{*t, *solid, *compute, *vertices, *indices};
+            Status inside;
+            Status ended = run_frame(d, [&](rhi::CommandList& list) { inside = record(d, list, kit); });
+            LOOM_TRY(d.destroy(kit.target));
+            LOOM_TRY(d.destroy(kit.solid));
+            LOOM_TRY(d.destroy(kit.compute));
+            LOOM_TRY(d.destroy(kit.vertices));
+            LOOM_TRY(d.destroy(kit.indices));
+            return inside.ok() ? ended : inside;
+        };
+    };
+    // Records `record` (which returns nothing) inside render pass 'p' on the kit's target.
+    auto in_pass = [with_kit](std::function<void(rhi::CommandList&, const Kit&)> record) {
+        return with_kit([record](rhi::Device&, rhi::CommandList& list, const Kit& k) {
+            list.begin_render_pass(clear_pass("p", k.target, {0, 0, 0, 1}));
+            record(list, k);
+            list.end_render_pass();
+            return Status{};
+        });
+    };
+    auto outside_pass = [with_kit](std::function<void(rhi::CommandList&, const Kit&)> record) {
+        return with_kit([record](rhi::Device&, rhi::CommandList& list, const Kit& k) {
+            record(list, k);
+            return Status{};
+        });
+    };
+    const std::string outside_only = " is open; dispatches, copies, transitions and readbacks go outside render passes";
+
+    add("begin_frame twice", [](rhi::Device& d) {
+            d.begin_frame();
+            d.begin_frame();
+            return d.end_frame();
+        },
+        wrong_state("begin_frame: the previous frame was not ended; call end_frame first"));
+    add("end_frame without a frame", [](rhi::Device& d) { return d.end_frame(); },
+        wrong_state("end_frame: no frame is being recorded; call begin_frame first"));
+    add("end_frame with a render pass open", with_kit([](rhi::Device&, rhi::CommandList& list, const Kit& k) {
+            list.begin_render_pass(clear_pass("left open", k.target, {0, 0, 0, 1}));
+            return Status{};
+        }),
+        wrong_state("end_frame: render pass 'left open' was not ended"));
+    add("end_frame with a timer open", outside_pass([](rhi::CommandList& list, const Kit&) { list.begin_timer("t"); }),
+        wrong_state("end_frame: timer 't' was not ended"));
+    add("end_frame with debug groups open", outside_pass([](rhi::CommandList& list, const Kit&) {
+            list.push_debug_group("a");
+            list.push_debug_group("b");
+        }),
+        wrong_state("end_frame: 2 debug groups were not popped"));
+    add("render passes nested", in_pass([](rhi::CommandList& list, const Kit& k) {
+            list.begin_render_pass(clear_pass("q", k.target, {0, 0, 0, 1}));
+        }),
+        wrong_state("begin_render_pass 'q': render pass 'p' is still open; render passes do not nest"));
+    add("end_render_pass without a render pass",
+        outside_pass([](rhi::CommandList& list, const Kit&) { list.end_render_pass(); }),
+        wrong_state("end_render_pass: no render pass is open"));
+    add("draw outside a render pass", outside_pass([](rhi::CommandList& list, const Kit& k) {
+            list.set_pipeline(k.solid);
+            list.set_vertex_buffer(0, k.vertices);
+            list.draw(3);
+        }),
+        wrong_state("draw: no render pass is open; draws go inside a render pass"));
+    add("draw_indexed outside a render pass",
+        outside_pass([](rhi::CommandList& list, const Kit&) { list.draw_indexed(3); }),
+        wrong_state("draw_indexed: no render pass is open; draws go inside a render pass"));
+    add("draw without a pipeline", in_pass([](rhi::CommandList& list, const Kit&) { list.draw(3); }),
+        wrong_state("draw: no pipeline is set; call set_pipeline first"));
+    add("draw with a compute pipeline", in_pass([](rhi::CommandList& list, const Kit& k) {
+            list.set_pipeline(k.compute);
+            list.draw(3);
+        }),
+        wrong_state("draw: pipeline 'c' is a compute pipeline; draws need a graphics pipeline"));
+    add("set_pipeline with a null handle", in_pass([](rhi::CommandList& list, const Kit&) { list.set_pipeline({}); }),
+        expect({ErrorCode::InvalidHandle, "set_pipeline: pipeline handle is null"}));
+    const std::string wide_in_p = "pipeline 'solid' targets [RGBA16Float] depth Undefined x1, "
+                                  "render pass 'p' has [RGBA8Unorm] depth Undefined x1";
+    // Draws with `wide` (a pipeline for RGBA16Float) in pass 'p' on the RGBA8 target, set inside the pass or before it.
+    auto with_wide = [with_kit](bool set_inside) {
+        return with_kit([set_inside](rhi::Device& d, rhi::CommandList& list, const Kit& k) -> Status {
+            auto wide = make_solid_pipeline(d, Format::RGBA16Float);
+            if (!wide.ok()) return Error{ErrorCode::Backend, "setup: " + wide.error().to_string()};
+            if (!set_inside) list.set_pipeline(*wide);
+            list.begin_render_pass(clear_pass("p", k.target, {0, 0, 0, 1}));
+            if (set_inside) list.set_pipeline(*wide);
+            list.set_vertex_buffer(0, k.vertices);
+            list.draw(3);
+            list.end_render_pass();
+            return d.destroy(*wide);
+        });
+    };
+    add("pipeline for other attachments set in the pass", with_wide(true), invalid("set_pipeline: " + wide_in_p));
+    add("pipeline for other attachments set before the pass", with_wide(false), invalid("draw: " + wide_in_p));
+    // The pool's words for the destroyed object, noted by the misuse for the expected message.
+    auto stale_pipeline = std::make_shared<std::string>();
+    add("draw with a destroyed pipeline",
+        with_kit([stale_pipeline](rhi::Device& d, rhi::CommandList& list, const Kit& k) -> Status {
+            auto doomed = make_solid_pipeline(d, Format::RGBA8Unorm);
+            if (!doomed.ok()) return Error{ErrorCode::Backend, "setup: " + doomed.error().to_string()};
+            list.begin_render_pass(clear_pass("p", k.target, {0, 0, 0, 1}));
+            list.set_pipeline(*doomed);
+            list.set_vertex_buffer(0, k.vertices);
+            LOOM_TRY(d.destroy(*doomed));
+            *stale_pipeline = d.destroy(*doomed).error().message;
+            list.draw(3);
+            list.end_render_pass();
+            return Status{};
+        }),
+        [stale_pipeline](const rhi::Capabilities&) {
+            return Expected{ErrorCode::InvalidHandle, "draw: pipeline 'solid': " + *stale_pipeline};
+        });
+    add("draw without a vertex buffer the pipeline reads", in_pass([](rhi::CommandList& list, const Kit& k) {
+            list.set_pipeline(k.solid);
+            list.draw(3);
+        }),
+        wrong_state("draw: pipeline 'solid' reads vertex buffer slot 0, but no vertex buffer is bound there"));
+    auto stale_buffer = std::make_shared<std::string>();
+    // Draws (indexed when `indexed`) with a buffer destroyed after it was bound as vertex buffer or index buffer.
+    auto destroyed_buffer = [with_kit, stale_buffer](bool indexed) {
+        return with_kit([stale_buffer, indexed](rhi::Device& d, rhi::CommandList& list, const Kit& k) -> Status {
+            auto doomed = make_buffer_of(d, "doomed", indexed ? rhi::BufferUsage::Index : rhi::BufferUsage::Vertex,
+                                         std::vector<float>(9, 0.0f));
+            if (!doomed.ok()) return Error{ErrorCode::Backend, "setup: " + doomed.error().to_string()};
+            list.begin_render_pass(clear_pass("p", k.target, {0, 0, 0, 1}));
+            list.set_pipeline(k.solid);
+            list.set_vertex_buffer(0, indexed ? k.vertices : *doomed);
+            if (indexed) list.set_index_buffer(*doomed, rhi::IndexType::Uint16);
+            LOOM_TRY(d.destroy(*doomed));
+            *stale_buffer = d.destroy(*doomed).error().message;
+            if (indexed) {
+                list.draw_indexed(3);
+            } else {
+                list.draw(3);
+            }
+            list.end_render_pass();
+            return Status{};
+        });
+    };
+    add("draw with a destroyed vertex buffer", destroyed_buffer(false), [stale_buffer](const rhi::Capabilities&) {
+        return Expected{ErrorCode::InvalidHandle, "draw: vertex buffer slot 0: " + *stale_buffer};
+    });
+    add("draw_indexed with a destroyed index buffer", destroyed_buffer(true), [stale_buffer](const rhi::Capabilities&) {
+        return Expected{ErrorCode::InvalidHandle, "draw_indexed: index buffer: " + *stale_buffer};
+    });
+    add("draw_indexed without an index buffer", in_pass([](rhi::CommandList& list, const Kit& k) {
+            list.set_pipeline(k.solid);
+            list.set_vertex_buffer(0, k.vertices);
+            list.draw_indexed(3);
+        }),
+        wrong_state("draw_indexed: no index buffer is bound; call set_index_buffer first"));
+    add("dispatch without a pipeline", outside_pass([](rhi::CommandList& list, const Kit&) { list.dispatch(1); }),
+        wrong_state("dispatch: no pipeline is set; call set_pipeline first"));
+    add("dispatch with a graphics pipeline", outside_pass([](rhi::CommandList& list, const Kit& k) {
+            list.set_pipeline(k.solid);
+            list.dispatch(1);
+        }),
+        wrong_state("dispatch: pipeline 'solid' is a graphics pipeline; dispatches need a compute pipeline"));
+    add("dispatch inside a render pass", in_pass([](rhi::CommandList& list, const Kit& k) {
+            list.set_pipeline(k.compute);
+            list.dispatch(1);
+        }),
+        wrong_state("dispatch: render pass 'p'" + outside_only));
+    add("copy_buffer inside a render pass",
+        in_pass([](rhi::CommandList& list, const Kit& k) { list.copy_buffer(k.vertices, 0, k.indices, 0, 4); }),
+        wrong_state("copy_buffer: render pass 'p'" + outside_only));
+    add("copy_texture inside a render pass", in_pass([](rhi::CommandList& list, const Kit& k) {
+            list.copy_texture({k.target, {}, k.target, {.mip = 0, .layer = 0}});
+        }),
+        wrong_state("copy_texture: render pass 'p'" + outside_only));
+    add("texture transition inside a render pass", in_pass([](rhi::CommandList& list, const Kit& k) {
+            list.transition(k.target, rhi::ResourceState::ShaderRead);
+        }),
+        wrong_state("transition: render pass 'p'" + outside_only));
+    add("buffer transition inside a render pass", in_pass([](rhi::CommandList& list, const Kit& k) {
+            list.transition(k.vertices, rhi::ResourceState::VertexBuffer);
+        }),
+        wrong_state("transition: render pass 'p'" + outside_only));
+    add("read_texture inside a render pass", with_kit([](rhi::Device& d, rhi::CommandList& list, const Kit& k) {
+            list.begin_render_pass(clear_pass("p", k.target, {0, 0, 0, 1}));
+            Status status = read(d, k.target, 0, 0);
+            list.end_render_pass();
+            return status;
+        }),
+        wrong_state("read_texture of texture 't': render pass 'p'" + outside_only));
+    add("read_buffer inside a render pass", with_kit([](rhi::Device& d, rhi::CommandList& list, const Kit& k) {
+            list.begin_render_pass(clear_pass("p", k.target, {0, 0, 0, 1}));
+            auto bytes = d.read_buffer(k.vertices, 0, 4);
+            list.end_render_pass();
+            return bytes.ok() ? Status{} : Status(bytes.take_error());
+        }),
+        wrong_state("read_buffer of buffer 'v': render pass 'p'" + outside_only));
+    add("timers nested", outside_pass([](rhi::CommandList& list, const Kit&) {
+            list.begin_timer("a");
+            list.begin_timer("b");
+            list.end_timer();
+        }),
+        wrong_state("begin_timer 'b': timer 'a' is still open; timers do not nest"));
+    add("end_timer without a timer", outside_pass([](rhi::CommandList& list, const Kit&) { list.end_timer(); }),
+        wrong_state("end_timer: no timer is open"));
+    add("pop_debug_group without a group",
+        outside_pass([](rhi::CommandList& list, const Kit&) { list.pop_debug_group(); }),
+        wrong_state("pop_debug_group: no debug group is open"));
     return rows;
 }
 
@@ -571,10 +828,10 @@ TEST_P(MisuseTable, EveryRuleGivesOneCodeAndMessageOnEveryBackend) {
     for (const Row& row : table()) {
         SCOPED_TRACE(row.rule);
         if (!row.applies(caps)) continue;
-        const Expected expected = row.expected(caps);
         // Refused before the API sees it: no debug or validation message may be logged (the
         // fixture fails the test on one).
         const Status status = row.misuse(device());
+        const Expected expected = row.expected(caps);
         ASSERT_FALSE(status.ok()) << "accepted";
         EXPECT_EQ(error_code_name(status.error().code), error_code_name(expected.code)) << status.error().message;
         EXPECT_EQ(status.error().message, expected.message);

@@ -159,5 +159,34 @@ TEST(Validation, TextureWritesResolveTheRestOfTheMip) {
     EXPECT_EQ(slices->layer, 0u);
 }
 
+TEST(Validation, TransitionsNeedAStateOfTheResourceWithItsUsage) {
+    Capabilities caps = capable_device();
+    const TextureDesc color = texture(Format::RGBA8Unorm, TextureUsage::Sampled | TextureUsage::ColorAttachment);
+    for (ResourceState state : {ResourceState::Undefined, ResourceState::ShaderRead, ResourceState::RenderTarget,
+                                ResourceState::CopySrc, ResourceState::CopyDst, ResourceState::Present}) {
+        EXPECT_TRUE(validation::texture_transition(color, state, caps).ok()) << resource_state_name(state);
+    }
+    expect_error(validation::texture_transition(color, ResourceState::DepthRead, caps), ErrorCode::InvalidArgument,
+                 "transition: texture 't' (RGBA8Unorm) cannot be in state DepthRead");
+    expect_error(validation::texture_transition(color, ResourceState::IndexBuffer, caps), ErrorCode::InvalidArgument,
+                 "transition: texture 't' (RGBA8Unorm) cannot be in state IndexBuffer");
+    expect_error(validation::texture_transition(color, ResourceState::Storage, caps), ErrorCode::InvalidArgument,
+                 "transition: texture 't' to Storage needs Storage usage");
+    const TextureDesc depth = texture(Format::Depth32F, TextureUsage::Sampled);
+    EXPECT_TRUE(validation::texture_transition(depth, ResourceState::DepthRead, caps).ok());
+    expect_error(validation::texture_transition(depth, ResourceState::RenderTarget, caps), ErrorCode::InvalidArgument,
+                 "transition: texture 't' (Depth32F) cannot be in state RenderTarget");
+    expect_error(validation::texture_transition(depth, ResourceState::DepthWrite, caps), ErrorCode::InvalidArgument,
+                 "transition: texture 't' to DepthWrite needs DepthStencilAttachment usage");
+    caps.formats[static_cast<std::size_t>(Format::Depth32F)].sampled = false;
+    expect_error(validation::texture_transition(depth, ResourceState::DepthRead, caps), ErrorCode::Unsupported,
+                 "transition: texture 't' to DepthRead: Depth32F cannot be sampled on this device");
+
+    const BufferDesc buffer{"b", 64, BufferUsage::Storage};
+    EXPECT_TRUE(validation::buffer_transition(buffer, ResourceState::IndirectArgument).ok());
+    expect_error(validation::buffer_transition(buffer, ResourceState::Present), ErrorCode::InvalidArgument,
+                 "transition: buffer 'b' cannot be in state Present");
+}
+
 }  // namespace
 }  // namespace loom::rhi

@@ -61,38 +61,26 @@ void clear_color(GLuint fbo, GLint index, rhi::Format format, const std::array<d
 
 // ---- frame bookkeeping -----------------------------------------------------------------------
 
-void GlCommandList::begin(uint64_t frame_index) {
-    recording_ = true;
-    frame_index_ = frame_index;
+GlCommandList::GlCommandList(GlDevice& device)
+    : device_(&device), state_(device.pipeline_lookup(), device.resource_lookup().buffer) {}
+
+void GlCommandList::begin() {
+    state_.begin_frame();
     commands_.clear();
     first_error_.reset();
-    pass_.reset();
-    pipeline_ = {};
-    groups_ = {};
-    vertex_buffers_ = {};
-    index_buffer_ = {};
-    push_size_ = 0;
+    pass_framebuffer_ = 0;
+    pass_discard_after_.clear();
     push_dirty_ = false;
     push_binding_.reset();
-    open_timer_.reset();
     timers_.clear();
-    debug_depth_ = 0;
 }
 
 std::vector<GlCommand> GlCommandList::finish() {
-    if (pass_) {
-        fail(ErrorCode::InvalidState, "end_frame: render pass " + in_quotes(pass_->label) + " was not ended");
-        end_render_pass();
-    }
-    if (open_timer_) {
-        fail(ErrorCode::InvalidState, "end_frame: timer " + in_quotes(*open_timer_) + " was not ended");
-        end_timer();
-    }
-    if (debug_depth_ > 0) {
-        fail(ErrorCode::InvalidState, "end_frame: " + std::to_string(debug_depth_) + " debug group(s) were not popped");
-        while (debug_depth_ > 0) pop_debug_group();
-    }
-    recording_ = false;
+    accepted(state_.check_nothing_open());
+    if (state_.render_pass()) end_render_pass();
+    if (state_.open_timer()) end_timer();
+    while (state_.debug_group_depth() > 0) pop_debug_group();
+    state_.end_frame();
     return std::move(commands_);
 }
 
@@ -100,30 +88,19 @@ void GlCommandList::fail(ErrorCode code, std::string message) {
     if (!first_error_) first_error_ = Error{code, std::move(message)};
 }
 
-std::string GlCommandList::where(std::string_view command) const {
-    std::string out(command);
-    if (pass_) out += " in render pass " + in_quotes(pass_->label);
-    return out + ": ";
+bool GlCommandList::accepted(Status status) {
+    if (status.ok()) return true;
+    fail(status.take_error());
+    return false;
 }
 
 // ---- render passes ---------------------------------------------------------------------------
 
 void GlCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
     const std::string what = "begin_render_pass " + in_quotes(desc.label) + ": ";
-    if (pass_) {
-        fail(ErrorCode::InvalidState, what + "render pass " + in_quotes(pass_->label) + " is still open");
-        return;
-    }
+    if (!accepted(state_.check_begin_render_pass(desc.label))) return;
     auto shape = rhi::validation::render_pass(desc, device_->capabilities(), device_->resource_lookup().texture);
-    if (!shape.ok()) {
-        fail(shape.error().code, shape.error().message);
-        return;
-    }
-    PassState pass;
-    pass.label = desc.label;
-    pass.width = shape->width;
-    pass.height = shape->height;
-    pass.samples = shape->samples;
+    if (!shape.ok()) return fail(shape.take_error());
     // Every handle was found by the validation above.
     std::vector<std::pair<const GlTexture*, std::array<uint32_t, 2>>> colors;
     std::vector<GlTexture*> color_textures;
@@ -131,20 +108,14 @@ void GlCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
         GlTexture* t = *device_->textures().get(a.texture);
         colors.push_back({t, {a.mip, a.layer}});
         color_textures.push_back(t);
-        pass.color_formats.push_back(t->desc.format);
     }
-    GlTexture* depth = nullptr;
-    if (desc.depth) {
-        depth = *device_->textures().get(desc.depth->texture);
-        pass.depth_format = depth->desc.format;
-    }
+    GlTexture* depth = desc.depth ? *device_->textures().get(desc.depth->texture) : nullptr;
     const GLuint fbo = device_->framebuffer_for(colors, depth, desc.depth ? std::array<uint32_t, 2>{desc.depth->mip, desc.depth->layer}
                                                                           : std::array<uint32_t, 2>{0, 0});
     if (fbo == 0) {
         fail(ErrorCode::Unsupported, what + "this combination of attachments is not a complete framebuffer on this device");
         return;
     }
-    pass.framebuffer = fbo;
     // The pass moves its attachments into the attachment states itself.
     for (GlTexture* t : color_textures) t->state = ResourceState::RenderTarget;
     if (depth) depth->state = ResourceState::DepthWrite;
@@ -156,35 +127,35 @@ void GlCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
     };
     std::vector<ColorClear> color_clears;
     std::vector<GLenum> discard_before;
+    std::vector<GLenum> discard_after;
     for (std::size_t i = 0; i < desc.colors.size(); ++i) {
         const rhi::ColorAttachment& a = desc.colors[i];
         const auto index = static_cast<GLint>(i);
-        if (a.load == rhi::LoadOp::Clear) color_clears.push_back({index, pass.color_formats[i], a.clear});
+        if (a.load == rhi::LoadOp::Clear) color_clears.push_back({index, shape->color_formats[i], a.clear});
         if (a.load == rhi::LoadOp::DontCare) discard_before.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
-        if (a.store == rhi::StoreOp::DontCare) pass.discard_after.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
+        if (a.store == rhi::StoreOp::DontCare) discard_after.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
     }
     bool clear_depth = false, clear_stencil = false;
     float depth_value = 1.0f;
     GLint stencil_value = 0;
     if (desc.depth) {
-        const rhi::FormatInfo& info = rhi::format_info(pass.depth_format);
+        const rhi::FormatInfo& info = rhi::format_info(shape->depth_format);
         const rhi::DepthAttachment& d = *desc.depth;
         if (info.has_depth()) {
             clear_depth = d.depth_load == rhi::LoadOp::Clear;
             if (d.depth_load == rhi::LoadOp::DontCare) discard_before.push_back(GL_DEPTH_ATTACHMENT);
-            if (d.depth_store == rhi::StoreOp::DontCare) pass.discard_after.push_back(GL_DEPTH_ATTACHMENT);
+            if (d.depth_store == rhi::StoreOp::DontCare) discard_after.push_back(GL_DEPTH_ATTACHMENT);
         }
         if (info.has_stencil()) {
             clear_stencil = d.stencil_load == rhi::LoadOp::Clear;
             if (d.stencil_load == rhi::LoadOp::DontCare) discard_before.push_back(GL_STENCIL_ATTACHMENT);
-            if (d.stencil_store == rhi::StoreOp::DontCare) pass.discard_after.push_back(GL_STENCIL_ATTACHMENT);
+            if (d.stencil_store == rhi::StoreOp::DontCare) discard_after.push_back(GL_STENCIL_ATTACHMENT);
         }
         depth_value = d.clear_depth;
         stencil_value = static_cast<GLint>(std::min<uint32_t>(d.clear_stencil, 255));
     }
-    const uint32_t width = pass.width, height = pass.height;
+    const uint32_t width = shape->width, height = shape->height;
     const auto color_count = static_cast<uint32_t>(desc.colors.size());
-    const std::string label = desc.label;
     record([=](GlStateCache& cache) {
         cache.bind_draw_framebuffer(fbo);
         if (!discard_before.empty()) {
@@ -209,74 +180,32 @@ void GlCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
         cache.viewport(0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height), 0.0f, 1.0f);
         cache.scissor(0, 0, static_cast<int32_t>(width), static_cast<int32_t>(height));
     });
-    pass_ = std::move(pass);
+    state_.render_pass_begun(desc.label, std::move(*shape));
+    pass_framebuffer_ = fbo;
+    pass_discard_after_ = std::move(discard_after);
     device_->count_render_pass();
 }
 
 void GlCommandList::end_render_pass() {
-    if (!pass_) {
-        fail(ErrorCode::InvalidState, "end_render_pass: no render pass is open");
-        return;
-    }
-    if (!pass_->discard_after.empty()) {
-        const GLuint fbo = pass_->framebuffer;
-        std::vector<GLenum> discard = pass_->discard_after;
-        record([fbo, discard](GlStateCache& cache) {
+    if (!accepted(state_.end_render_pass())) return;
+    if (!pass_discard_after_.empty()) {
+        record([fbo = pass_framebuffer_, discard = std::move(pass_discard_after_)](GlStateCache& cache) {
             glInvalidateNamedFramebufferData(fbo, static_cast<GLsizei>(discard.size()), discard.data());
             cache.count_call();
         });
     }
-    pass_.reset();
+    pass_discard_after_.clear();
 }
 
 // ---- state -----------------------------------------------------------------------------------
 
 void GlCommandList::set_pipeline(rhi::PipelineHandle pipeline) {
-    auto found = device_->pipelines().get(pipeline);
-    if (!found.ok()) {
-        pipeline_ = {};
-        fail(ErrorCode::InvalidHandle, where("set_pipeline") + found.error().message);
-        return;
-    }
-    const GlPipeline& p = **found;
-    if (!p.compute && pass_) {
-        const bool formats_match = p.color_formats == pass_->color_formats && p.depth_format == pass_->depth_format;
-        if (!formats_match || p.samples != pass_->samples) {
-            std::string pass_formats, pipe_formats;
-            for (auto f : pass_->color_formats) pass_formats += std::string(pass_formats.empty() ? "" : ", ") + std::string(rhi::format_name(f));
-            for (auto f : p.color_formats) pipe_formats += std::string(pipe_formats.empty() ? "" : ", ") + std::string(rhi::format_name(f));
-            pipeline_ = {};
-            fail(ErrorCode::InvalidArgument,
-                 where("set_pipeline") + "pipeline " + in_quotes(p.name) + " targets [" + pipe_formats + "] depth " +
-                     std::string(rhi::format_name(p.depth_format)) + " x" + std::to_string(p.samples) + ", the pass has [" +
-                     pass_formats + "] depth " + std::string(rhi::format_name(pass_->depth_format)) + " x" +
-                     std::to_string(pass_->samples));
-            return;
-        }
-    }
-    pipeline_ = pipeline;
-}
-
-GlPipeline* GlCommandList::current_pipeline(std::string_view command, bool compute) {
-    if (pipeline_.is_null()) {
-        fail(ErrorCode::InvalidState, where(command) + "no pipeline is set");
-        return nullptr;
-    }
-    GlPipeline* p = device_->pipelines().find(pipeline_);
-    if (!p) {
-        fail(ErrorCode::InvalidHandle, where(command) + "the pipeline was destroyed");
-        return nullptr;
-    }
-    if (p->compute != compute) {
-        fail(ErrorCode::InvalidState, where(command) + "pipeline " + in_quotes(p->name) + " is a " +
-                                          (p->compute ? "compute" : "graphics") + " pipeline");
-        return nullptr;
-    }
-    return p;
+    // The tracker checks the pipeline against the open pass; GL binds it at the next draw.
+    accepted(state_.set_pipeline(pipeline));
 }
 
 void GlCommandList::set_viewport(const rhi::Viewport& v) {
-    if (Status valid = rhi::validation::viewport(v); !valid) return fail(valid.error().code, valid.error().message);
+    if (!accepted(rhi::validation::viewport(v))) return;
     // With the upper-left origin, GL window y runs down from row 0, exactly like loom's
     // top-left viewport rectangles: no flip.
     record([v](GlStateCache& cache) { cache.viewport(v.x, v.y, v.width, v.height, v.min_depth, v.max_depth); });
@@ -288,42 +217,26 @@ void GlCommandList::set_scissor(const rhi::Rect& r) {
     });
 }
 
+// Bind groups, push constants and vertex and index buffers are kept by the tracker and
+// resolved to GL names at each draw or dispatch.
 void GlCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
-    if (Status valid = rhi::validation::bind_group(set, group); !valid) return fail(valid.error().code, valid.error().message);
-    groups_[set] = group;
+    accepted(state_.set_bind_group(set, group));
 }
 
 void GlCommandList::push_constants(std::span<const std::byte> data, uint32_t offset) {
-    if (Status valid = rhi::validation::push_constants(offset, data.size()); !valid) return fail(valid.error().code, valid.error().message);
-    std::copy(data.begin(), data.end(), push_data_.begin() + offset);
-    push_size_ = std::max(push_size_, offset + static_cast<uint32_t>(data.size()));
-    push_dirty_ = true;
+    if (accepted(state_.push_constants(data, offset))) push_dirty_ = true;
 }
 
 void GlCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, uint64_t offset) {
-    if (Status valid = rhi::validation::vertex_buffer_slot(slot); !valid) return fail(valid.error().code, valid.error().message);
-    auto found = device_->buffers().get(buffer);
-    if (!found.ok()) return fail(ErrorCode::InvalidHandle, "set_vertex_buffer: " + found.error().message);
-    if (Status valid = rhi::validation::vertex_buffer(slot, (*found)->desc, offset); !valid) {
-        return fail(valid.error().code, valid.error().message);
-    }
-    vertex_buffers_[slot] = {buffer, offset};
+    accepted(state_.set_vertex_buffer(slot, buffer, offset));
 }
 
 void GlCommandList::set_index_buffer(rhi::BufferHandle buffer, rhi::IndexType type, uint64_t offset) {
-    auto found = device_->buffers().get(buffer);
-    if (!found.ok()) return fail(ErrorCode::InvalidHandle, "set_index_buffer: " + found.error().message);
-    if (Status valid = rhi::validation::index_buffer((*found)->desc, type, offset); !valid) {
-        return fail(valid.error().code, valid.error().message);
-    }
-    index_buffer_ = {buffer, type, offset};
+    accepted(state_.set_index_buffer(buffer, type, offset));
 }
 
 rhi::BufferBinding GlCommandList::transient_uniforms(std::span<const std::byte> data) {
-    if (!recording_) {
-        fail(ErrorCode::InvalidState, "transient_uniforms: no frame is being recorded");
-        return {};
-    }
+    if (!accepted(state_.check_recording("transient_uniforms"))) return {};
     return device_->allocate_transient(data);
 }
 
@@ -335,10 +248,10 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
     std::vector<const rhi::BindingEntry*> entries;
     for (const PipelineBinding& b : p.bindings) {
         const rhi::validation::PipelineSlot slot{b.set, b.binding, b.kind, b.name};
-        const rhi::BindGroup* group = groups_[b.set] ? &*groups_[b.set] : nullptr;
-        auto entry = rhi::validation::binding(command, p.name, slot, group, device_->capabilities(), lookup);
+        auto entry =
+            rhi::validation::binding(command, p.name, slot, state_.bind_group(b.set), device_->capabilities(), lookup);
         if (!entry.ok()) {
-            fail(entry.error().code, entry.error().message);
+            fail(entry.take_error());
             return false;
         }
         entries.push_back(*entry);
@@ -398,8 +311,8 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
         if (push_dirty_ || !push_binding_ || push_binding_->size < p.push_constant_size) {
             // A copy of the push-constant block per change, so that every draw sees the
             // values current when it was recorded.
-            const uint32_t size = std::max(p.push_constant_size, push_size_);
-            push_binding_ = device_->allocate_transient(std::span<const std::byte>(push_data_.data(), size));
+            const uint32_t size = std::max(p.push_constant_size, state_.push_constant_size());
+            push_binding_ = device_->allocate_transient(state_.push_constant_data().first(size));
             push_dirty_ = false;
         }
         auto buffer = device_->buffers().get(push_binding_->buffer);
@@ -447,14 +360,7 @@ void GlCommandList::draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t off
     auto found = device_->buffers().get(buffer);
     if (!found.ok()) return fail(ErrorCode::InvalidHandle, std::string(command) + ": argument buffer: " + found.error().message);
     const GlBuffer& b = **found;
-    if (Status valid = rhi::validation::indirect_draws(b.desc, offset, draw_count, stride); !valid) {
-        return fail(valid.error().code, valid.error().message);
-    }
-    if (index_buffer_.offset != 0) {
-        // GL's indirect draws count first_index from the start of the element buffer.
-        fail(ErrorCode::InvalidArgument, where(command) + "the index buffer must be bound at offset 0");
-        return;
-    }
+    if (!accepted(rhi::validation::indirect_draws(b.desc, offset, draw_count, stride))) return;
     draw_common(true, 0, 0, 0, 0, 0,
                 IndirectDraw{b.name, static_cast<uintptr_t>(offset), static_cast<GLsizei>(draw_count), static_cast<GLsizei>(stride)});
 }
@@ -462,23 +368,29 @@ void GlCommandList::draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t off
 void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
                                 uint32_t first_instance, const std::optional<IndirectDraw>& indirect) {
     const char* command = indirect ? "draw_indexed_indirect" : indexed ? "draw_indexed" : "draw";
-    if (!pass_) {
-        fail(ErrorCode::InvalidState, std::string(command) + ": not inside a render pass");
-        return;
-    }
-    GlPipeline* p = current_pipeline(command, false);
-    if (!p) return;
+    if (!accepted(state_.check_draw(command, indexed))) return;
+    // The tracker found the pipeline and the buffers alive.
+    const GlPipeline* p = *device_->pipelines().get(state_.pipeline());
+    const rhi::CommandListState::IndexBuffer& bound_indices = state_.index_buffer();
     if (indirect && p->base_instance_location >= 0) {
         // GL offsets gl_InstanceIndex by a uniform set per draw: one call cannot give each
         // command its own first instance (per-instance attributes are offset by GL itself).
-        fail(ErrorCode::Unsupported, where(command) + "pipeline " + in_quotes(p->name) +
+        fail(ErrorCode::Unsupported, std::string(command) + ": pipeline " + in_quotes(p->name) +
                                          " reads gl_InstanceIndex, which GL's indirect draws cannot offset by each "
                                          "command's first instance; use a per-instance vertex attribute");
         return;
     }
-    if (indirect ? indirect->count == 0 : (count == 0 || instance_count == 0)) return;
+    if (indirect && bound_indices.offset != 0) {
+        // GL's indirect draws count first_index from the start of the element buffer.
+        fail(ErrorCode::InvalidArgument, std::string(command) + ": the index buffer must be bound at offset 0");
+        return;
+    }
     std::vector<ResolvedBinding> bindings;
     if (!resolve_bindings(*p, command, bindings)) return;
+    // Indirect draws' index ranges are in GPU memory: the GPU checks them.
+    if (indexed && !indirect && !accepted(state_.check_index_range(first, count))) return;
+    // Checked like any other draw (as Vulkan records it), then nothing to draw.
+    if (indirect ? indirect->count == 0 : (count == 0 || instance_count == 0)) return;
 
     struct VertexBinding {
         uint32_t slot;
@@ -488,35 +400,19 @@ void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_
     };
     std::vector<VertexBinding> vertex;
     for (uint32_t slot = 0; slot < p->strides.size(); ++slot) {
-        const VertexBufferSlot& vb = vertex_buffers_[slot];
-        auto buffer = device_->buffers().get(vb.buffer);
-        if (!buffer.ok()) {
-            fail(ErrorCode::InvalidHandle, where(command) + "vertex buffer slot " + std::to_string(slot) + " of pipeline " +
-                                               in_quotes(p->name) + ": " + buffer.error().message);
-            return;
-        }
-        vertex.push_back({slot, (*buffer)->name, static_cast<GLintptr>(vb.offset), static_cast<GLsizei>(p->strides[slot])});
+        const rhi::CommandListState::VertexBuffer& vb = state_.vertex_buffer(slot);
+        vertex.push_back({slot, (*device_->buffers().get(vb.buffer))->name, static_cast<GLintptr>(vb.offset),
+                          static_cast<GLsizei>(p->strides[slot])});
     }
     GLuint index_buffer = 0;
     GLenum index_type = GL_UNSIGNED_INT;
     uintptr_t index_offset = 0;
     if (indexed) {
-        auto buffer = device_->buffers().get(index_buffer_.buffer);
-        if (!buffer.ok()) {
-            fail(ErrorCode::InvalidHandle, where(command) + "index buffer: " + buffer.error().message);
-            return;
-        }
-        const bool u16 = index_buffer_.type == rhi::IndexType::Uint16;
-        index_buffer = (*buffer)->name;
+        const bool u16 = bound_indices.type == rhi::IndexType::Uint16;
+        index_buffer = (*device_->buffers().get(bound_indices.buffer))->name;
         index_type = u16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
-        const uint64_t index_bytes = u16 ? 2 : 4;
-        // Indirect draws' index ranges are in GPU memory: the GPU checks them.
-        if (!indirect) {
-            Status valid = rhi::validation::index_range((*buffer)->desc, index_buffer_.type, index_buffer_.offset, first, count);
-            if (!valid) return fail(valid.error().code, valid.error().message);
-        }
         // Inside the buffer (checked above; indirect draws start at index 0).
-        index_offset = static_cast<uintptr_t>(index_buffer_.offset + uint64_t{first} * index_bytes);
+        index_offset = static_cast<uintptr_t>(bound_indices.offset + uint64_t{first} * (u16 ? 2 : 4));
     }
     const GLuint program = p->program, vao = p->vao;
     const GLenum topology = p->topology;
@@ -557,15 +453,11 @@ void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_
 }
 
 void GlCommandList::dispatch(uint32_t groups_x, uint32_t groups_y, uint32_t groups_z) {
-    if (pass_) {
-        fail(ErrorCode::InvalidState, where("dispatch") + "dispatches must be outside render passes");
-        return;
-    }
-    GlPipeline* p = current_pipeline("dispatch", true);
-    if (!p) return;
-    if (groups_x == 0 || groups_y == 0 || groups_z == 0) return;
+    if (!accepted(state_.check_dispatch())) return;
+    const GlPipeline* p = *device_->pipelines().get(state_.pipeline());  // found by the tracker
     std::vector<ResolvedBinding> bindings;
     if (!resolve_bindings(*p, "dispatch", bindings)) return;
+    if (groups_x == 0 || groups_y == 0 || groups_z == 0) return;
     const GLuint program = p->program;
     record([=](GlStateCache& cache) {
         cache.use_program(program);
@@ -580,10 +472,7 @@ void GlCommandList::dispatch(uint32_t groups_x, uint32_t groups_y, uint32_t grou
 
 void GlCommandList::copy_buffer(rhi::BufferHandle src, uint64_t src_offset, rhi::BufferHandle dst, uint64_t dst_offset,
                                 uint64_t size) {
-    if (pass_) {
-        fail(ErrorCode::InvalidState, where("copy_buffer") + "copies must be outside render passes");
-        return;
-    }
+    if (!accepted(state_.check_outside_render_pass("copy_buffer"))) return;
     auto s = device_->buffers().get(src);
     if (!s.ok()) {
         fail(ErrorCode::InvalidHandle, "copy_buffer source: " + s.error().message);
@@ -596,9 +485,7 @@ void GlCommandList::copy_buffer(rhi::BufferHandle src, uint64_t src_offset, rhi:
     }
     const GlBuffer& sb = **s;
     const GlBuffer& db = **d;
-    if (Status valid = rhi::validation::buffer_copy(sb.desc, src_offset, db.desc, dst_offset, size, &sb == &db); !valid) {
-        return fail(valid.error().code, valid.error().message);
-    }
+    if (!accepted(rhi::validation::buffer_copy(sb.desc, src_offset, db.desc, dst_offset, size, &sb == &db))) return;
     if (size == 0) return;
     const GLuint from = sb.name, to = db.name;
     record([=](GlStateCache& cache) {
@@ -609,10 +496,7 @@ void GlCommandList::copy_buffer(rhi::BufferHandle src, uint64_t src_offset, rhi:
 }
 
 void GlCommandList::copy_texture(const rhi::TextureCopy& copy) {
-    if (pass_) {
-        fail(ErrorCode::InvalidState, where("copy_texture") + "copies must be outside render passes");
-        return;
-    }
+    if (!accepted(state_.check_outside_render_pass("copy_texture"))) return;
     auto s = device_->textures().get(copy.src);
     if (!s.ok()) {
         fail(ErrorCode::InvalidHandle, "copy_texture source: " + s.error().message);
@@ -626,7 +510,7 @@ void GlCommandList::copy_texture(const rhi::TextureCopy& copy) {
     GlTexture& st = **s;
     GlTexture& dt = **d;
     auto range = rhi::validation::texture_copy(st.desc, dt.desc, &st == &dt, copy);
-    if (!range.ok()) return fail(range.error().code, range.error().message);
+    if (!range.ok()) return fail(range.take_error());
     // Layers of arrays and cubes are the z of glCopyImageSubData, as are depth slices of 3D textures.
     const bool is3d = st.desc.dimension == rhi::TextureDimension::Tex3D;
     const rhi::Origin3D so = range->src_origin, dso = range->dst_origin;
@@ -654,17 +538,11 @@ void GlCommandList::copy_texture(const rhi::TextureCopy& copy) {
 }
 
 void GlCommandList::transition(rhi::TextureHandle texture, ResourceState state) {
+    if (!accepted(state_.check_outside_render_pass("transition"))) return;
     auto found = device_->textures().get(texture);
-    if (!found.ok()) {
-        fail(ErrorCode::InvalidHandle, where("transition") + found.error().message);
-        return;
-    }
+    if (!found.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + found.error().message);
     GlTexture& t = **found;
-    if (pass_) {
-        fail(ErrorCode::InvalidState, where("transition") + "texture " + in_quotes(t.desc.name) +
-                                          " cannot change state inside a render pass");
-        return;
-    }
+    if (!accepted(rhi::validation::texture_transition(t.desc, state, device_->capabilities()))) return;
     if (t.state == ResourceState::Storage) {
         // Storage writes are the only accesses GL does not order by itself.
         const GLbitfield bits = barrier_after_storage(state);
@@ -679,17 +557,11 @@ void GlCommandList::transition(rhi::TextureHandle texture, ResourceState state) 
 }
 
 void GlCommandList::transition(rhi::BufferHandle buffer, ResourceState state) {
+    if (!accepted(state_.check_outside_render_pass("transition"))) return;
     auto found = device_->buffers().get(buffer);
-    if (!found.ok()) {
-        fail(ErrorCode::InvalidHandle, where("transition") + found.error().message);
-        return;
-    }
+    if (!found.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + found.error().message);
     GlBuffer& b = **found;
-    if (pass_) {
-        fail(ErrorCode::InvalidState, where("transition") + "buffer " + in_quotes(b.desc.name) +
-                                          " cannot change state inside a render pass");
-        return;
-    }
+    if (!accepted(rhi::validation::buffer_transition(b.desc, state))) return;
     if (b.state == ResourceState::Storage) {
         const GLbitfield bits = barrier_after_storage(state);
         if (bits != 0) {
@@ -705,13 +577,8 @@ void GlCommandList::transition(rhi::BufferHandle buffer, ResourceState state) {
 // ---- timers and debug groups -----------------------------------------------------------------
 
 void GlCommandList::begin_timer(std::string_view label) {
-    if (open_timer_) {
-        fail(ErrorCode::InvalidState, "begin_timer " + in_quotes(std::string(label)) + ": timer " + in_quotes(*open_timer_) +
-                                          " is still open (timers do not nest)");
-        return;
-    }
+    if (!accepted(state_.begin_timer(label))) return;
     const GLuint query = device_->acquire_query();
-    open_timer_ = std::string(label);
     timers_.emplace_back(std::string(label), query);
     record([query](GlStateCache& cache) {
         glBeginQuery(GL_TIME_ELAPSED, query);
@@ -720,11 +587,7 @@ void GlCommandList::begin_timer(std::string_view label) {
 }
 
 void GlCommandList::end_timer() {
-    if (!open_timer_) {
-        fail(ErrorCode::InvalidState, "end_timer: no timer is open");
-        return;
-    }
-    open_timer_.reset();
+    if (!accepted(state_.end_timer())) return;
     record([](GlStateCache& cache) {
         glEndQuery(GL_TIME_ELAPSED);
         cache.count_call();
@@ -732,7 +595,7 @@ void GlCommandList::end_timer() {
 }
 
 void GlCommandList::push_debug_group(std::string_view label) {
-    ++debug_depth_;
+    state_.push_debug_group();
     std::string text(label);
     record([text](GlStateCache& cache) {
         glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, static_cast<GLsizei>(text.size()), text.data());
@@ -741,11 +604,7 @@ void GlCommandList::push_debug_group(std::string_view label) {
 }
 
 void GlCommandList::pop_debug_group() {
-    if (debug_depth_ == 0) {
-        fail(ErrorCode::InvalidState, "pop_debug_group: no debug group is open");
-        return;
-    }
-    --debug_depth_;
+    if (!accepted(state_.pop_debug_group())) return;
     record([](GlStateCache& cache) {
         glPopDebugGroup();
         cache.count_call();

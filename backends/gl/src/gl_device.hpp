@@ -24,6 +24,7 @@
 #include "gl_state_cache.hpp"
 #include "loom/gl/gl_device.hpp"
 #include "loom/gl/gl_embed.hpp"
+#include "loom/rhi/command_list_state.hpp"
 #include "loom/rhi/handle_pool.hpp"
 #include "loom/rhi/validation.hpp"
 
@@ -38,7 +39,7 @@ using rhi::kMaxPushConstantBytes;
 
 class GlCommandList final : public rhi::CommandList {
 public:
-    explicit GlCommandList(GlDevice& device) : device_(&device) {}
+    explicit GlCommandList(GlDevice& device);
 
     void begin_render_pass(const rhi::RenderPassDesc& desc) override;
     void end_render_pass() override;
@@ -66,37 +67,22 @@ public:
     void pop_debug_group() override;
 
     // -- used by GlDevice ---------------------------------------------------------------
-    void begin(uint64_t frame_index);
-    /// Closes what was left open (recording an error for each) and hands over the commands.
+    /// Starts recording a frame (the device has checked that none is being recorded).
+    void begin();
+    /// Closes what was left open (recording an error for the first) and hands over the commands.
     std::vector<GlCommand> finish();
-    [[nodiscard]] bool recording() const { return recording_; }
+    /// What is open and bound; also whether a frame is being recorded.
+    [[nodiscard]] const rhi::CommandListState& state() const { return state_; }
+    [[nodiscard]] bool recording() const { return state_.recording(); }
     /// The first error recorded in this frame, if any.
     std::optional<Error>& first_error() { return first_error_; }
     /// Timer queries recorded this frame, in order.
     std::vector<std::pair<std::string, GLuint>>& timers() { return timers_; }
     /// Records an error from outside (e.g. begin_frame called twice).
     void fail(ErrorCode code, std::string message);
+    void fail(Error error) { fail(error.code, std::move(error.message)); }
 
 private:
-    struct PassState {
-        std::string label;
-        GLuint framebuffer = 0;
-        std::vector<rhi::Format> color_formats;
-        rhi::Format depth_format = rhi::Format::Undefined;
-        uint32_t samples = 1;
-        uint32_t width = 0;
-        uint32_t height = 0;
-        std::vector<GLenum> discard_after;  ///< attachments whose store op is DontCare
-    };
-    struct VertexBufferSlot {
-        rhi::BufferHandle buffer;
-        uint64_t offset = 0;
-    };
-    struct IndexBufferState {
-        rhi::BufferHandle buffer;
-        rhi::IndexType type = rhi::IndexType::Uint32;
-        uint64_t offset = 0;
-    };
     /// A binding resolved to GL names, ready to be applied through the state cache.
     struct ResolvedBinding {
         BindingKind kind = BindingKind::UniformBuffer;
@@ -112,12 +98,11 @@ private:
     };
 
     void record(GlCommand command) { commands_.push_back(std::move(command)); }
-    /// Prefix of error messages: which command of which pass.
-    [[nodiscard]] std::string where(std::string_view command) const;
+    /// True when `status` is ok; else records its error (the command is then skipped).
+    bool accepted(Status status);
     /// Resolves the current pipeline's bindings from the bound groups (and push constants);
     /// false (with an error recorded) when something is missing or in the wrong state.
     bool resolve_bindings(const GlPipeline& pipeline, std::string_view command, std::vector<ResolvedBinding>& out);
-    GlPipeline* current_pipeline(std::string_view command, bool compute);
     /// An indirect draw's arguments: glMultiDrawElementsIndirect from `buffer`.
     struct IndirectDraw {
         GLuint buffer = 0;
@@ -131,22 +116,15 @@ private:
     static void apply_bindings(GlStateCache& cache, const std::vector<ResolvedBinding>& bindings);
 
     GlDevice* device_;
-    bool recording_ = false;
-    uint64_t frame_index_ = 0;
+    rhi::CommandListState state_;
     std::vector<GlCommand> commands_;
     std::optional<Error> first_error_;
-    std::optional<PassState> pass_;
-    rhi::PipelineHandle pipeline_;
-    std::array<std::optional<rhi::BindGroup>, rhi::kMaxBindGroups> groups_;
-    std::array<VertexBufferSlot, rhi::kMaxVertexBuffers> vertex_buffers_{};
-    IndexBufferState index_buffer_;
-    std::array<std::byte, kMaxPushConstantBytes> push_data_{};
-    uint32_t push_size_ = 0;  ///< bytes written so far (high-water mark)
-    bool push_dirty_ = false;
+    // The GL side of the open render pass.
+    GLuint pass_framebuffer_ = 0;
+    std::vector<GLenum> pass_discard_after_;  ///< attachments whose store op is DontCare
+    bool push_dirty_ = false;                 ///< push constants changed since push_binding_ was made
     std::optional<rhi::BufferBinding> push_binding_;
-    std::optional<std::string> open_timer_;
     std::vector<std::pair<std::string, GLuint>> timers_;
-    uint32_t debug_depth_ = 0;
 };
 
 class GlDevice final : public rhi::Device {
@@ -209,6 +187,8 @@ public:
     // -- used by GlCommandList ----------------------------------------------------------
     /// The buffers, textures and samplers of this device as the validation layer sees them.
     const rhi::validation::ResourceLookup& resource_lookup();
+    /// The pipelines of this device as the command-list state sees them.
+    rhi::PipelineLookup pipeline_lookup();
     rhi::HandlePool<rhi::TextureTag, GlTexture>& textures() { return textures_; }
     rhi::HandlePool<rhi::BufferTag, GlBuffer>& buffers() { return buffers_; }
     rhi::HandlePool<rhi::SamplerTag, GlSampler>& samplers() { return samplers_; }

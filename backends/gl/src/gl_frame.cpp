@@ -16,13 +16,15 @@ uint64_t align_up(uint64_t value, uint64_t alignment) { return (value + alignmen
 
 rhi::CommandList& GlDevice::begin_frame() {
     context_->make_current();
-    if (list_->recording()) {
-        list_->fail(ErrorCode::InvalidState, "begin_frame: the previous frame was not ended");
+    if (Status idle = list_->state().check_begin_frame(); !idle.ok()) {
+        // Recording goes on into the open frame.
+        list_->fail(idle.take_error());
         return *list_;
     }
     recycle_transient_chunks(false);
     collect_timers(false);
-    list_->begin(++frame_index_);
+    ++frame_index_;
+    list_->begin();
     if (context_->windowed()) ensure_backbuffer();
     return *list_;
 }
@@ -62,7 +64,7 @@ void GlDevice::ensure_backbuffer() {
 
 Status GlDevice::end_frame() {
     context_->make_current();
-    if (!list_->recording()) return Error{ErrorCode::InvalidState, "end_frame: no frame is being recorded (call begin_frame)"};
+    LOOM_TRY(list_->state().check_recording("end_frame"));
     std::vector<GlCommand> commands = list_->finish();
     std::optional<Error> error = std::move(list_->first_error());
     // On the application's context: its state is saved here and put back before returning.

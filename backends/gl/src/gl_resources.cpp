@@ -423,6 +423,20 @@ const rhi::validation::ResourceLookup& GlDevice::resource_lookup() {
     return resource_lookup_;
 }
 
+rhi::PipelineLookup GlDevice::pipeline_lookup() {
+    return [this](rhi::PipelineHandle handle) -> Result<rhi::PipelineFacts> {
+        auto found = pipelines_.get(handle);
+        if (!found.ok()) return found.take_error();
+        const GlPipeline& p = **found;
+        return rhi::PipelineFacts{.name = p.name,
+                                  .compute = p.compute,
+                                  .color_formats = p.color_formats,
+                                  .depth_format = p.depth_format,
+                                  .samples = p.samples,
+                                  .vertex_buffers = static_cast<uint32_t>(p.strides.size())};
+    };
+}
+
 rhi::validation::ShaderLookup GlDevice::shader_lookup() {
     return [this](rhi::ShaderHandle handle) -> Result<rhi::validation::ShaderFacts> {
         auto found = shaders_.get(handle);

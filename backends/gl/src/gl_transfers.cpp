@@ -32,6 +32,9 @@ Result<std::vector<std::byte>> GlDevice::read_buffer(rhi::BufferHandle buffer, u
     if (!found.ok()) return found.take_error();
     GlBuffer& b = **found;
     LOOM_TRY(rhi::validation::buffer_read(b.desc, offset, size));
+    // Refused as on Vulkan, whose readbacks submit the frame recorded so far and cannot cut a render pass in two.
+    LOOM_TRY(
+        list_->state().check_outside_render_pass("read_buffer of buffer " + rhi::validation::in_quotes(b.desc.name)));
     // Shader writes become visible to buffer reads only after a barrier.
     if (b.state == rhi::ResourceState::Storage) glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<std::byte> out(size);
@@ -82,6 +85,9 @@ Result<rhi::Image> GlDevice::read_texture(rhi::TextureHandle texture, uint32_t m
 
 Result<rhi::Image> GlDevice::read_texture_gl(GlTexture& t, uint32_t mip, uint32_t layer) {
     LOOM_TRY(rhi::validation::texture_read(t.desc, mip, layer));
+    // Refused as on Vulkan, whose readbacks submit the frame recorded so far and cannot cut a render pass in two.
+    LOOM_TRY(
+        list_->state().check_outside_render_pass("read_texture of texture " + rhi::validation::in_quotes(t.desc.name)));
     const rhi::Extent3D size = rhi::mip_extent(t.desc, mip);
     const uint32_t w = size.width, h = size.height;
     rhi::Image image(w, h, t.desc.format);

@@ -1,7 +1,6 @@
 #include "command_list.hpp"
 
 #include <algorithm>
-#include <cstring>
 
 #include "formats.hpp"
 #include "vulkan_device.hpp"
@@ -11,57 +10,55 @@
 namespace loom::vulkan {
 
 using rhi::ResourceState;
-
-namespace {
-
-
 using rhi::validation::in_quotes;
 
-
-}  // namespace
+VulkanCommandList::VulkanCommandList(VulkanDevice& device)
+    : device_(device), state_(device.pipeline_lookup(), device.resource_lookup().buffer) {}
 
 void VulkanCommandList::begin(VkCommandBuffer cmd, bool new_frame) {
     cmd_ = cmd;
     bound_graphics_ = VK_NULL_HANDLE;
     bound_compute_ = VK_NULL_HANDLE;
     bound_layout_ = VK_NULL_HANDLE;
-    for (GroupState& g : groups_) g.dirty = true;
+    group_dirty_.fill(true);
     push_dirty_ = true;
     if (new_frame) {
+        // The device has begun the frame on the state tracker: nothing is bound.
         error_.reset();
         stats_ = {};
-        in_render_pass_ = false;
-        pipeline_handle_ = {};
-        pipeline_ = nullptr;
-        for (GroupState& g : groups_) g = {};
-        push_size_ = 0;
         push_dirty_ = false;
-        vertex_buffers_ = {};
-        index_buffer_ = {};
-        timer_open_ = false;
-        debug_depth_ = 0;
+        timestamp_written_ = false;
         return;
     }
     // The continuation of a frame split by a readback: command buffer state starts empty, so
     // what was bound is bound again.
-    if (pipeline_) {
-        const bool graphics = pipeline_->bind_point == VK_PIPELINE_BIND_POINT_GRAPHICS;
-        vkCmdBindPipeline(cmd_, pipeline_->bind_point, pipeline_->pipeline);
-        (graphics ? bound_graphics_ : bound_compute_) = pipeline_->pipeline;
+    if (const Pipeline* p = device_.pipelines().find(state_.pipeline())) {
+        const bool graphics = p->bind_point == VK_PIPELINE_BIND_POINT_GRAPHICS;
+        vkCmdBindPipeline(cmd_, p->bind_point, p->pipeline);
+        (graphics ? bound_graphics_ : bound_compute_) = p->pipeline;
     }
-    for (uint32_t slot = 0; slot < vertex_buffers_.size(); ++slot) {
-        if (const Buffer* b = device_.buffers().find(vertex_buffers_[slot].buffer)) {
-            VkDeviceSize offset = vertex_buffers_[slot].offset;
+    for (uint32_t slot = 0; slot < rhi::kMaxVertexBuffers; ++slot) {
+        const rhi::CommandListState::VertexBuffer& vb = state_.vertex_buffer(slot);
+        if (const Buffer* b = device_.buffers().find(vb.buffer)) {
+            VkDeviceSize offset = vb.offset;
             vkCmdBindVertexBuffers(cmd_, slot, 1, &b->buffer, &offset);
         }
     }
-    if (const Buffer* b = device_.buffers().find(index_buffer_)) {
-        vkCmdBindIndexBuffer(cmd_, b->buffer, index_offset_, to_vk(index_type_));
+    const rhi::CommandListState::IndexBuffer& indices = state_.index_buffer();
+    if (const Buffer* b = device_.buffers().find(indices.buffer)) {
+        vkCmdBindIndexBuffer(cmd_, b->buffer, indices.offset, to_vk(indices.type));
     }
 }
 
 void VulkanCommandList::fail(ErrorCode code, std::string message) {
     if (!error_) error_ = Error{code, std::move(message)};
+}
+
+bool VulkanCommandList::accepted(Status status) {
+    if (status.ok()) return true;
+    const Error& e = status.error();
+    fail(e.code, e.message);
+    return false;
 }
 
 std::optional<Error> VulkanCommandList::take_error() {
@@ -70,38 +67,18 @@ std::optional<Error> VulkanCommandList::take_error() {
     return e;
 }
 
-bool VulkanCommandList::require_outside_pass(std::string_view what) {
-    if (!in_render_pass_) return true;
-    fail(ErrorCode::InvalidState, std::string(what) + " inside render pass " + in_quotes(pass_label_) + "; call it before begin_render_pass or after end_render_pass");
-    return false;
-}
-
-bool VulkanCommandList::require_inside_pass(std::string_view what) {
-    if (in_render_pass_) return true;
-    fail(ErrorCode::InvalidState, std::string(what) + " outside a render pass");
-    return false;
-}
-
 void VulkanCommandList::finish() {
-    if (in_render_pass_) {
-        fail(ErrorCode::InvalidState, "render pass " + in_quotes(pass_label_) + " was not ended before end_frame");
-        end_render_pass();
-    }
-    if (timer_open_) {
-        fail(ErrorCode::InvalidState, "a timer was still open at end_frame");
-        end_timer();
-    }
-    if (debug_depth_ > 0) {
-        fail(ErrorCode::InvalidState, std::to_string(debug_depth_) + " debug group(s) still open at end_frame");
-        while (debug_depth_ > 0) pop_debug_group();
-    }
+    accepted(state_.check_nothing_open());
+    if (state_.render_pass()) end_render_pass();
+    if (state_.open_timer()) end_timer();
+    while (state_.debug_group_depth() > 0) pop_debug_group();
 }
 
 // ---- render passes ----------------------------------------------------------------------------
 
 void VulkanCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
     const std::string pass = "render pass " + in_quotes(desc.label);
-    if (!require_outside_pass("begin_render_pass(" + in_quotes(desc.label) + ")")) return;
+    if (!accepted(state_.check_begin_render_pass(desc.label))) return;
     auto shape = rhi::validation::render_pass(desc, device_.capabilities(), device_.resource_lookup().texture);
     if (!shape.ok()) return fail(shape.error().code, shape.error().message);
     // Every handle was found by the validation above.
@@ -169,44 +146,25 @@ void VulkanCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
     info.colorAttachmentCount = static_cast<uint32_t>(colors.size());
     info.pColorAttachments = colors.data();
     vkCmdBeginRendering(cmd_, &info);
-
-    in_render_pass_ = true;
-    pass_label_ = desc.label;
-    pass_color_formats_.clear();
-    for (const Texture* t : color_textures) pass_color_formats_.push_back(t->desc.format);
-    pass_depth_format_ = depth_texture ? depth_texture->desc.format : rhi::Format::Undefined;
-    pass_samples_ = shape->samples;
-    pass_extent_ = {shape->width, shape->height};
+    const uint32_t width = shape->width, height = shape->height;
+    state_.render_pass_begun(desc.label, std::move(*shape));
     ++stats_.render_passes;
     ++stats_.api_calls;
-    set_viewport({0.0f, 0.0f, static_cast<float>(shape->width), static_cast<float>(shape->height), 0.0f, 1.0f});
-    set_scissor({0, 0, shape->width, shape->height});
+    set_viewport({0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height), 0.0f, 1.0f});
+    set_scissor({0, 0, width, height});
 }
 
 void VulkanCommandList::end_render_pass() {
-    if (!require_inside_pass("end_render_pass")) return;
+    if (!accepted(state_.end_render_pass())) return;
     vkCmdEndRendering(cmd_);
     ++stats_.api_calls;
-    in_render_pass_ = false;
 }
 
 // ---- state ------------------------------------------------------------------------------------
 
 void VulkanCommandList::set_pipeline(rhi::PipelineHandle handle) {
-    auto pipeline = device_.pipelines().get(handle);
-    if (!pipeline.ok()) {
-        fail(ErrorCode::InvalidHandle, "set_pipeline: " + pipeline.error().message);
-        return;
-    }
-    const Pipeline* p = *pipeline;
-    if (in_render_pass_ && p->bind_point == VK_PIPELINE_BIND_POINT_GRAPHICS && !matches_pass(*p)) {
-        pipeline_handle_ = {};
-        pipeline_ = nullptr;
-        fail(ErrorCode::InvalidArgument, "set_pipeline: " + pass_mismatch(*p));
-        return;
-    }
-    pipeline_handle_ = handle;
-    pipeline_ = p;
+    if (!accepted(state_.set_pipeline(handle))) return;
+    const Pipeline* p = *device_.pipelines().get(handle);  // found by the tracker
     VkPipeline& bound = p->bind_point == VK_PIPELINE_BIND_POINT_GRAPHICS ? bound_graphics_ : bound_compute_;
     if (bound == p->pipeline) return;
     vkCmdBindPipeline(cmd_, p->bind_point, p->pipeline);
@@ -215,26 +173,10 @@ void VulkanCommandList::set_pipeline(rhi::PipelineHandle handle) {
     ++stats_.api_calls;
 }
 
-bool VulkanCommandList::matches_pass(const Pipeline& p) const {
-    return p.color_formats == pass_color_formats_ && p.depth_format == pass_depth_format_ && p.samples == pass_samples_;
-}
-
-std::string VulkanCommandList::pass_mismatch(const Pipeline& p) const {
-    auto names = [](const std::vector<rhi::Format>& formats) {
-        std::string out;
-        for (rhi::Format f : formats) out += (out.empty() ? "" : ", ") + std::string(rhi::format_name(f));
-        return out;
-    };
-    return "pipeline " + in_quotes(p.name) + " targets [" + names(p.color_formats) + "] depth " +
-           std::string(rhi::format_name(p.depth_format)) + " x" + std::to_string(p.samples) + ", render pass " +
-           in_quotes(pass_label_) + " has [" + names(pass_color_formats_) + "] depth " +
-           std::string(rhi::format_name(pass_depth_format_)) + " x" + std::to_string(pass_samples_);
-}
-
 void VulkanCommandList::set_viewport(const rhi::Viewport& v) {
-    if (Status valid = rhi::validation::viewport(v); !valid) return fail(valid.error().code, valid.error().message);
+    if (!accepted(rhi::validation::viewport(v))) return;
     // Outside a pass there is nothing to set: begin_render_pass resets viewport and scissor.
-    if (!in_render_pass_) return;
+    if (!state_.render_pass()) return;
     // Negative height: NDC y up, row 0 at the top (docs/architecture.md, "Conventions that make
     // the two APIs agree").
     VkViewport vp{v.x, v.y + v.height, v.width, -v.height, v.min_depth, v.max_depth};
@@ -243,7 +185,7 @@ void VulkanCommandList::set_viewport(const rhi::Viewport& v) {
 }
 
 void VulkanCommandList::set_scissor(const rhi::Rect& r) {
-    if (!in_render_pass_) return;
+    if (!state_.render_pass()) return;
     // Vulkan forbids negative offsets; clip the rectangle to the framebuffer's quadrant.
     int64_t x = r.x, y = r.y, w = r.width, h = r.height;
     if (x < 0) { w += x; x = 0; }
@@ -255,49 +197,32 @@ void VulkanCommandList::set_scissor(const rhi::Rect& r) {
 }
 
 void VulkanCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
-    if (Status valid = rhi::validation::bind_group(set, group); !valid) return fail(valid.error().code, valid.error().message);
     // Handles are checked when a draw or dispatch uses them (rhi::validation::binding), as on GL:
     // a group may hold entries the pipeline does not read.
-    groups_[set].group = group;
-    groups_[set].dirty = true;
+    if (accepted(state_.set_bind_group(set, group))) group_dirty_[set] = true;
 }
 
 void VulkanCommandList::push_constants(std::span<const std::byte> data, uint32_t offset) {
-    if (Status valid = rhi::validation::push_constants(offset, data.size()); !valid) return fail(valid.error().code, valid.error().message);
-    std::memcpy(push_data_.data() + offset, data.data(), data.size());
-    push_size_ = std::max(push_size_, static_cast<uint32_t>(offset + data.size()));
-    push_dirty_ = true;
+    if (accepted(state_.push_constants(data, offset))) push_dirty_ = true;
 }
 
 void VulkanCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle handle, uint64_t offset) {
-    if (Status valid = rhi::validation::vertex_buffer_slot(slot); !valid) return fail(valid.error().code, valid.error().message);
-    auto buffer = device_.buffers().get(handle);
-    if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, "set_vertex_buffer: " + buffer.error().message);
-    if (Status valid = rhi::validation::vertex_buffer(slot, (*buffer)->desc, offset); !valid) {
-        return fail(valid.error().code, valid.error().message);
-    }
+    if (!accepted(state_.set_vertex_buffer(slot, handle, offset))) return;
     VkDeviceSize o = offset;
-    vkCmdBindVertexBuffers(cmd_, slot, 1, &(*buffer)->buffer, &o);
-    vertex_buffers_[slot] = {handle, offset};
+    vkCmdBindVertexBuffers(cmd_, slot, 1, &(*device_.buffers().get(handle))->buffer, &o);
     ++stats_.buffer_binds;
     ++stats_.api_calls;
 }
 
 void VulkanCommandList::set_index_buffer(rhi::BufferHandle handle, rhi::IndexType type, uint64_t offset) {
-    auto buffer = device_.buffers().get(handle);
-    if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, "set_index_buffer: " + buffer.error().message);
-    if (Status valid = rhi::validation::index_buffer((*buffer)->desc, type, offset); !valid) {
-        return fail(valid.error().code, valid.error().message);
-    }
-    vkCmdBindIndexBuffer(cmd_, (*buffer)->buffer, offset, to_vk(type));
-    index_buffer_ = handle;
-    index_type_ = type;
-    index_offset_ = offset;
+    if (!accepted(state_.set_index_buffer(handle, type, offset))) return;
+    vkCmdBindIndexBuffer(cmd_, (*device_.buffers().get(handle))->buffer, offset, to_vk(type));
     ++stats_.buffer_binds;
     ++stats_.api_calls;
 }
 
 rhi::BufferBinding VulkanCommandList::transient_uniforms(std::span<const std::byte> data) {
+    if (!accepted(state_.check_recording("transient_uniforms"))) return {};
     auto binding = device_.allocate_transient_uniforms(data);
     if (!binding.ok()) {
         fail(binding.error().code, "transient_uniforms: " + binding.error().message);
@@ -322,16 +247,16 @@ rhi::validation::BindingKind binding_kind(VkDescriptorType type) {
 
 }  // namespace
 
-bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::string_view what) {
-    const PipelineLayout& layout = *pipeline_->layout;
+bool VulkanCommandList::write_set(const Pipeline& pipeline, uint32_t set, VkDescriptorSet& out, std::string_view what) {
+    const PipelineLayout& layout = *pipeline.layout;
     const SetLayout& set_layout = *layout.sets[set];
-    const rhi::BindGroup* group = groups_[set].group ? &*groups_[set].group : nullptr;
+    const rhi::BindGroup* group = state_.bind_group(set);
     const rhi::validation::ResourceLookup& lookup = device_.resource_lookup();
     // Every binding is checked before a descriptor set is allocated for them.
     std::vector<const rhi::BindingEntry*> entries;
     for (const SetBinding& b : set_layout.bindings) {
         const rhi::validation::PipelineSlot slot{set, b.binding, binding_kind(b.type), b.name};
-        auto entry = rhi::validation::binding(what, pipeline_->name, slot, group, device_.capabilities(), lookup);
+        auto entry = rhi::validation::binding(what, pipeline.name, slot, group, device_.capabilities(), lookup);
         if (!entry.ok()) {
             fail(entry.error().code, entry.error().message);
             return false;
@@ -360,8 +285,8 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
         const rhi::BindingEntry* entry = entries[n];
         // Built only for an error.
         auto where = [&] {
-            return std::string(what) + ": pipeline " + in_quotes(pipeline_->name) + " set " + std::to_string(set) + " binding " +
-                   std::to_string(b.binding) + " (" + in_quotes(b.name) + ")";
+            return std::string(what) + ": pipeline " + in_quotes(pipeline.name) + " set " + std::to_string(set) +
+                   " binding " + std::to_string(b.binding) + " (" + in_quotes(b.name) + ")";
         };
         auto w = vk_init<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
         w.dstSet = out;
@@ -387,9 +312,9 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
             // Sampling needs the texture in ShaderRead (depth textures: DepthRead or ShaderRead).
             const bool depth_ok = texture->depth_stencil && VulkanDevice::texture_all_in(*texture, ResourceState::DepthRead);
             if (!depth_ok && !VulkanDevice::texture_all_in(*texture, ResourceState::ShaderRead)) {
-                const Error e = rhi::validation::state_for_binding(what, pipeline_->name, slot, texture->desc.name,
-                                                                   texture->states.front(),
-                                                                   texture->depth_stencil ? "DepthRead or ShaderRead" : "ShaderRead");
+                const Error e = rhi::validation::state_for_binding(
+                    what, pipeline.name, slot, texture->desc.name, texture->states.front(),
+                    texture->depth_stencil ? "DepthRead or ShaderRead" : "ShaderRead");
                 fail(e.code, e.message);
                 return false;
             }
@@ -414,7 +339,8 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
             for (uint32_t l = 0; l < texture->array_layers; ++l) {
                 const ResourceState state = texture->states[texture->subresource(binding->mip, l)];
                 if (state != ResourceState::Storage) {
-                    const Error e = rhi::validation::state_for_binding(what, pipeline_->name, slot, texture->desc.name, state, "Storage");
+                    const Error e = rhi::validation::state_for_binding(what, pipeline.name, slot, texture->desc.name,
+                                                                       state, "Storage");
                     fail(e.code, e.message);
                     return false;
                 }
@@ -435,20 +361,21 @@ bool VulkanCommandList::write_set(uint32_t set, VkDescriptorSet& out, std::strin
     return true;
 }
 
-bool VulkanCommandList::flush_bindings(VkPipelineBindPoint bind_point, std::string_view what) {
-    const PipelineLayout& layout = *pipeline_->layout;
+bool VulkanCommandList::flush_bindings(const Pipeline& pipeline, std::string_view what) {
+    const PipelineLayout& layout = *pipeline.layout;
     const bool layout_changed = bound_layout_ != layout.layout;
     for (uint32_t s = 0; s < layout.set_count; ++s) {
         if (layout.sets[s]->bindings.empty()) continue;
-        if (!groups_[s].dirty && !layout_changed) continue;
+        if (!group_dirty_[s] && !layout_changed) continue;
         VkDescriptorSet set = VK_NULL_HANDLE;
-        if (!write_set(s, set, what)) return false;
-        vkCmdBindDescriptorSets(cmd_, bind_point, layout.layout, s, 1, &set, 0, nullptr);
+        if (!write_set(pipeline, s, set, what)) return false;
+        vkCmdBindDescriptorSets(cmd_, pipeline.bind_point, layout.layout, s, 1, &set, 0, nullptr);
         ++stats_.api_calls;
-        groups_[s].dirty = false;
+        group_dirty_[s] = false;
     }
     if (layout.push_constant_size > 0 && (push_dirty_ || layout_changed)) {
-        vkCmdPushConstants(cmd_, layout.layout, layout.push_constant_stages, 0, layout.push_constant_size, push_data_.data());
+        vkCmdPushConstants(cmd_, layout.layout, layout.push_constant_stages, 0, layout.push_constant_size,
+                           state_.push_constant_data().data());
         ++stats_.api_calls;
         // Push constants travel in the command buffer; GL uploads them to a buffer. Both
         // count them as uploaded bytes.
@@ -459,32 +386,14 @@ bool VulkanCommandList::flush_bindings(VkPipelineBindPoint bind_point, std::stri
     return true;
 }
 
-bool VulkanCommandList::prepare_draw(std::string_view what) {
-    if (!require_inside_pass(what)) return false;
-    if (!pipeline_ || !device_.pipelines().find(pipeline_handle_)) {
-        fail(ErrorCode::InvalidState, std::string(what) + " in render pass " + in_quotes(pass_label_) + " without a pipeline");
-        return false;
-    }
-    if (pipeline_->bind_point != VK_PIPELINE_BIND_POINT_GRAPHICS) {
-        fail(ErrorCode::InvalidState, std::string(what) + ": pipeline " + in_quotes(pipeline_->name) + " is a compute pipeline");
-        return false;
-    }
-    if (!matches_pass(*pipeline_)) {
-        fail(ErrorCode::InvalidArgument, std::string(what) + ": " + pass_mismatch(*pipeline_));
-        return false;
-    }
-    for (uint32_t slot = 0; slot < pipeline_->vertex_buffer_count; ++slot) {
-        if (!device_.buffers().find(vertex_buffers_[slot].buffer)) {
-            fail(ErrorCode::InvalidState, std::string(what) + ": pipeline " + in_quotes(pipeline_->name) + " reads vertex buffer slot " +
-                                              std::to_string(slot) + " but no (live) buffer is bound there");
-            return false;
-        }
-    }
-    return flush_bindings(VK_PIPELINE_BIND_POINT_GRAPHICS, what);
+const Pipeline* VulkanCommandList::prepare_draw(std::string_view what, bool indexed) {
+    if (!accepted(state_.check_draw(what, indexed))) return nullptr;
+    const Pipeline* p = *device_.pipelines().get(state_.pipeline());  // found by the tracker
+    return flush_bindings(*p, what) ? p : nullptr;
 }
 
 void VulkanCommandList::draw(uint32_t vertex_count, uint32_t instance_count, uint32_t first_vertex, uint32_t first_instance) {
-    if (!prepare_draw("draw")) return;
+    if (!prepare_draw("draw", false)) return;
     vkCmdDraw(cmd_, vertex_count, instance_count, first_vertex, first_instance);
     ++stats_.draw_calls;
     ++stats_.api_calls;
@@ -492,16 +401,9 @@ void VulkanCommandList::draw(uint32_t vertex_count, uint32_t instance_count, uin
 
 void VulkanCommandList::draw_indexed(uint32_t index_count, uint32_t instance_count, uint32_t first_index, int32_t base_vertex,
                                      uint32_t first_instance) {
-    if (!prepare_draw("draw_indexed")) return;
-    const Buffer* indices = device_.buffers().find(index_buffer_);
-    if (!indices) {
-        fail(ErrorCode::InvalidState, "draw_indexed without a (live) index buffer");
-        return;
-    }
+    if (!prepare_draw("draw_indexed", true)) return;
     // The GPU would read past the buffer (undefined without robustness features): refuse.
-    if (Status valid = rhi::validation::index_range(indices->desc, index_type_, index_offset_, first_index, index_count); !valid) {
-        return fail(valid.error().code, valid.error().message);
-    }
+    if (!accepted(state_.check_index_range(first_index, index_count))) return;
     vkCmdDrawIndexed(cmd_, index_count, instance_count, first_index, base_vertex, first_instance);
     ++stats_.draw_calls;
     ++stats_.api_calls;
@@ -513,11 +415,8 @@ void VulkanCommandList::draw_indexed_indirect(rhi::BufferHandle handle, uint64_t
     auto buffer = device_.buffers().get(handle);
     if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, std::string(what) + ": argument buffer: " + buffer.error().message);
     const Buffer& b = **buffer;
-    if (Status valid = rhi::validation::indirect_draws(b.desc, offset, draw_count, stride); !valid) {
-        return fail(valid.error().code, valid.error().message);
-    }
-    if (!prepare_draw(what)) return;
-    if (!device_.buffers().find(index_buffer_)) return fail(ErrorCode::InvalidState, std::string(what) + " without a (live) index buffer");
+    if (!accepted(rhi::validation::indirect_draws(b.desc, offset, draw_count, stride))) return;
+    if (!prepare_draw(what, true)) return;
     if (draw_count == 0) return;
     if (device_.context().multi_draw_indirect()) {
         vkCmdDrawIndexedIndirect(cmd_, b.buffer, offset, draw_count, stride);
@@ -531,12 +430,8 @@ void VulkanCommandList::draw_indexed_indirect(rhi::BufferHandle handle, uint64_t
 }
 
 void VulkanCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
-    if (!require_outside_pass("dispatch")) return;
-    if (!pipeline_ || !device_.pipelines().find(pipeline_handle_) || pipeline_->bind_point != VK_PIPELINE_BIND_POINT_COMPUTE) {
-        fail(ErrorCode::InvalidState, "dispatch without a compute pipeline");
-        return;
-    }
-    if (!flush_bindings(VK_PIPELINE_BIND_POINT_COMPUTE, "dispatch")) return;
+    if (!accepted(state_.check_dispatch())) return;
+    if (!flush_bindings(**device_.pipelines().get(state_.pipeline()), "dispatch")) return;  // found by the tracker
     vkCmdDispatch(cmd_, x, y, z);
     ++stats_.dispatches;
     ++stats_.api_calls;
@@ -546,16 +441,14 @@ void VulkanCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
 
 void VulkanCommandList::copy_buffer(rhi::BufferHandle src_handle, uint64_t src_offset, rhi::BufferHandle dst_handle,
                                     uint64_t dst_offset, uint64_t size) {
-    if (!require_outside_pass("copy_buffer")) return;
+    if (!accepted(state_.check_outside_render_pass("copy_buffer"))) return;
     auto src = device_.buffers().get(src_handle);
     auto dst = device_.buffers().get(dst_handle);
     if (!src.ok()) return fail(ErrorCode::InvalidHandle, "copy_buffer source: " + src.error().message);
     if (!dst.ok()) return fail(ErrorCode::InvalidHandle, "copy_buffer destination: " + dst.error().message);
     Buffer& s = **src;
     Buffer& d = **dst;
-    if (Status valid = rhi::validation::buffer_copy(s.desc, src_offset, d.desc, dst_offset, size, &s == &d); !valid) {
-        return fail(valid.error().code, valid.error().message);
-    }
+    if (!accepted(rhi::validation::buffer_copy(s.desc, src_offset, d.desc, dst_offset, size, &s == &d))) return;
     if (size == 0) return;
     BarrierBatch batch;
     if (&s == &d) {
@@ -580,7 +473,7 @@ void VulkanCommandList::copy_buffer(rhi::BufferHandle src_handle, uint64_t src_o
 }
 
 void VulkanCommandList::copy_texture(const rhi::TextureCopy& copy) {
-    if (!require_outside_pass("copy_texture")) return;
+    if (!accepted(state_.check_outside_render_pass("copy_texture"))) return;
     auto src = device_.textures().get(copy.src);
     auto dst = device_.textures().get(copy.dst);
     if (!src.ok()) return fail(ErrorCode::InvalidHandle, "copy_texture source: " + src.error().message);
@@ -608,25 +501,16 @@ void VulkanCommandList::copy_texture(const rhi::TextureCopy& copy) {
 }
 
 void VulkanCommandList::transition(rhi::TextureHandle handle, ResourceState state) {
-    if (!require_outside_pass("transition")) return;
+    if (!accepted(state_.check_outside_render_pass("transition"))) return;
     auto texture = device_.textures().get(handle);
     if (!texture.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + texture.error().message);
     Texture& t = **texture;
-    const std::string tex = "texture " + in_quotes(t.desc.name);
-    if (!texture_state_access(state, t.depth_stencil).valid) {
-        return fail(ErrorCode::InvalidArgument, "transition: " + tex + " (" + std::string(rhi::format_name(t.desc.format)) +
-                                                    ") cannot be in state " + std::string(rhi::resource_state_name(state)));
-    }
-    auto needs = [&](rhi::TextureUsage usage, const char* name) {
-        if (rhi::has_all(t.desc.usage, usage)) return true;
-        fail(ErrorCode::InvalidArgument, "transition: " + tex + " to " + std::string(rhi::resource_state_name(state)) + " needs " + name + " usage");
-        return false;
-    };
-    if (state == ResourceState::RenderTarget && !needs(rhi::TextureUsage::ColorAttachment, "ColorAttachment")) return;
-    if (state == ResourceState::DepthWrite && !needs(rhi::TextureUsage::DepthStencilAttachment, "DepthStencilAttachment")) return;
-    if (state == ResourceState::Storage && !needs(rhi::TextureUsage::Storage, "Storage")) return;
+    if (!accepted(rhi::validation::texture_transition(t.desc, state, device_.capabilities()))) return;
     if ((state == ResourceState::ShaderRead || state == ResourceState::DepthRead) && !t.sampled_view) {
-        return fail(ErrorCode::Unsupported, "transition: " + tex + " has a format that cannot be sampled");
+        // Images loom did not make (the application's, the swapchain's) may lack SAMPLED usage.
+        return fail(ErrorCode::Unsupported, "transition: texture " + in_quotes(t.desc.name) + " to " +
+                                                std::string(rhi::resource_state_name(state)) +
+                                                ": the image has no SAMPLED usage");
     }
     if (state == ResourceState::Undefined) {
         // Nothing to do on the GPU: the next transition discards the contents.
@@ -639,13 +523,11 @@ void VulkanCommandList::transition(rhi::TextureHandle handle, ResourceState stat
 }
 
 void VulkanCommandList::transition(rhi::BufferHandle handle, ResourceState state) {
-    if (!require_outside_pass("transition")) return;
+    if (!accepted(state_.check_outside_render_pass("transition"))) return;
     auto buffer = device_.buffers().get(handle);
     if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + buffer.error().message);
     Buffer& b = **buffer;
-    if (!buffer_state_access(state).valid) {
-        return fail(ErrorCode::InvalidArgument, "transition: buffer " + in_quotes(b.desc.name) + " cannot be in state " + std::string(rhi::resource_state_name(state)));
-    }
+    if (!accepted(rhi::validation::buffer_transition(b.desc, state))) return;
     BarrierBatch batch;
     batch.buffer(b.buffer, b.state, state);
     b.state = state;
@@ -655,40 +537,39 @@ void VulkanCommandList::transition(rhi::BufferHandle handle, ResourceState state
 // ---- timers and debug groups ----------------------------------------------------------------
 
 void VulkanCommandList::begin_timer(std::string_view label) {
-    if (timer_open_) return fail(ErrorCode::InvalidState, "begin_timer('" + std::string(label) + "'): timers do not nest");
+    if (!accepted(state_.begin_timer(label))) return;
     FrameSlot& frame = device_.current_frame();
     if (!frame.timestamps) return;  // no timestamp support: timers report nothing
     if (frame.timer_labels.size() >= kMaxTimersPerFrame) {
-        return fail(ErrorCode::InvalidState, "begin_timer('" + std::string(label) + "'): more than " +
+        // The frame's query pool is full: the timer is open, without timestamps.
+        return fail(ErrorCode::InvalidState, "begin_timer " + in_quotes(label) + ": more than " +
                                                  std::to_string(kMaxTimersPerFrame) + " timers in one frame");
     }
     const uint32_t index = static_cast<uint32_t>(frame.timer_labels.size());
     frame.timer_labels.emplace_back(label);
     vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, frame.timestamps, 2 * index);
     ++stats_.api_calls;
-    timer_open_ = true;
+    timestamp_written_ = true;
 }
 
 void VulkanCommandList::end_timer() {
+    if (!accepted(state_.end_timer()) || !timestamp_written_) return;
     FrameSlot& frame = device_.current_frame();
-    if (!frame.timestamps) return;
-    if (!timer_open_) return fail(ErrorCode::InvalidState, "end_timer without begin_timer");
     const uint32_t index = static_cast<uint32_t>(frame.timer_labels.size() - 1);
     vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, frame.timestamps, 2 * index + 1);
     ++stats_.api_calls;
-    timer_open_ = false;
+    timestamp_written_ = false;
 }
 
 void VulkanCommandList::push_debug_group(std::string_view label) {
+    state_.push_debug_group();
     device_.context().begin_label(cmd_, label);
-    ++debug_depth_;
     ++stats_.api_calls;
 }
 
 void VulkanCommandList::pop_debug_group() {
-    if (debug_depth_ == 0) return fail(ErrorCode::InvalidState, "pop_debug_group without push_debug_group");
+    if (!accepted(state_.pop_debug_group())) return;
     device_.context().end_label(cmd_);
-    --debug_depth_;
     ++stats_.api_calls;
 }
 

@@ -12,6 +12,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "loom/rhi/command_list_state.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/result.hpp"
 #include "loom/vulkan/resource_states.hpp"
@@ -24,19 +25,22 @@ struct Texture;
 
 class VulkanCommandList final : public rhi::CommandList {
 public:
-    explicit VulkanCommandList(VulkanDevice& device) : device_(device) {}
+    explicit VulkanCommandList(VulkanDevice& device);
 
     /// Starts recording into `cmd` (a new frame or the continuation of a split one).
     void begin(VkCommandBuffer cmd, bool new_frame);
-    /// Ends an open render pass / timer (recording errors) before the frame is submitted.
+    /// Ends what the frame left open (recording an error for the first) before it is submitted.
     void finish();
     /// The first error recorded since the frame began, then clears it.
     std::optional<Error> take_error();
-    [[nodiscard]] bool inside_render_pass() const { return in_render_pass_; }
+    /// What is open and bound; also whether a frame is being recorded (the device begins and
+    /// ends frames on it).
+    [[nodiscard]] rhi::CommandListState& state() { return state_; }
+    [[nodiscard]] const rhi::CommandListState& state() const { return state_; }
     [[nodiscard]] VkCommandBuffer command_buffer() const { return cmd_; }
     [[nodiscard]] const rhi::FrameStats& stats() const { return stats_; }
     /// Records misuse detected outside the list (e.g. by the device), returned by end_frame.
-    void record_error(ErrorCode code, std::string message) { fail(code, std::move(message)); }
+    void record_error(Error error) { fail(error.code, std::move(error.message)); }
     /// Counts vkCmd* calls made by the device on this frame's command buffer.
     void count_api_calls(uint64_t calls) { stats_.api_calls += calls; }
 
@@ -69,55 +73,29 @@ public:
 
 private:
     void fail(ErrorCode code, std::string message);
-    bool require_outside_pass(std::string_view what);
-    bool require_inside_pass(std::string_view what);
+    /// True when `status` is ok; else records its error (the command is then skipped).
+    bool accepted(Status status);
     /// Binds the pipeline's descriptor sets and push constants if anything changed.
-    bool flush_bindings(VkPipelineBindPoint bind_point, std::string_view what);
-    bool write_set(uint32_t set, VkDescriptorSet& out, std::string_view what);
-    bool prepare_draw(std::string_view what);
-    /// The pipeline's attachment formats and samples are those of the open render pass.
-    bool matches_pass(const Pipeline& pipeline) const;
-    std::string pass_mismatch(const Pipeline& pipeline) const;
+    bool flush_bindings(const Pipeline& pipeline, std::string_view what);
+    bool write_set(const Pipeline& pipeline, uint32_t set, VkDescriptorSet& out, std::string_view what);
+    /// The state tracker's draw checks, then the bindings; the pipeline to draw with, or null.
+    const Pipeline* prepare_draw(std::string_view what, bool indexed);
 
     VulkanDevice& device_;
+    rhi::CommandListState state_;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     std::optional<Error> error_;
     rhi::FrameStats stats_;
 
-    // render pass
-    bool in_render_pass_ = false;
-    std::string pass_label_;
-    std::vector<rhi::Format> pass_color_formats_;
-    rhi::Format pass_depth_format_ = rhi::Format::Undefined;
-    uint32_t pass_samples_ = 1;
-    VkExtent2D pass_extent_{};
-
-    // bound state
-    rhi::PipelineHandle pipeline_handle_;
-    const Pipeline* pipeline_ = nullptr;
-    struct GroupState {
-        std::optional<rhi::BindGroup> group;
-        bool dirty = false;
-    };
-    std::array<GroupState, rhi::kMaxBindGroups> groups_{};
+    // What the command buffer has bound, to skip binds that change nothing.
+    std::array<bool, rhi::kMaxBindGroups> group_dirty_{};  ///< set_bind_group since the set was last written
     VkPipelineLayout bound_layout_ = VK_NULL_HANDLE;
-    std::array<std::byte, rhi::kMaxPushConstantBytes> push_data_{};
-    uint32_t push_size_ = 0;  ///< bytes of push_data_ set so far
     bool push_dirty_ = false;
-    struct VertexBinding {
-        rhi::BufferHandle buffer;
-        uint64_t offset = 0;
-    };
-    std::array<VertexBinding, rhi::kMaxVertexBuffers> vertex_buffers_{};
-    rhi::BufferHandle index_buffer_;
-    rhi::IndexType index_type_ = rhi::IndexType::Uint32;
-    uint64_t index_offset_ = 0;
     VkPipeline bound_graphics_ = VK_NULL_HANDLE;
     VkPipeline bound_compute_ = VK_NULL_HANDLE;
-
-    // timers and debug groups
-    bool timer_open_ = false;
-    int debug_depth_ = 0;
+    /// The open timer has a begin timestamp (there is none without timestamp queries, or past
+    /// kMaxTimersPerFrame).
+    bool timestamp_written_ = false;
 };
 
 }  // namespace loom::vulkan

@@ -130,7 +130,7 @@ loom::Result<rhi::CommandList*> VulkanDevice::begin_external_frame(VkCommandBuff
                      "begin_external_frame: the device was not made with create_vulkan_device_on (it owns its frames)"};
     }
     if (cmd == VK_NULL_HANDLE) return Error{ErrorCode::InvalidArgument, "begin_external_frame: the command buffer is null"};
-    if (frame_recording_) return Error{ErrorCode::InvalidState, "begin_external_frame: the previous frame was not ended"};
+    LOOM_TRY(command_list_->state().check_begin_frame("begin_external_frame"));
     if (!frame_timeline_) {
         auto type = vk_init<VkSemaphoreTypeCreateInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO);
         type.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
@@ -145,7 +145,7 @@ loom::Result<rhi::CommandList*> VulkanDevice::begin_external_frame(VkCommandBuff
     // A frame two frames ago that the application never submitted is an error, not a hang.
     LOOM_TRY(recycle_current_slot());
     external_frame_ = true;
-    frame_recording_ = true;
+    command_list_->state().begin_frame();
     FrameSlot& slot = current_frame();
     if (slot.timestamps) vkCmdResetQueryPool(cmd, slot.timestamps, 0, 2 * kMaxTimersPerFrame);
     command_list_->begin(cmd, true);
@@ -162,7 +162,7 @@ loom::Status VulkanDevice::end_external_frame() {
     slot.serial = submissions_->add_external(frame_timeline_, ++frame_timeline_value_);
     ++epoch_;
     slot.timers_pending = true;
-    frame_recording_ = false;
+    command_list_->state().end_frame();
     external_frame_ = false;
     last_frame_stats_ = command_list_->stats();
     last_frame_stats_.bytes_uploaded += bytes_uploaded_;
@@ -232,7 +232,7 @@ loom::Status VulkanDevice::set_image_layout(rhi::TextureHandle texture, VkImageL
     auto found = textures_.get(texture);
     if (!found.ok()) return found.take_error();
     Texture& t = **found;
-    if (frame_recording_) {
+    if (frame_recording()) {
         return Error{ErrorCode::InvalidState, "set_image_layout of " + in_quotes(t.desc.name) +
                                                   " while a frame is being recorded: call it before begin_external_frame"};
     }

@@ -50,13 +50,14 @@ loom::Status VulkanDevice::recycle_current_slot() {
 }
 
 rhi::CommandList& VulkanDevice::begin_frame() {
-    if (frame_recording_) {
-        command_list_->record_error(ErrorCode::InvalidState, "begin_frame: the previous frame was not ended; continuing it");
+    if (Status idle = command_list_->state().check_begin_frame(); !idle.ok()) {
+        // Recording goes on into the open frame.
+        command_list_->record_error(idle.take_error());
         return *command_list_;
     }
     if (auto status = recycle_current_slot(); !status.ok()) loom::log_error("vulkan", status.error().to_string());
     external_frame_ = false;
-    frame_recording_ = true;
+    command_list_->state().begin_frame();
     if (swapchain_) {
         if (auto status = acquire_backbuffer(); !status.ok()) loom::log_error("vulkan", status.error().to_string());
     }
@@ -65,7 +66,7 @@ rhi::CommandList& VulkanDevice::begin_frame() {
 }
 
 loom::Status VulkanDevice::end_frame() {
-    if (!frame_recording_) return Error{ErrorCode::InvalidState, "end_frame without begin_frame"};
+    LOOM_TRY(command_list_->state().check_recording("end_frame"));
     if (external_frame_) return end_external_frame();
     command_list_->finish();
     FrameSlot& slot = current_frame();
@@ -85,7 +86,7 @@ loom::Status VulkanDevice::end_frame() {
     // Even a frame without timers is "the latest frame" whose (empty) results timer_results()
     // describes once it has finished.
     slot.timers_pending = true;
-    frame_recording_ = false;
+    command_list_->state().end_frame();
     if (presenting && result.ok()) {
         const VkResult r = swapchain_->present(context_->queue(), backbuffer_index_);
         if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) {
@@ -119,12 +120,12 @@ loom::Status VulkanDevice::wait_idle() {
     for (uint32_t i = 0; i < kFramesInFlight; ++i) slots[i] = &frames_[i];
     std::sort(slots.begin(), slots.end(), [](const FrameSlot* a, const FrameSlot* b) { return a->serial < b->serial; });
     for (FrameSlot* slot : slots) {
-        if (!frame_recording_ || slot != &current_frame()) collect_timers(*slot);
+        if (!frame_recording() || slot != &current_frame()) collect_timers(*slot);
     }
     staging_->release(submissions_->completed_serial());
     recycle_setup_buffers();
     // Nothing recorded is pending: whatever waits for "the commands recorded so far" can go.
-    if (!frame_recording_ && !setup_cmd_) submissions_->run_all_deferred();
+    if (!frame_recording() && !setup_cmd_) submissions_->run_all_deferred();
     return {};
 }
 
@@ -158,13 +159,13 @@ std::vector<rhi::TimerResult> VulkanDevice::timer_results() {
     for (uint32_t i = 0; i < kFramesInFlight; ++i) slots[i] = &frames_[i];
     std::sort(slots.begin(), slots.end(), [](const FrameSlot* a, const FrameSlot* b) { return a->serial < b->serial; });
     for (FrameSlot* slot : slots) {
-        if (!frame_recording_ || slot != &current_frame()) collect_timers(*slot);
+        if (!frame_recording() || slot != &current_frame()) collect_timers(*slot);
     }
     return timer_results_;
 }
 
 loom::Result<rhi::BufferBinding> VulkanDevice::allocate_transient_uniforms(std::span<const std::byte> data) {
-    if (!frame_recording_) return Error{ErrorCode::InvalidState, "transient uniforms outside a frame"};
+    // The command list has checked that a frame is being recorded.
     FrameSlot& slot = current_frame();
     const uint64_t alignment = std::max<uint64_t>(caps_.uniform_buffer_offset_alignment, 16);
     const uint64_t size = std::max<uint64_t>(data.size(), 16);

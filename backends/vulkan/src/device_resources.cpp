@@ -262,11 +262,11 @@ void VulkanDevice::transition_texture(BarrierBatch& batch, Texture& t, uint32_t 
     }
     std::vector<ResourceState>* states = &t.states;
     if (stream == Stream::Frame) {
-        if (frame_recording_ && t.touched_epoch != epoch_) {
+        if (frame_recording() && t.touched_epoch != epoch_) {
             t.frame_start_states = t.states;
             t.touched_epoch = epoch_;
         }
-    } else if (frame_recording_ && t.touched_epoch == epoch_) {
+    } else if (frame_recording() && t.touched_epoch == epoch_) {
         // The frame recorded so far runs after this setup work: start from (and update) the
         // states the frame's commands expect to find.
         states = &t.frame_start_states;
@@ -286,7 +286,7 @@ void VulkanDevice::transition_texture(BarrierBatch& batch, Texture& t, uint32_t 
 }
 
 ResourceState VulkanDevice::tracked_state(const Texture& t, uint32_t subresource, Stream stream) const {
-    const bool frame_view = stream == Stream::Setup && frame_recording_ && t.touched_epoch == epoch_;
+    const bool frame_view = stream == Stream::Setup && frame_recording() && t.touched_epoch == epoch_;
     return (frame_view ? t.frame_start_states : t.states)[subresource];
 }
 
@@ -521,6 +521,20 @@ const rhi::validation::ResourceLookup& VulkanDevice::resource_lookup() {
     // Made once: every draw asks for it.
     if (!resource_lookup_.buffer) resource_lookup_ = rhi::validation::lookup_in(buffers_, textures_, samplers_);
     return resource_lookup_;
+}
+
+rhi::PipelineLookup VulkanDevice::pipeline_lookup() {
+    return [this](rhi::PipelineHandle handle) -> loom::Result<rhi::PipelineFacts> {
+        auto found = pipelines_.get(handle);
+        if (!found.ok()) return found.take_error();
+        const Pipeline& p = **found;
+        return rhi::PipelineFacts{.name = p.name,
+                                  .compute = p.bind_point == VK_PIPELINE_BIND_POINT_COMPUTE,
+                                  .color_formats = p.color_formats,
+                                  .depth_format = p.depth_format,
+                                  .samples = p.samples,
+                                  .vertex_buffers = p.vertex_buffer_count};
+    };
 }
 
 rhi::validation::ShaderLookup VulkanDevice::shader_lookup() {

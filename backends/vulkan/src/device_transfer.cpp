@@ -228,18 +228,15 @@ loom::Result<std::vector<std::byte>> VulkanDevice::read_buffer(rhi::BufferHandle
     if (!b.ok()) return b.take_error();
     Buffer& buffer = **b;
     LOOM_TRY(rhi::validation::buffer_read(buffer.desc, offset, size));
+    // The frame recorded so far is submitted first, which must not cut a render pass in two.
+    LOOM_TRY(command_list_->state().check_outside_render_pass("read_buffer of buffer " + in_quotes(buffer.desc.name)));
     if (size == 0) return std::vector<std::byte>{};
     if (recording_external_frame()) {
-        return Error{ErrorCode::InvalidState, "read_buffer of " + in_quotes(buffer.desc.name) +
+        return Error{ErrorCode::InvalidState, "read_buffer of buffer " + in_quotes(buffer.desc.name) +
                                                   " while a frame is recorded into the application's command buffer: read "
                                                   "after end_frame, once the application has submitted the frame"};
     }
-    if (frame_recording_) {
-        if (command_list_->inside_render_pass()) {
-            return Error{ErrorCode::InvalidState, "read_buffer of " + in_quotes(buffer.desc.name) + " inside a render pass"};
-        }
-        LOOM_TRY(split_frame());
-    }
+    if (frame_recording()) LOOM_TRY(split_frame());
     auto span = staging(size);
     if (!span.ok()) return span.take_error();
     VkCommandBuffer cmd = setup_commands();
@@ -332,6 +329,8 @@ loom::Result<rhi::Image> VulkanDevice::read_texture(rhi::TextureHandle handle, u
     Texture& t = **tex;
     LOOM_TRY(rhi::validation::texture_read(t.desc, mip, layer));
     const std::string name = "read_texture of texture " + in_quotes(t.desc.name);
+    // The frame recorded so far is submitted first, which must not cut a render pass in two.
+    LOOM_TRY(command_list_->state().check_outside_render_pass(name));
     if (t.imported && !rhi::has_all(t.desc.usage, rhi::TextureUsage::CopySrc)) {
         return Error{ErrorCode::InvalidArgument, name + ": the application's image has no TRANSFER_SRC usage"};
     }
@@ -339,10 +338,7 @@ loom::Result<rhi::Image> VulkanDevice::read_texture(rhi::TextureHandle handle, u
         return Error{ErrorCode::InvalidState, name + " while a frame is recorded into the application's command buffer: read "
                                                      "after end_frame, once the application has submitted the frame"};
     }
-    if (frame_recording_) {
-        if (command_list_->inside_render_pass()) return Error{ErrorCode::InvalidState, name + " inside a render pass"};
-        LOOM_TRY(split_frame());
-    }
+    if (frame_recording()) LOOM_TRY(split_frame());
     if (t.desc.samples > 1) return read_resolved(handle);
     return read_subresource(t, mip, layer);
 }

@@ -210,7 +210,7 @@ bool VulkanDevice::poll_window() { return window_ ? window_->poll() : false; }
 rhi::Extent3D VulkanDevice::window_size() const { return window_ ? window_->framebuffer_size() : rhi::Extent3D{0, 0, 0}; }
 
 rhi::TextureHandle VulkanDevice::backbuffer() {
-    if (!window_ || !frame_recording_ || backbuffer_index_ >= backbuffers_.size()) return {};
+    if (!window_ || !frame_recording() || backbuffer_index_ >= backbuffers_.size()) return {};
     return backbuffers_[backbuffer_index_];
 }
 

@@ -100,12 +100,14 @@ public:
     loom::Result<VkImageLayout> image_layout(rhi::TextureHandle texture);
     loom::Result<VkImage> image(rhi::TextureHandle texture);
     /// True while a frame recorded into an application command buffer is open.
-    [[nodiscard]] bool recording_external_frame() const { return frame_recording_ && external_frame_; }
+    [[nodiscard]] bool recording_external_frame() const { return frame_recording() && external_frame_; }
 
     // ---- for the command list ---------------------------------------------------------------
     [[nodiscard]] VulkanContext& context() { return *context_; }
     /// The buffers, textures and samplers of this device as the validation layer sees them.
     const rhi::validation::ResourceLookup& resource_lookup();
+    /// The pipelines of this device as the command-list state sees them.
+    rhi::PipelineLookup pipeline_lookup();
     rhi::HandlePool<rhi::TextureTag, Texture>& textures() { return textures_; }
     rhi::HandlePool<rhi::BufferTag, Buffer>& buffers() { return buffers_; }
     rhi::HandlePool<rhi::SamplerTag, Sampler>& samplers() { return samplers_; }
@@ -138,6 +140,8 @@ public:
     [[nodiscard]] uint32_t min_storage_alignment() const { return static_cast<uint32_t>(caps_.storage_buffer_offset_alignment); }
     [[nodiscard]] uint64_t max_uniform_range() const { return context_->properties().limits.maxUniformBufferRange; }
     [[nodiscard]] uint64_t frame_epoch() const { return epoch_; }
+    /// A frame is being recorded (the command list's state says; none before it exists).
+    [[nodiscard]] bool frame_recording() const { return command_list_ && command_list_->state().recording(); }
 
 private:
     VulkanDevice() = default;
@@ -208,7 +212,6 @@ private:
 
     std::array<FrameSlot, kFramesInFlight> frames_;
     uint64_t frame_index_ = 0;
-    bool frame_recording_ = false;
     uint64_t epoch_ = 1;  ///< advances whenever frame commands are submitted
     std::unique_ptr<VulkanCommandList> command_list_;
     rhi::FrameStats last_frame_stats_;

@@ -3,7 +3,9 @@
 // depend on the graphics API, checked once, in front of every backend (after sokol_gfx's
 // validation layer and NVRHI's validation wrapper). Backends call these first and then only
 // translate to their API, so a misuse gives the same ErrorCode and the same message on every
-// backend (tests/cross_backend/misuse_table_test.cpp checks that, rule by rule).
+// backend (tests/render/misuse_table_test.cpp checks that, rule by rule). The rules about when
+// a command may be recorded (a render pass open, a pipeline bound) are rhi::CommandListState's
+// (loom/rhi/command_list_state.hpp).
 //
 // Codes: InvalidArgument for a description or call that is wrong whatever the device;
 // Unsupported where it exceeds what this device can do (its Capabilities: sizes, layers,
@@ -14,6 +16,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "loom/rhi/descriptions.hpp"
 #include "loom/rhi/device.hpp"
@@ -82,19 +85,24 @@ Status graphics_pipeline(const GraphicsPipelineDesc& desc, const Capabilities& c
 Status compute_pipeline(const ComputePipelineDesc& desc, const ShaderLookup& lookup);
 
 // ---- commands ------------------------------------------------------------------------------
-// What a CommandList checks before it records a command (the first error of a frame comes
-// back from end_frame). State rules (inside or outside a render pass, a bound pipeline) stay
-// with the command lists for now.
+// What a CommandList checks of a command's arguments before it records it (the first error of
+// a frame comes back from end_frame). Whether the command may come now (inside or outside a
+// render pass, with a pipeline bound) is rhi::CommandListState's to say.
 
 /// The description of a texture by handle, on the device being validated; an InvalidHandle
 /// error (HandlePool's message) for a null, stale or foreign handle.
 using TextureLookup = std::function<Result<const TextureDesc*>(TextureHandle)>;
+/// The same for buffers.
+using BufferLookup = std::function<Result<const BufferDesc*>(BufferHandle)>;
 
-/// The size and sample count every attachment of a render pass shares.
+/// The size, sample count and formats of a render pass's attachments (what a graphics pipeline
+/// drawing in it must target).
 struct RenderPassShape {
     uint32_t width = 0;
     uint32_t height = 0;
     uint32_t samples = 1;
+    std::vector<Format> color_formats;
+    Format depth_format = Format::Undefined;
 };
 /// CommandList::begin_render_pass: at least one attachment, at most the device's colour
 /// attachments; each one a live texture of the right kind of format, with the attachment usage,
@@ -136,7 +144,7 @@ struct PipelineSlot {
 /// Buffers, textures and samplers by handle on the device being validated; InvalidHandle
 /// errors (HandlePool's messages) for null, stale or foreign handles.
 struct ResourceLookup {
-    std::function<Result<const BufferDesc*>(BufferHandle)> buffer;
+    BufferLookup buffer;
     TextureLookup texture;
     std::function<Result<bool>(SamplerHandle)> sampler;  ///< true when alive
 };
@@ -176,6 +184,16 @@ Result<const BindingEntry*> binding(std::string_view command, std::string_view p
 /// slot's kind needs `needed` ("ShaderRead", "DepthRead or ShaderRead", "Storage").
 Error state_for_binding(std::string_view command, std::string_view pipeline, const PipelineSlot& slot, std::string_view texture,
                         ResourceState state, std::string_view needed);
+
+/// CommandList::transition of a texture to `state`: a state textures have, for the texture's kind
+/// of format (RenderTarget and Present a colour format, DepthWrite and DepthRead a depth/stencil
+/// one), with the usage it needs (RenderTarget: ColorAttachment, DepthWrite:
+/// DepthStencilAttachment, Storage: Storage); ShaderRead and DepthRead where this device samples
+/// the format (Unsupported otherwise).
+Status texture_transition(const TextureDesc& texture, ResourceState state, const Capabilities& caps);
+/// CommandList::transition of a buffer to `state`: a state buffers have (not RenderTarget,
+/// DepthWrite, DepthRead or Present).
+Status buffer_transition(const BufferDesc& buffer, ResourceState state);
 
 /// CommandList::set_viewport: a positive size, depths within 0..1, nothing NaN.
 Status viewport(const Viewport& viewport);

@@ -1,0 +1,174 @@
+#pragma once
+// The recording state of a command list, one implementation for every backend: whether a frame
+// is being recorded, the open render pass, the bound pipeline, bind groups, push constants,
+// vertex and index buffers, the open timer and the debug-group depth. Every command asks it
+// first; it answers with the same ErrorCode and message on every backend (InvalidState for a
+// command at the wrong time), and a backend only translates what it accepts to its API. The
+// rules that need no state (descriptions, ranges, bindings against the pipeline) are
+// rhi::validation's; this class calls them where a command's check needs both.
+// tests/render/misuse_table_test.cpp breaks each rule on both backends;
+// tests/rhi/command_list_state_test.cpp checks them without a device.
+//
+// Methods named after a command (set_pipeline, end_render_pass, begin_timer, ...) check it and,
+// when it is accepted, record its effect. Where the backend can still fail after the check
+// (beginning a frame or a render pass), check_* only checks, and the backend records the effect
+// once it has succeeded (begin_frame, render_pass_begun). Resource states (of textures and
+// buffers) are not kept here: each backend tracks them at its own granularity.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "loom/rhi/descriptions.hpp"
+#include "loom/rhi/format.hpp"
+#include "loom/rhi/handles.hpp"
+#include "loom/rhi/result.hpp"
+#include "loom/rhi/shader.hpp"
+#include "loom/rhi/validation.hpp"
+
+namespace loom::rhi {
+
+/// What the state checks need of a pipeline the device holds (views into it: valid while it lives).
+struct PipelineFacts {
+    std::string_view name;
+    bool compute = false;
+    /// Graphics pipelines: the attachments they render to, which the render pass must have.
+    std::span<const Format> color_formats;
+    Format depth_format = Format::Undefined;
+    uint32_t samples = 1;
+    /// The vertex buffer slots the pipeline reads: 0 .. vertex_buffers - 1.
+    uint32_t vertex_buffers = 0;
+};
+/// The facts of a pipeline by handle; an InvalidHandle error (HandlePool's message) for a null,
+/// stale or foreign handle.
+using PipelineLookup = std::function<Result<PipelineFacts>(PipelineHandle)>;
+
+class CommandListState {
+public:
+    struct RenderPass {
+        std::string label;
+        validation::RenderPassShape shape;
+    };
+    struct VertexBuffer {
+        BufferHandle buffer;
+        uint64_t offset = 0;
+    };
+    struct IndexBuffer {
+        BufferHandle buffer;
+        IndexType type = IndexType::Uint32;
+        uint64_t offset = 0;
+    };
+
+    /// Pipelines and buffers are looked up on the device whose commands are recorded.
+    CommandListState(PipelineLookup pipelines, validation::BufferLookup buffers);
+
+    // ---- frames --------------------------------------------------------------------------------
+    [[nodiscard]] bool recording() const { return recording_; }
+    /// Device::begin_frame (or `command`, which begins a frame another way): no frame is being recorded.
+    [[nodiscard]] Status check_begin_frame(std::string_view command = "begin_frame") const;
+    /// A frame begins: nothing open, nothing bound.
+    void begin_frame();
+    /// `command` (end_frame, transient_uniforms) needs a frame being recorded.
+    [[nodiscard]] Status check_recording(std::string_view command) const;
+    /// end_frame: the first of a render pass, a timer and debug groups left open (the backend
+    /// reports it as the frame's error and closes them all).
+    [[nodiscard]] Status check_nothing_open() const;
+    /// The frame has ended.
+    void end_frame();
+
+    // ---- render passes ---------------------------------------------------------------------------
+    /// The open render pass, or null.
+    [[nodiscard]] const RenderPass* render_pass() const { return pass_ ? &*pass_ : nullptr; }
+    /// begin_render_pass `label`: no render pass is open (render passes do not nest).
+    [[nodiscard]] Status check_begin_render_pass(std::string_view label) const;
+    /// Render pass `label`, of `shape` (rhi::validation::render_pass), has begun.
+    void render_pass_begun(std::string_view label, validation::RenderPassShape shape);
+    /// end_render_pass: a render pass is open; closes it.
+    Status end_render_pass();
+    /// `command` goes outside render passes (dispatches, copies, transitions and readbacks);
+    /// `command` may name its object too ("read_texture of texture 'x'").
+    [[nodiscard]] Status check_outside_render_pass(std::string_view command) const;
+
+    // ---- bound state ---------------------------------------------------------------------------
+    /// set_pipeline: a live pipeline; a graphics one set inside a render pass renders to the
+    /// pass's attachments. On an error nothing is bound, so that later draws are refused rather
+    /// than drawn with the pipeline bound before.
+    Status set_pipeline(PipelineHandle pipeline);
+    /// The bound pipeline (null when none).
+    [[nodiscard]] PipelineHandle pipeline() const { return pipeline_; }
+    /// set_bind_group (rhi::validation::bind_group); keeps a copy of `group`.
+    Status set_bind_group(uint32_t set, const BindGroup& group);
+    /// The group bound to `set`, or null.
+    [[nodiscard]] const BindGroup* bind_group(uint32_t set) const;
+    /// push_constants (rhi::validation::push_constants); keeps the bytes.
+    Status push_constants(std::span<const std::byte> data, uint32_t offset);
+    /// All kMaxPushConstantBytes bytes of the push-constant block (zero where never written).
+    [[nodiscard]] std::span<const std::byte> push_constant_data() const { return push_data_; }
+    /// The bytes of the block written so far in this frame (the end of the highest write).
+    [[nodiscard]] uint32_t push_constant_size() const { return push_size_; }
+    /// set_vertex_buffer: a slot below kMaxVertexBuffers, a live buffer with Vertex usage, an
+    /// offset inside it (rhi::validation::vertex_buffer_slot, vertex_buffer).
+    Status set_vertex_buffer(uint32_t slot, BufferHandle buffer, uint64_t offset);
+    /// The buffer bound to vertex buffer slot `slot` (< kMaxVertexBuffers); a null handle when none.
+    [[nodiscard]] const VertexBuffer& vertex_buffer(uint32_t slot) const { return vertex_buffers_[slot]; }
+    /// set_index_buffer: a live buffer with Index usage and an aligned offset inside it
+    /// (rhi::validation::index_buffer).
+    Status set_index_buffer(BufferHandle buffer, IndexType type, uint64_t offset);
+    /// The bound index buffer; a null handle when none.
+    [[nodiscard]] const IndexBuffer& index_buffer() const { return index_buffer_; }
+
+    // ---- draws and dispatches ------------------------------------------------------------------
+    /// A draw (`command`: draw, draw_indexed, draw_indexed_indirect): inside a render pass, with
+    /// a live graphics pipeline that renders to the pass's attachments, a live vertex buffer in
+    /// every slot it reads and, when `indexed`, a live index buffer. Bind groups against the
+    /// pipeline are the backend's to check next (rhi::validation::binding).
+    [[nodiscard]] Status check_draw(std::string_view command, bool indexed) const;
+    /// draw_indexed (after check_draw): the indices lie inside the bound index buffer
+    /// (rhi::validation::index_range).
+    [[nodiscard]] Status check_index_range(uint32_t first_index, uint32_t index_count) const;
+    /// dispatch: outside render passes, with a live compute pipeline.
+    [[nodiscard]] Status check_dispatch() const;
+
+    // ---- timers and debug groups ---------------------------------------------------------------
+    /// begin_timer `label`: no timer is open (timers do not nest).
+    Status begin_timer(std::string_view label);
+    /// end_timer: a timer is open; closes it.
+    Status end_timer();
+    /// The label of the open timer, if one is open.
+    [[nodiscard]] const std::optional<std::string>& open_timer() const { return open_timer_; }
+    void push_debug_group() { ++debug_depth_; }
+    /// pop_debug_group: a debug group is open; closes the innermost.
+    Status pop_debug_group();
+    /// Debug groups pushed and not popped in this frame.
+    [[nodiscard]] uint32_t debug_group_depth() const { return debug_depth_; }
+
+private:
+    /// Forgets everything bound and open (frames begin and end with nothing).
+    void reset();
+    /// The bound pipeline's facts for `command`: set, alive and of the right kind.
+    [[nodiscard]] Result<PipelineFacts> bound_pipeline(std::string_view command, bool compute) const;
+    /// A graphics pipeline renders to the open pass's attachment formats and sample count.
+    [[nodiscard]] Status check_pipeline_matches_pass(std::string_view command, const PipelineFacts& pipeline) const;
+
+    PipelineLookup pipelines_;
+    validation::BufferLookup buffers_;
+
+    bool recording_ = false;
+    std::optional<RenderPass> pass_;
+    PipelineHandle pipeline_;
+    std::string pipeline_name_;  ///< to name the pipeline in errors once it has been destroyed
+    std::array<std::optional<BindGroup>, kMaxBindGroups> groups_{};
+    std::array<std::byte, kMaxPushConstantBytes> push_data_{};
+    uint32_t push_size_ = 0;
+    std::array<VertexBuffer, kMaxVertexBuffers> vertex_buffers_{};
+    IndexBuffer index_buffer_;
+    std::optional<std::string> open_timer_;
+    uint32_t debug_depth_ = 0;
+};
+
+}  // namespace loom::rhi

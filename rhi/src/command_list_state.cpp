@@ -1,0 +1,238 @@
+#include "loom/rhi/command_list_state.hpp"
+
+#include <algorithm>
+#include <utility>
+
+namespace loom::rhi {
+
+using validation::in_quotes;
+
+namespace {
+
+Error invalid_state(std::string message) { return Error{ErrorCode::InvalidState, std::move(message)}; }
+
+// A lookup error of a bound object, said with the command that found it ("draw: index buffer: ...").
+Error stale(std::string_view command, const std::string& what, const Error& found) {
+    return Error{ErrorCode::InvalidHandle, std::string(command) + ": " + what + ": " + found.message};
+}
+
+// "[RGBA8Unorm, R32Float] depth Depth32F x4"
+std::string attachments_text(std::span<const Format> colors, Format depth, uint32_t samples) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < colors.size(); ++i) out += (i ? ", " : "") + std::string(format_name(colors[i]));
+    return out + "] depth " + std::string(format_name(depth)) + " x" + std::to_string(samples);
+}
+
+}  // namespace
+
+CommandListState::CommandListState(PipelineLookup pipelines, validation::BufferLookup buffers)
+    : pipelines_(std::move(pipelines)), buffers_(std::move(buffers)) {}
+
+void CommandListState::reset() {
+    pass_.reset();
+    pipeline_ = {};
+    pipeline_name_.clear();
+    groups_ = {};
+    push_data_ = {};
+    push_size_ = 0;
+    vertex_buffers_ = {};
+    index_buffer_ = {};
+    open_timer_.reset();
+    debug_depth_ = 0;
+}
+
+// ---- frames ----------------------------------------------------------------------------------------
+
+Status CommandListState::check_begin_frame(std::string_view command) const {
+    if (!recording_) return {};
+    return invalid_state(std::string(command) + ": the previous frame was not ended; call end_frame first");
+}
+
+void CommandListState::begin_frame() {
+    reset();
+    recording_ = true;
+}
+
+Status CommandListState::check_recording(std::string_view command) const {
+    if (recording_) return {};
+    return invalid_state(std::string(command) + ": no frame is being recorded; call begin_frame first");
+}
+
+Status CommandListState::check_nothing_open() const {
+    if (pass_) return invalid_state("end_frame: render pass " + in_quotes(pass_->label) + " was not ended");
+    if (open_timer_) return invalid_state("end_frame: timer " + in_quotes(*open_timer_) + " was not ended");
+    if (debug_depth_ == 1) return invalid_state("end_frame: 1 debug group was not popped");
+    if (debug_depth_ > 1) {
+        return invalid_state("end_frame: " + std::to_string(debug_depth_) + " debug groups were not popped");
+    }
+    return {};
+}
+
+void CommandListState::end_frame() {
+    reset();
+    recording_ = false;
+}
+
+// ---- render passes ---------------------------------------------------------------------------------
+
+Status CommandListState::check_begin_render_pass(std::string_view label) const {
+    if (!pass_) return {};
+    return invalid_state("begin_render_pass " + in_quotes(label) + ": render pass " + in_quotes(pass_->label) +
+                         " is still open; render passes do not nest");
+}
+
+void CommandListState::render_pass_begun(std::string_view label, validation::RenderPassShape shape) {
+    pass_ = RenderPass{std::string(label), std::move(shape)};
+}
+
+Status CommandListState::end_render_pass() {
+    if (!pass_) return invalid_state("end_render_pass: no render pass is open");
+    pass_.reset();
+    return {};
+}
+
+Status CommandListState::check_outside_render_pass(std::string_view command) const {
+    if (!pass_) return {};
+    return invalid_state(std::string(command) + ": render pass " + in_quotes(pass_->label) +
+                         " is open; dispatches, copies, transitions and readbacks go outside render passes");
+}
+
+// ---- bound state -------------------------------------------------------------------------------
+
+Status CommandListState::set_pipeline(PipelineHandle pipeline) {
+    // Unbound first: a refused pipeline leaves none (see the header).
+    pipeline_ = {};
+    pipeline_name_.clear();
+    auto facts = pipelines_(pipeline);
+    if (!facts.ok()) return Error{ErrorCode::InvalidHandle, "set_pipeline: " + facts.error().message};
+    if (!facts->compute) LOOM_TRY(check_pipeline_matches_pass("set_pipeline", *facts));
+    pipeline_ = pipeline;
+    pipeline_name_ = facts->name;
+    return {};
+}
+
+Status CommandListState::set_bind_group(uint32_t set, const BindGroup& group) {
+    LOOM_TRY(validation::bind_group(set, group));
+    groups_[set] = group;
+    return {};
+}
+
+const BindGroup* CommandListState::bind_group(uint32_t set) const {
+    return set < groups_.size() && groups_[set] ? &*groups_[set] : nullptr;
+}
+
+Status CommandListState::push_constants(std::span<const std::byte> data, uint32_t offset) {
+    LOOM_TRY(validation::push_constants(offset, data.size()));
+    std::copy(data.begin(), data.end(), push_data_.begin() + offset);
+    push_size_ = std::max(push_size_, offset + static_cast<uint32_t>(data.size()));
+    return {};
+}
+
+Status CommandListState::set_vertex_buffer(uint32_t slot, BufferHandle buffer, uint64_t offset) {
+    LOOM_TRY(validation::vertex_buffer_slot(slot));
+    auto found = buffers_(buffer);
+    if (!found.ok()) return Error{ErrorCode::InvalidHandle, "set_vertex_buffer: " + found.error().message};
+    LOOM_TRY(validation::vertex_buffer(slot, **found, offset));
+    vertex_buffers_[slot] = {buffer, offset};
+    return {};
+}
+
+Status CommandListState::set_index_buffer(BufferHandle buffer, IndexType type, uint64_t offset) {
+    auto found = buffers_(buffer);
+    if (!found.ok()) return Error{ErrorCode::InvalidHandle, "set_index_buffer: " + found.error().message};
+    LOOM_TRY(validation::index_buffer(**found, type, offset));
+    index_buffer_ = {buffer, type, offset};
+    return {};
+}
+
+// ---- draws and dispatches ------------------------------------------------------------------------
+
+Result<PipelineFacts> CommandListState::bound_pipeline(std::string_view command, bool compute) const {
+    const std::string what(command);
+    if (pipeline_.is_null()) return invalid_state(what + ": no pipeline is set; call set_pipeline first");
+    auto facts = pipelines_(pipeline_);
+    if (!facts.ok()) return stale(command, "pipeline " + in_quotes(pipeline_name_), facts.error());
+    if (facts->compute != compute) {
+        return invalid_state(what + ": pipeline " + in_quotes(facts->name) + " is a " +
+                             (facts->compute ? "compute" : "graphics") + " pipeline; " +
+                             (compute ? "dispatches need a compute pipeline" : "draws need a graphics pipeline"));
+    }
+    return facts;
+}
+
+Status CommandListState::check_pipeline_matches_pass(std::string_view command, const PipelineFacts& p) const {
+    if (!pass_) return {};
+    const validation::RenderPassShape& shape = pass_->shape;
+    const bool formats_match = std::equal(p.color_formats.begin(), p.color_formats.end(), shape.color_formats.begin(),
+                                          shape.color_formats.end()) &&
+                               p.depth_format == shape.depth_format;
+    if (formats_match && p.samples == shape.samples) return {};
+    return Error{ErrorCode::InvalidArgument,
+                 std::string(command) + ": pipeline " + in_quotes(p.name) + " targets " +
+                     attachments_text(p.color_formats, p.depth_format, p.samples) + ", render pass " +
+                     in_quotes(pass_->label) + " has " +
+                     attachments_text(shape.color_formats, shape.depth_format, shape.samples)};
+}
+
+Status CommandListState::check_draw(std::string_view command, bool indexed) const {
+    const std::string what(command);
+    if (!pass_) return invalid_state(what + ": no render pass is open; draws go inside a render pass");
+    auto pipeline = bound_pipeline(command, false);
+    if (!pipeline.ok()) return pipeline.take_error();
+    LOOM_TRY(check_pipeline_matches_pass(command, *pipeline));
+    for (uint32_t slot = 0; slot < pipeline->vertex_buffers && slot < kMaxVertexBuffers; ++slot) {
+        const BufferHandle buffer = vertex_buffers_[slot].buffer;
+        if (buffer.is_null()) {
+            return invalid_state(what + ": pipeline " + in_quotes(pipeline->name) + " reads vertex buffer slot " +
+                                 std::to_string(slot) + ", but no vertex buffer is bound there");
+        }
+        if (auto found = buffers_(buffer); !found.ok()) {
+            return stale(command, "vertex buffer slot " + std::to_string(slot), found.error());
+        }
+    }
+    if (indexed) {
+        if (index_buffer_.buffer.is_null()) {
+            return invalid_state(what + ": no index buffer is bound; call set_index_buffer first");
+        }
+        auto found = buffers_(index_buffer_.buffer);
+        if (!found.ok()) return stale(command, "index buffer", found.error());
+    }
+    return {};
+}
+
+Status CommandListState::check_index_range(uint32_t first_index, uint32_t index_count) const {
+    auto found = buffers_(index_buffer_.buffer);
+    if (!found.ok()) return stale("draw_indexed", "index buffer", found.error());
+    return validation::index_range(**found, index_buffer_.type, index_buffer_.offset, first_index, index_count);
+}
+
+Status CommandListState::check_dispatch() const {
+    LOOM_TRY(check_outside_render_pass("dispatch"));
+    auto pipeline = bound_pipeline("dispatch", true);
+    return pipeline.ok() ? Status{} : Status(pipeline.take_error());
+}
+
+// ---- timers and debug groups ---------------------------------------------------------------------
+
+Status CommandListState::begin_timer(std::string_view label) {
+    if (open_timer_) {
+        return invalid_state("begin_timer " + in_quotes(label) + ": timer " + in_quotes(*open_timer_) +
+                             " is still open; timers do not nest");
+    }
+    open_timer_ = std::string(label);
+    return {};
+}
+
+Status CommandListState::end_timer() {
+    if (!open_timer_) return invalid_state("end_timer: no timer is open");
+    open_timer_.reset();
+    return {};
+}
+
+Status CommandListState::pop_debug_group() {
+    if (debug_depth_ == 0) return invalid_state("pop_debug_group: no debug group is open");
+    --debug_depth_;
+    return {};
+}
+
+}  // namespace loom::rhi

@@ -1,0 +1,277 @@
+// The command-list state tracker without a device: pipelines and buffers live in handle pools
+// here, as they do in the backends, so that stale handles read as they do there. The same rules
+// on real devices of both backends: tests/render/misuse_table_test.cpp.
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "loom/rhi/command_list_state.hpp"
+#include "loom/rhi/handle_pool.hpp"
+
+namespace loom::rhi {
+namespace {
+
+struct FakePipeline {
+    std::string name;
+    bool compute = false;
+    std::vector<Format> color_formats;
+    Format depth_format = Format::Undefined;
+    uint32_t samples = 1;
+    uint32_t vertex_buffers = 0;
+};
+
+void expect_error(const Status& status, ErrorCode code, const std::string& message) {
+    ASSERT_FALSE(status.ok()) << "accepted, expected: " << message;
+    EXPECT_EQ(error_code_name(status.error().code), error_code_name(code));
+    EXPECT_EQ(status.error().message, message);
+}
+
+class CommandListStateTest : public ::testing::Test {
+protected:
+    CommandListStateTest()
+        : state(
+              [this](PipelineHandle h) -> Result<PipelineFacts> {
+                  auto found = pipelines.get(h);
+                  if (!found.ok()) return found.take_error();
+                  const FakePipeline& p = **found;
+                  return PipelineFacts{p.name, p.compute, p.color_formats, p.depth_format, p.samples, p.vertex_buffers};
+              },
+              [this](BufferHandle h) -> Result<const BufferDesc*> {
+                  auto found = buffers.get(h);
+                  if (!found.ok()) return found.take_error();
+                  return *found;
+              }) {}
+
+    PipelineHandle graphics(const std::string& name, Format color = Format::RGBA8Unorm, uint32_t vertex_buffers = 0) {
+        return pipelines.insert({name, false, {color}, Format::Undefined, 1, vertex_buffers});
+    }
+    PipelineHandle compute(const std::string& name) {
+        return pipelines.insert({name, true, {}, Format::Undefined, 1, 0});
+    }
+    BufferHandle buffer(const std::string& name, uint64_t size, BufferUsage usage) {
+        return buffers.insert({name, size, usage});
+    }
+    /// Opens render pass `label` with one RGBA8Unorm attachment.
+    void open_pass(const std::string& label = "p") {
+        ASSERT_TRUE(state.check_begin_render_pass(label).ok());
+        state.render_pass_begun(label, validation::RenderPassShape{4, 4, 1, {Format::RGBA8Unorm}, Format::Undefined});
+    }
+    /// The InvalidHandle message of a destroyed pipeline / buffer, as the pool words it.
+    std::string stale_message(PipelineHandle h) { return pipelines.get(h).error().message; }
+    std::string stale_message(BufferHandle h) { return buffers.get(h).error().message; }
+
+    HandlePool<PipelineTag, FakePipeline> pipelines{next_device_id()};
+    HandlePool<BufferTag, BufferDesc> buffers{next_device_id()};
+    CommandListState state;
+};
+
+TEST_F(CommandListStateTest, AFrameIsBegunOnceAndEndedOnce) {
+    EXPECT_FALSE(state.recording());
+    expect_error(state.check_recording("end_frame"), ErrorCode::InvalidState,
+                 "end_frame: no frame is being recorded; call begin_frame first");
+    expect_error(state.check_recording("transient_uniforms"), ErrorCode::InvalidState,
+                 "transient_uniforms: no frame is being recorded; call begin_frame first");
+    ASSERT_TRUE(state.check_begin_frame().ok());
+    state.begin_frame();
+    EXPECT_TRUE(state.recording());
+    EXPECT_TRUE(state.check_recording("end_frame").ok());
+    expect_error(state.check_begin_frame(), ErrorCode::InvalidState,
+                 "begin_frame: the previous frame was not ended; call end_frame first");
+    expect_error(state.check_begin_frame("begin_external_frame"), ErrorCode::InvalidState,
+                 "begin_external_frame: the previous frame was not ended; call end_frame first");
+    EXPECT_TRUE(state.check_nothing_open().ok());
+    state.end_frame();
+    EXPECT_FALSE(state.recording());
+}
+
+TEST_F(CommandListStateTest, EndFrameNamesWhatWasLeftOpenPassFirst) {
+    state.begin_frame();
+    state.push_debug_group();
+    expect_error(state.check_nothing_open(), ErrorCode::InvalidState, "end_frame: 1 debug group was not popped");
+    state.push_debug_group();
+    expect_error(state.check_nothing_open(), ErrorCode::InvalidState, "end_frame: 2 debug groups were not popped");
+    ASSERT_TRUE(state.begin_timer("t").ok());
+    expect_error(state.check_nothing_open(), ErrorCode::InvalidState, "end_frame: timer 't' was not ended");
+    open_pass("left open");
+    expect_error(state.check_nothing_open(), ErrorCode::InvalidState,
+                 "end_frame: render pass 'left open' was not ended");
+    // The next frame starts with nothing open.
+    state.end_frame();
+    state.begin_frame();
+    EXPECT_TRUE(state.check_nothing_open().ok());
+    EXPECT_EQ(state.render_pass(), nullptr);
+    EXPECT_FALSE(state.open_timer());
+    EXPECT_EQ(state.debug_group_depth(), 0u);
+}
+
+TEST_F(CommandListStateTest, RenderPassesDoNotNest) {
+    state.begin_frame();
+    expect_error(state.end_render_pass(), ErrorCode::InvalidState, "end_render_pass: no render pass is open");
+    open_pass("outer");
+    ASSERT_NE(state.render_pass(), nullptr);
+    EXPECT_EQ(state.render_pass()->label, "outer");
+    expect_error(state.check_begin_render_pass("inner"), ErrorCode::InvalidState,
+                 "begin_render_pass 'inner': render pass 'outer' is still open; render passes do not nest");
+    EXPECT_TRUE(state.end_render_pass().ok());
+    EXPECT_EQ(state.render_pass(), nullptr);
+    EXPECT_TRUE(state.check_begin_render_pass("inner").ok());
+}
+
+TEST_F(CommandListStateTest, DispatchesCopiesTransitionsAndReadbacksGoOutsideRenderPasses) {
+    state.begin_frame();
+    for (const char* command : {"copy_buffer", "copy_texture", "transition", "read_texture of texture 't'"}) {
+        EXPECT_TRUE(state.check_outside_render_pass(command).ok()) << command;
+    }
+    open_pass();
+    expect_error(state.check_outside_render_pass("read_texture of texture 't'"), ErrorCode::InvalidState,
+                 "read_texture of texture 't': render pass 'p' is open; dispatches, copies, transitions and readbacks "
+                 "go outside "
+                 "render passes");
+    ASSERT_TRUE(state.set_pipeline(compute("c")).ok());
+    expect_error(
+        state.check_dispatch(), ErrorCode::InvalidState,
+        "dispatch: render pass 'p' is open; dispatches, copies, transitions and readbacks go outside render passes");
+    ASSERT_TRUE(state.end_render_pass().ok());
+    EXPECT_TRUE(state.check_dispatch().ok());
+}
+
+TEST_F(CommandListStateTest, DrawsGoInsideARenderPassWithAGraphicsPipeline) {
+    state.begin_frame();
+    expect_error(state.check_draw("draw", false), ErrorCode::InvalidState,
+                 "draw: no render pass is open; draws go inside a render pass");
+    open_pass();
+    expect_error(state.check_draw("draw", false), ErrorCode::InvalidState,
+                 "draw: no pipeline is set; call set_pipeline first");
+    ASSERT_TRUE(state.set_pipeline(compute("c")).ok());
+    expect_error(state.check_draw("draw", false), ErrorCode::InvalidState,
+                 "draw: pipeline 'c' is a compute pipeline; draws need a graphics pipeline");
+    ASSERT_TRUE(state.set_pipeline(graphics("g")).ok());
+    EXPECT_TRUE(state.check_draw("draw", false).ok());
+    ASSERT_TRUE(state.end_render_pass().ok());
+    expect_error(state.check_dispatch(), ErrorCode::InvalidState,
+                 "dispatch: pipeline 'g' is a graphics pipeline; dispatches need a compute pipeline");
+}
+
+TEST_F(CommandListStateTest, APipelineMustTargetThePassAttachments) {
+    state.begin_frame();
+    const PipelineHandle wide = graphics("wide", Format::RGBA16Float);
+    // Set before the pass: refused at the draw.
+    ASSERT_TRUE(state.set_pipeline(wide).ok());
+    open_pass();
+    const std::string mismatch =
+        "pipeline 'wide' targets [RGBA16Float] depth Undefined x1, render pass 'p' has [RGBA8Unorm] depth Undefined x1";
+    expect_error(state.check_draw("draw", false), ErrorCode::InvalidArgument, "draw: " + mismatch);
+    // Set inside the pass: refused at once, and nothing stays bound.
+    expect_error(state.set_pipeline(wide), ErrorCode::InvalidArgument, "set_pipeline: " + mismatch);
+    EXPECT_TRUE(state.pipeline().is_null());
+    expect_error(state.check_draw("draw", false), ErrorCode::InvalidState,
+                 "draw: no pipeline is set; call set_pipeline first");
+    // Compute pipelines may be set inside a pass (and dispatched after it).
+    EXPECT_TRUE(state.set_pipeline(compute("c")).ok());
+}
+
+TEST_F(CommandListStateTest, ADestroyedPipelineIsAnInvalidHandle) {
+    state.begin_frame();
+    open_pass();
+    const PipelineHandle doomed = graphics("doomed");
+    ASSERT_TRUE(state.set_pipeline(doomed).ok());
+    ASSERT_TRUE(pipelines.remove(doomed).ok());
+    expect_error(state.check_draw("draw", false), ErrorCode::InvalidHandle,
+                 "draw: pipeline 'doomed': " + stale_message(doomed));
+    expect_error(state.set_pipeline(doomed), ErrorCode::InvalidHandle, "set_pipeline: " + stale_message(doomed));
+    expect_error(state.set_pipeline({}), ErrorCode::InvalidHandle, "set_pipeline: pipeline handle is null");
+}
+
+TEST_F(CommandListStateTest, EverySlotThePipelineReadsNeedsAVertexBuffer) {
+    state.begin_frame();
+    open_pass();
+    ASSERT_TRUE(state.set_pipeline(graphics("g", Format::RGBA8Unorm, 2)).ok());
+    const BufferHandle vertices = buffer("v", 64, BufferUsage::Vertex);
+    ASSERT_TRUE(state.set_vertex_buffer(0, vertices, 16).ok());
+    EXPECT_EQ(state.vertex_buffer(0).buffer, vertices);
+    EXPECT_EQ(state.vertex_buffer(0).offset, 16u);
+    expect_error(state.check_draw("draw", false), ErrorCode::InvalidState,
+                 "draw: pipeline 'g' reads vertex buffer slot 1, but no vertex buffer is bound there");
+    const BufferHandle doomed = buffer("doomed", 64, BufferUsage::Vertex);
+    ASSERT_TRUE(state.set_vertex_buffer(1, doomed, 0).ok());
+    EXPECT_TRUE(state.check_draw("draw", false).ok());
+    ASSERT_TRUE(buffers.remove(doomed).ok());
+    expect_error(state.check_draw("draw", false), ErrorCode::InvalidHandle,
+                 "draw: vertex buffer slot 1: " + stale_message(doomed));
+    // The binding's own rules are rhi::validation's.
+    expect_error(state.set_vertex_buffer(16, vertices, 0), ErrorCode::InvalidArgument,
+                 "set_vertex_buffer: slot 16 is beyond the 16 slots loom supports");
+    expect_error(state.set_vertex_buffer(0, {}, 0), ErrorCode::InvalidHandle,
+                 "set_vertex_buffer: buffer handle is null");
+    expect_error(state.set_vertex_buffer(0, buffer("i", 64, BufferUsage::Index), 0), ErrorCode::InvalidArgument,
+                 "set_vertex_buffer: slot 0: buffer 'i' lacks usage Vertex");
+    EXPECT_EQ(state.vertex_buffer(0).buffer, vertices) << "a refused binding replaced the bound one";
+}
+
+TEST_F(CommandListStateTest, IndexedDrawsNeedAnIndexBufferThatHoldsTheirIndices) {
+    state.begin_frame();
+    open_pass();
+    ASSERT_TRUE(state.set_pipeline(graphics("g")).ok());
+    EXPECT_TRUE(state.check_draw("draw", false).ok());
+    expect_error(state.check_draw("draw_indexed", true), ErrorCode::InvalidState,
+                 "draw_indexed: no index buffer is bound; call set_index_buffer first");
+    const BufferHandle indices = buffer("i", 12, BufferUsage::Index);
+    ASSERT_TRUE(state.set_index_buffer(indices, IndexType::Uint16, 2).ok());
+    EXPECT_TRUE(state.check_draw("draw_indexed_indirect", true).ok());
+    EXPECT_TRUE(state.check_index_range(0, 5).ok());
+    expect_error(state.check_index_range(1, 5), ErrorCode::InvalidArgument,
+                 "draw_indexed: 5 indices from index 1 run past the end of index buffer 'i' (12 bytes from offset 2)");
+    ASSERT_TRUE(buffers.remove(indices).ok());
+    expect_error(state.check_draw("draw_indexed", true), ErrorCode::InvalidHandle,
+                 "draw_indexed: index buffer: " + stale_message(indices));
+}
+
+TEST_F(CommandListStateTest, TimersDoNotNestAndDebugGroupsBalance) {
+    state.begin_frame();
+    expect_error(state.end_timer(), ErrorCode::InvalidState, "end_timer: no timer is open");
+    ASSERT_TRUE(state.begin_timer("outer").ok());
+    expect_error(state.begin_timer("inner"), ErrorCode::InvalidState,
+                 "begin_timer 'inner': timer 'outer' is still open; timers do not nest");
+    EXPECT_EQ(state.open_timer(), "outer");
+    EXPECT_TRUE(state.end_timer().ok());
+    EXPECT_TRUE(state.begin_timer("inner").ok());
+
+    expect_error(state.pop_debug_group(), ErrorCode::InvalidState, "pop_debug_group: no debug group is open");
+    state.push_debug_group();
+    state.push_debug_group();
+    EXPECT_TRUE(state.pop_debug_group().ok());
+    EXPECT_EQ(state.debug_group_depth(), 1u);
+}
+
+TEST_F(CommandListStateTest, BoundStateLastsForOneFrame) {
+    state.begin_frame();
+    const PipelineHandle pipeline = graphics("g");
+    ASSERT_TRUE(state.set_pipeline(pipeline).ok());
+    ASSERT_TRUE(state.set_bind_group(1, BindGroup{}.buffer(0, buffer("u", 256, BufferUsage::Uniform))).ok());
+    expect_error(state.set_bind_group(4, {}), ErrorCode::InvalidArgument,
+                 "set_bind_group: set 4 is beyond the 4 sets loom supports");
+    const std::vector<std::byte> bytes(8, std::byte{7});
+    ASSERT_TRUE(state.push_constants(bytes, 8).ok());
+    expect_error(state.push_constants(bytes, 252), ErrorCode::InvalidArgument,
+                 "push_constants: 8 bytes at offset 252 exceed the 256 bytes loom supports");
+    ASSERT_TRUE(state.set_index_buffer(buffer("i", 12, BufferUsage::Index), IndexType::Uint32, 0).ok());
+    EXPECT_EQ(state.pipeline(), pipeline);
+    ASSERT_NE(state.bind_group(1), nullptr);
+    EXPECT_EQ(state.bind_group(1)->entries.size(), 1u);
+    EXPECT_EQ(state.bind_group(0), nullptr);
+    EXPECT_EQ(state.push_constant_size(), 16u);
+    EXPECT_EQ(state.push_constant_data()[8], std::byte{7});
+    EXPECT_EQ(state.push_constant_data()[7], std::byte{0});
+
+    state.end_frame();
+    state.begin_frame();
+    EXPECT_TRUE(state.pipeline().is_null());
+    EXPECT_EQ(state.bind_group(1), nullptr);
+    EXPECT_EQ(state.push_constant_size(), 0u);
+    EXPECT_EQ(state.push_constant_data()[8], std::byte{0});
+    EXPECT_TRUE(state.index_buffer().buffer.is_null());
+}
+
+}  // namespace
+}  // namespace loom::rhi
