@@ -24,7 +24,7 @@ passes::PassPart blend_render_part(const passes::PassConfig& config) {
 /// in/out (the standard part's colour is an output: here the lit frame is blended onto).
 passes::PassPart shadow_receiver_part(const passes::PassConfig& config) {
     passes::PassPart part = passes::shadow_render_part(config);
-    part.ports = fg::Part(part.name());
+    part.ports = fg::PortSet(part.name());
     part.ports.input("shadow_map", fg::TextureSpec::of(rhi::Format::Depth32F)).inout("color", passes::color_spec(config));
     return part;
 }
@@ -33,7 +33,7 @@ passes::PassPart shadow_receiver_part(const passes::PassConfig& config) {
 /// high pass in/out.
 passes::PassPart blended_high_pass_part(const passes::PassConfig& config) {
     passes::PassPart part = passes::high_pass_render_part(config);
-    part.ports = fg::Part(part.name());
+    part.ports = fg::PortSet(part.name());
     part.ports.inout("high_pass", passes::color_spec(config));
     return part;
 }

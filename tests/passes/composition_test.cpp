@@ -264,9 +264,9 @@ TEST(Composition, DeferredPassHasTheUnionOfItsPartsPortsAndResources) {
     DeferredPass pass;
     EXPECT_EQ(port_names(pass),
               (std::vector<std::string>{"position", "normal", "albedo", "color", "shadow_map", "high_pass"}));
-    EXPECT_EQ(pass.find_port("color")->parts, (std::vector<std::string>{"deferred-render", "shadow-render"}));
-    EXPECT_EQ(pass.find_port("shadow_map")->parts, (std::vector<std::string>{"shadow-render"}));
-    EXPECT_EQ(pass.find_port("high_pass")->parts, (std::vector<std::string>{"high-pass-render"}));
+    EXPECT_EQ(pass.find_port("color")->port_sets, (std::vector<std::string>{"deferred-render", "shadow-render"}));
+    EXPECT_EQ(pass.find_port("shadow_map")->port_sets, (std::vector<std::string>{"shadow-render"}));
+    EXPECT_EQ(pass.find_port("high_pass")->port_sets, (std::vector<std::string>{"high-pass-render"}));
     EXPECT_EQ(pass.find_port("shadow_map")->kind, fg::PortKind::Input);
     EXPECT_EQ(pass.find_port("high_pass")->kind, fg::PortKind::Output);
 
@@ -288,7 +288,7 @@ TEST(Composition, DeferredPassHasTheUnionOfItsPartsPortsAndResources) {
 TEST(Composition, LeavingPartsOutLeavesOutTheirPortsAndCode) {
     DeferredPass pass(PassConfig{}, LightingParts{.shadows = false, .high_pass = false}, "plain");
     EXPECT_EQ(port_names(pass), (std::vector<std::string>{"position", "normal", "albedo", "color"}));
-    EXPECT_EQ(pass.find_port("color")->parts, (std::vector<std::string>{"deferred-render"}));
+    EXPECT_EQ(pass.find_port("color")->port_sets, (std::vector<std::string>{"deferred-render"}));
     auto program = pass.own_program();
     ASSERT_TRUE(program.ok()) << program.error().to_string();
     EXPECT_FALSE((*program)->find("ShadowUniforms").has_value());

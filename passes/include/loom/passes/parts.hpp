@@ -1,5 +1,5 @@
 #pragma once
-// The standard pass parts: ports (fg::Part) and shader code (shaders/include/loom/parts/) under
+// The standard pass parts: ports (fg::PortSet) and shader code (shaders/include/loom/parts/) under
 // one name. The paper's Listings 3-5 are deferred_render_part, shadow_render_part and
 // high_pass_render_part; a pass built from all three has the union of their ports and a program
 // composed of their code.
