@@ -47,15 +47,22 @@ public:
     /// Adds (or replaces) the code of `stage`.
     ShaderPart& stage(rhi::ShaderStage stage, std::string code, std::string origin = "inline");
     /// Adds the code of `stage` from an embedded shader file (shaders::include_files(), e.g.
-    /// "loom/parts/blit.frag.glsl"). A missing file becomes an #error line, so composing the part
-    /// fails with a message naming the part and the file.
+    /// "loom/parts/blit.frag.glsl"). A file that is not embedded is the part's problem (below),
+    /// naming the file.
     ShaderPart& stage_file(rhi::ShaderStage stage, std::string_view file);
+    /// Marks the part as one no program can be composed with (the first problem is kept):
+    /// composing it fails with an InvalidArgument error naming the pass, the part and `problem`.
+    /// For code that makes parts where it cannot return an error (pass constructors, object
+    /// kinds).
+    ShaderPart& set_problem(std::string problem);
 
     [[nodiscard]] const std::string& name() const { return name_; }
     [[nodiscard]] uint32_t bindings() const { return bindings_; }
     /// The code for `stage`, or nullptr when the part has none there.
     [[nodiscard]] const StageCode* code(rhi::ShaderStage stage) const;
     [[nodiscard]] const std::vector<StageCode>& stages() const { return stages_; }
+    /// Why no program can be composed with the part, or nullopt.
+    [[nodiscard]] const std::optional<std::string>& problem() const { return problem_; }
     /// The macro defined for every program this part takes part in: "LOOM_PART_" and the name
     /// in upper case with every other character than A-Z, 0-9 turned into '_'
     /// ("high-pass-render" -> LOOM_PART_HIGH_PASS_RENDER).
@@ -67,6 +74,7 @@ private:
     std::string name_;
     uint32_t bindings_ = 0;
     std::vector<StageCode> stages_;
+    std::optional<std::string> problem_;
 };
 
 /// Ports and shader code under one name: the port set a pass adds to its ports and the shader
