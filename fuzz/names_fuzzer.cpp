@@ -1,5 +1,5 @@
-// Fuzz harness: names given to the frame graph through its C++ API (pass, part and port names,
-// and the pass.port references of connect and mark_output) -> FrameGraph -> build_plan -> the
+// Fuzz harness: names given to the frame graph through its C++ API (pass, port set and port
+// names, and the pass.port references of connect and mark_output) -> FrameGraph -> build_plan -> the
 // plan's exports. Any input must give a plan or an error, errors must be one line (they name
 // the user's names, which may hold newlines), and a graph must hold only names that
 // name_problem() accepts: no crash, hang, leak or undefined behaviour (docs/fuzzing.md).
@@ -7,8 +7,8 @@
 // Input: words separated by NUL bytes; a word's first byte says what it does, the rest is a
 // name (or references):
 //   P<name>  starts a pass (the one before is added to the graph)
-//   p<name>  starts a part of the current pass (added to the pass when the next part or pass
-//            starts); ports declared before any part are the pass's own
+//   p<name>  starts a port set of the current pass (added to the pass when the next port set
+//            or pass starts); ports declared before any port set are the pass's own
 //   i/o/x/q/u<name>  declares an input / output / inout / optional input / optional output
 //   s        makes the current pass a side-effect pass
 //   c<from>><to>     connects two references, each split at its last '.' into pass and port
@@ -27,10 +27,10 @@
 namespace {
 
 using loom::fg::FrameGraph;
-using loom::fg::Part;
 using loom::fg::Pass;
 using loom::fg::PortKind;
 using loom::fg::PortRef;
+using loom::fg::PortSet;
 
 void require_one_line(const loom::Error& error, const char* step) {
     if (error.message.find('\n') != std::string::npos || error.message.find('\r') != std::string::npos) {
@@ -52,7 +52,7 @@ void require_valid_names(const Pass& pass) {
     bool valid = !loom::fg::name_problem(pass.name());
     for (const loom::fg::Port& port : pass.ports()) {
         valid = valid && !loom::fg::name_problem(port.name);
-        for (const std::string& part : port.parts) valid = valid && (part == pass.name() || !loom::fg::name_problem(part));
+        for (const std::string& set : port.port_sets) valid = valid && (set == pass.name() || !loom::fg::name_problem(set));
     }
     if (!valid) {
         std::fprintf(stderr, "names fuzzer: add_pass accepted a pass with a name name_problem() refuses\n");
@@ -72,8 +72,8 @@ public:
                 pass_.emplace(std::string(name));
                 break;
             case 'p':
-                finish_part();
-                if (pass_) part_.emplace(std::string(name));
+                finish_port_set();
+                if (pass_) port_set_.emplace(std::string(name));
                 break;
             case 'i': declare(name, PortKind::Input, false); break;
             case 'o': declare(name, PortKind::Output, false); break;
@@ -108,20 +108,20 @@ public:
 
 private:
     void declare(std::string_view name, PortKind kind, bool optional) {
-        if (part_) {
-            part_->declare(std::string(name), kind, {}, optional);
+        if (port_set_) {
+            port_set_->declare(std::string(name), kind, {}, optional);
         } else if (pass_) {
             pass_->declare(std::string(name), kind, {}, optional);
         }
     }
 
-    void finish_part() {
-        if (part_ && pass_) pass_->add(*part_);
-        part_.reset();
+    void finish_port_set() {
+        if (port_set_ && pass_) pass_->add(*port_set_);
+        port_set_.reset();
     }
 
     void finish_pass() {
-        finish_part();
+        finish_port_set();
         if (!pass_) return;
         if (auto status = pass_->status(); !status) require_one_line(status.error(), "a pass's declarations");
         auto added = graph_.add_pass(std::move(*pass_));
@@ -135,7 +135,7 @@ private:
 
     FrameGraph graph_;
     std::optional<Pass> pass_;
-    std::optional<Part> part_;
+    std::optional<PortSet> port_set_;
 };
 
 }  // namespace

@@ -30,24 +30,25 @@ loom::Status build(fg::FrameGraph& graph) {
 }
 // [/docs:build]
 
-// [docs:parts]
+// [docs:port-sets]
 const auto color = fg::TextureSpec::of(rhi::Format::RGBA16Float);
 
-fg::Part deferred_render() {   // Listing 3
-    return fg::Part("deferred-render").input("position").input("normal").input("albedo").output("color", color);
+fg::PortSet deferred_render() {   // Listing 3
+    return fg::PortSet("deferred-render").input("position").input("normal").input("albedo").output("color", color);
 }
-fg::Part shadow_render() {     // Listing 4
-    return fg::Part("shadow-render").input("shadow_map", fg::TextureSpec::of(rhi::Format::Depth32F)).output("color", color);
+fg::PortSet shadow_render() {     // Listing 4
+    const auto depth = fg::TextureSpec::of(rhi::Format::Depth32F);
+    return fg::PortSet("shadow-render").input("shadow_map", depth).output("color", color);
 }
-fg::Part high_pass_render() {  // Listing 5
-    return fg::Part("high-pass-render").output("high_pass", color);
+fg::PortSet high_pass_render() {  // Listing 5
+    return fg::PortSet("high-pass-render").output("high_pass", color);
 }
 
 class DeferredShadowPass : public fg::Pass {  // deferred+shadow-pass of Listing 6
 public:
     DeferredShadowPass() : Pass("deferred") { add(deferred_render()).add(shadow_render()).add(high_pass_render()); }
 };
-// [/docs:parts]
+// [/docs:port-sets]
 
 Status fail_unless(bool condition, const std::string& what) {
     return condition ? Status{} : Status(Error{ErrorCode::InvalidState, "docs/framegraph.md example: " + what});
@@ -115,15 +116,15 @@ Status plan_framegraph_examples() {
     }
     {
         fg::FrameGraph graph;
-        // [docs:add-parts]
+        // [docs:add-port-sets]
         auto id = graph.add_pass(DeferredShadowPass{});  // ports: position, normal, albedo, color, shadow_map, high_pass
-        // [/docs:add-parts]
+        // [/docs:add-port-sets]
         if (!id) return id.take_error();
         std::vector<std::string> names;
         for (const fg::Port& port : graph.pass(*id).ports()) names.push_back(port.name);
         LOOM_TRY(fail_unless(names == std::vector<std::string>{"position", "normal", "albedo", "color", "shadow_map",
                                                                "high_pass"},
-                             "the composed pass has the parts' ports in order"));
+                             "the composed pass has the port sets' ports in order"));
     }
     return {};
 }

@@ -48,7 +48,7 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
                                *problem);
         }
     }
-    // Bad part names were refused by Pass::add (its status).
+    // Bad port set names were refused by Pass::add (its status).
     LOOM_TRY(pass->status());
     if (pass_index_.contains(pass->name())) {
         return graph_error("add_pass: a pass called '" + pass->name() + "' already exists");

@@ -162,22 +162,22 @@ private:
         if (!side_effect) return side_effect.take_error();
         pass.set_side_effect(*side_effect);
 
-        // The pass's own ports first, then each part, as Pass::add composes them.
-        auto own = read_part(object, path, pass.name());
+        // The pass's own ports first, then each port set of "parts", as Pass::add composes them.
+        auto own = read_port_set(object, path, pass.name());
         if (!own) return own.take_error();
         pass.add(*own);
         if (object.contains("parts")) {
             const json& parts = object["parts"];
-            if (!parts.is_array()) return fail(path + "/parts", "must be an array of parts");
+            if (!parts.is_array()) return fail(path + "/parts", "must be an array of port sets");
             for (std::size_t i = 0; i < parts.size(); ++i) {
-                const std::string part_path = path + "/parts/" + std::to_string(i);
-                const json& part = parts[i];
-                if (!part.is_object()) return fail(part_path, "a part must be an object");
-                LOOM_TRY(only_keys(part, part_path, {"name", "inputs", "outputs", "inouts"}));
-                if (!part.contains("name") || !part["name"].is_string()) {
-                    return fail(part_path + "/name", "a part needs a string name");
+                const std::string set_path = path + "/parts/" + std::to_string(i);
+                const json& set = parts[i];
+                if (!set.is_object()) return fail(set_path, "a port set must be an object");
+                LOOM_TRY(only_keys(set, set_path, {"name", "inputs", "outputs", "inouts"}));
+                if (!set.contains("name") || !set["name"].is_string()) {
+                    return fail(set_path + "/name", "a port set needs a string name");
                 }
-                auto read = read_part(part, part_path, part["name"].get<std::string>());
+                auto read = read_port_set(set, set_path, set["name"].get<std::string>());
                 if (!read) return read.take_error();
                 pass.add(*read);
             }
@@ -186,8 +186,8 @@ private:
         return pass;
     }
 
-    Result<Part> read_part(const json& object, const std::string& path, std::string name) {
-        Part part(std::move(name));
+    Result<PortSet> read_port_set(const json& object, const std::string& path, std::string name) {
+        PortSet ports(std::move(name));
         static constexpr std::array<std::pair<const char*, PortKind>, 3> kLists{
             {{"inputs", PortKind::Input}, {"outputs", PortKind::Output}, {"inouts", PortKind::InOut}}};
         for (const auto& [key, kind] : kLists) {
@@ -199,12 +199,13 @@ private:
                 const std::string port_path = list_path + "/" + std::to_string(i);
                 auto port = read_port(list[i], port_path);
                 if (!port) return port.take_error();
-                part.declare(port->name, kind, port->spec, port->optional);
-                // A port declared by the pass and its parts is located where it is first declared.
+                ports.declare(port->name, kind, port->spec, port->optional);
+                // A port declared by the pass and its port sets is located where it is first
+                // declared.
                 pointers_.try_emplace(pass_name_ + "." + port->name, port_path);
             }
         }
-        return part;
+        return ports;
     }
 
     Result<Port> read_port(const json& object, const std::string& path) const {

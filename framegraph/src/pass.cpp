@@ -52,7 +52,7 @@ std::string printable_name(std::string_view name) {
 
 std::string quoted_name(std::string_view name) { return "'" + detail::printable_name(name) + "'"; }
 
-Part& Part::declare(std::string port, PortKind kind, TextureSpec spec, bool optional) {
+PortSet& PortSet::declare(std::string port, PortKind kind, TextureSpec spec, bool optional) {
     declarations_.push_back(Port{std::move(port), kind, std::move(spec), optional, {name_}});
     return *this;
 }
@@ -61,18 +61,18 @@ Pass::Pass(std::string name) : name_(std::move(name)) {}
 
 Pass::~Pass() = default;
 
-Pass& Pass::add(const Part& part) {
-    // A part's name appears in errors and in Port::parts (loom-plan's table, the JSON plan),
-    // so it follows the rules of pass and port names; its ports are not added. A part named
-    // after the pass (the graph file's own ports) is checked as the pass name by add_pass.
-    if (auto problem = part.name() == name_ ? std::nullopt : name_problem(part.name())) {
+Pass& Pass::add(const PortSet& ports) {
+    // A port set's name appears in errors and in Port::port_sets, so it follows the rules of
+    // pass and port names; its ports are not added. A port set named after the pass (the graph
+    // file's own ports) is checked as the pass name by add_pass.
+    if (auto problem = ports.name() == name_ ? std::nullopt : name_problem(ports.name())) {
         if (!error_) {
-            error_ = make_error(ErrorCode::Graph, "pass " + quoted_name(name_) + ": the part name " +
-                                                      quoted_name(part.name()) + " " + *problem);
+            error_ = make_error(ErrorCode::Graph, "pass " + quoted_name(name_) + ": the port set name " +
+                                                      quoted_name(ports.name()) + " " + *problem);
         }
         return *this;
     }
-    for (const Port& declaration : part.declarations()) merge(declaration, part.name());
+    for (const Port& declaration : ports.declarations()) merge(declaration, ports.name());
     return *this;
 }
 
@@ -102,28 +102,28 @@ Status Pass::status() const {
     return {};
 }
 
-void Pass::merge(const Port& declaration, const std::string& part) {
+void Pass::merge(const Port& declaration, const std::string& port_set) {
     const auto [it, inserted] = port_indices_.try_emplace(declaration.name, static_cast<uint32_t>(ports_.size()));
     if (inserted) {
         ports_.push_back(declaration);
-        ports_.back().parts = {part};
+        ports_.back().port_sets = {port_set};
         return;
     }
     if (error_) return;  // keep the first error; later ones are usually consequences
 
     Port& existing = ports_[it->second];
-    const std::string& first_part = existing.parts.front();
+    const std::string& first_set = existing.port_sets.front();
     if (existing.kind != declaration.kind) {
         error_ = make_error(ErrorCode::Graph, "pass " + quoted_name(name_) + ": port " +
                                                   quoted_name(declaration.name) + " is declared as " +
-                                                  std::string(port_kind_name(existing.kind)) + " by part " +
-                                                  quoted_name(first_part) + " and as " +
-                                                  std::string(port_kind_name(declaration.kind)) + " by part " +
-                                                  quoted_name(part));
+                                                  std::string(port_kind_name(existing.kind)) + " by port set " +
+                                                  quoted_name(first_set) + " and as " +
+                                                  std::string(port_kind_name(declaration.kind)) + " by port set " +
+                                                  quoted_name(port_set));
         return;
     }
-    const std::string a_name = name_ + "." + existing.name + " (part '" + first_part + "')";
-    const std::string b_name = name_ + "." + declaration.name + " (part '" + part + "')";
+    const std::string a_name = name_ + "." + existing.name + " (port set '" + first_set + "')";
+    const std::string b_name = name_ + "." + declaration.name + " (port set '" + port_set + "')";
     JoinContext context;
     context.a_name = a_name;
     context.b_name = b_name;
@@ -134,8 +134,8 @@ void Pass::merge(const Port& declaration, const std::string& part) {
     }
     existing.spec = std::move(*joined);
     existing.optional = existing.optional && declaration.optional;
-    if (std::find(existing.parts.begin(), existing.parts.end(), part) == existing.parts.end()) {
-        existing.parts.push_back(part);
+    if (std::find(existing.port_sets.begin(), existing.port_sets.end(), port_set) == existing.port_sets.end()) {
+        existing.port_sets.push_back(port_set);
     }
 }
 

@@ -4,7 +4,7 @@
 
 namespace loom::passes {
 
-fg::TextureSpec default_blit_target() { return fg::TextureSpec::of(rhi::Format::RGBA8Unorm).with_scale(1.0f); }
+fg::TextureSpec default_blit_target() { return PartOptions{}.blit_target; }
 
 BlitPass::BlitPass(const PassConfig& config, const fg::TextureSpec& target, std::string name)
     : ShaderPass(std::move(name), config.library) {

@@ -57,14 +57,20 @@ bool is_identifier(std::string_view name) {
 }
 
 // Every name and #define of the composition that goes into the source (see
-// source_name_problem), checked before any of it is written.
-Status check_names(const Composition& composition, rhi::ShaderStage stage) {
+// source_name_problem), and every part's problem (ShaderPart::problem), checked before any of
+// it is written.
+Status check_parts_and_names(const Composition& composition, rhi::ShaderStage stage) {
     auto bad = [&](const std::string& what, std::string_view text, const std::string& problem) {
         return make_error(ErrorCode::InvalidArgument,
                           describe(composition, stage) + ": " + what + " " + fg::quoted_name(text) + " " + problem);
     };
     if (auto problem = source_name_problem(composition.pass)) return bad("the pass name", composition.pass, *problem);
     auto check_part = [&](const ShaderPart& part) -> Status {
+        if (part.problem()) {
+            return make_error(ErrorCode::InvalidArgument,
+                              describe(composition, stage) + ": part " + fg::quoted_name(part.name()) + ": " +
+                                  *part.problem());
+        }
         if (auto problem = source_name_problem(part.name())) return bad("the part name", part.name(), *problem);
         for (const StageCode& code : part.stages()) {
             if (auto problem = source_name_problem(code.origin)) {
@@ -106,7 +112,7 @@ void append_part(std::string& out, const std::string& owner, const ShaderPart& p
 }  // namespace
 
 Result<shader_compiler::ShaderSource> compose_stage(const Composition& composition, rhi::ShaderStage stage) {
-    LOOM_TRY(check_names(composition, stage));
+    LOOM_TRY(check_parts_and_names(composition, stage));
     const bool with_object = composition.object != nullptr && composition.use_object_parts;
 
     // Resources are numbered over the parts in order, whether or not a part has code in this

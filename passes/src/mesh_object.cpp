@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <limits>
 
+#include "loom/passes/parts.hpp"
 #include "loom/passes/program.hpp"
 #include "loom/passes/shader_pass.hpp"
 
@@ -19,12 +20,6 @@ struct ObjectUniforms {
     glm::vec4 material;
 };
 static_assert(sizeof(ObjectUniforms) == 192);
-
-ShaderPart mesh_geometry_part() {
-    return ShaderPart("mesh-geometry", 1)
-        .stage_file(rhi::ShaderStage::Vertex, "loom/parts/mesh_geometry.vert.glsl")
-        .stage_file(rhi::ShaderStage::Fragment, "loom/parts/mesh_geometry.frag.glsl");
-}
 
 }  // namespace
 
@@ -90,17 +85,14 @@ GpuMesh::~GpuMesh() {
 std::shared_ptr<const ObjectKind> pbr_mesh_kind() {
     return std::make_shared<const ObjectKind>(
         "pbr-mesh",
-        std::vector<ShaderPart>{mesh_geometry_part(), ShaderPart("pbr-material").stage_file(
-                                                          rhi::ShaderStage::Fragment, "loom/parts/pbr_material.frag.glsl")},
+        std::vector<ShaderPart>{standard_part("mesh-geometry").shader, standard_part("pbr-material").shader},
         std::vector<rhi::VertexBufferLayout>{mesh_vertex_layout()});
 }
 
 std::shared_ptr<const ObjectKind> checker_mesh_kind() {
     return std::make_shared<const ObjectKind>(
         "checker-mesh",
-        std::vector<ShaderPart>{mesh_geometry_part(),
-                                ShaderPart("checker-material")
-                                    .stage_file(rhi::ShaderStage::Fragment, "loom/parts/checker_material.frag.glsl")},
+        std::vector<ShaderPart>{standard_part("mesh-geometry").shader, standard_part("checker-material").shader},
         std::vector<rhi::VertexBufferLayout>{mesh_vertex_layout()});
 }
 

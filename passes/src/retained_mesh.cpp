@@ -1,19 +1,17 @@
 #include "loom/passes/retained_mesh.hpp"
 
 #include <cstring>
+#include <string_view>
+
+#include "loom/passes/parts.hpp"
 
 namespace loom::passes {
 namespace {
 
-ShaderPart retained_mesh_part() {
-    return ShaderPart("retained-mesh", 2)
-        .stage_file(rhi::ShaderStage::Vertex, "loom/parts/retained_mesh.vert.glsl")
-        .stage_file(rhi::ShaderStage::Fragment, "loom/parts/retained_mesh.frag.glsl");
-}
-
-std::shared_ptr<const ObjectKind> retained_kind(std::string name, ShaderPart material) {
+std::shared_ptr<const ObjectKind> retained_kind(std::string name, std::string_view material_part) {
     return std::make_shared<const ObjectKind>(
-        std::move(name), std::vector<ShaderPart>{retained_mesh_part(), std::move(material)},
+        std::move(name),
+        std::vector<ShaderPart>{standard_part("retained-mesh").shader, standard_part(material_part).shader},
         std::vector<rhi::VertexBufferLayout>{mesh_vertex_layout(), object_index_layout()});
 }
 
@@ -41,14 +39,11 @@ rhi::VertexBufferLayout object_index_layout() {
 }
 
 std::shared_ptr<const ObjectKind> retained_pbr_mesh_kind() {
-    return retained_kind("retained-pbr-mesh",
-                         ShaderPart("pbr-material").stage_file(rhi::ShaderStage::Fragment, "loom/parts/pbr_material.frag.glsl"));
+    return retained_kind("retained-pbr-mesh", "pbr-material");
 }
 
 std::shared_ptr<const ObjectKind> retained_checker_mesh_kind() {
-    return retained_kind("retained-checker-mesh", ShaderPart("checker-material")
-                                                      .stage_file(rhi::ShaderStage::Fragment,
-                                                                  "loom/parts/checker_material.frag.glsl"));
+    return retained_kind("retained-checker-mesh", "checker-material");
 }
 
 std::shared_ptr<Material> make_mesh_material(std::string name, std::shared_ptr<Param<MeshSurface>> params) {

@@ -191,9 +191,9 @@ RetainedScene::Queue* RetainedScene::find_queue(const ShaderPass& pass) const {
 }
 
 Status RetainedScene::attach(ShaderPass& pass, QueueOrder order) {
-    if (pass.scene_ == this) return {};
-    if (pass.scene_ != nullptr) {
-        return make_error(ErrorCode::InvalidState, "pass '" + pass.name() + "' is attached to another retained scene");
+    if (pass.draw_source() == this) return {};
+    if (pass.draw_source() != nullptr) {
+        return make_error(ErrorCode::InvalidState, "pass '" + pass.name() + "' is attached to another draw source");
     }
     // Every kind submitted so far must compile for the pass before anything changes.
     for (const auto& [shape, object] : objects_) {
@@ -207,7 +207,7 @@ Status RetainedScene::attach(ShaderPass& pass, QueueOrder order) {
     for (const auto& [shape, object] : objects_) {
         if (names_pass(*shape, pass)) LOOM_TRY(add_to_queue(*queue, *object));
     }
-    pass.scene_ = this;
+    LOOM_TRY(pass.attach_draw_source(*this));
     queues_.push_back(std::move(queue));
     return {};
 }
@@ -220,7 +220,7 @@ void RetainedScene::detach(ShaderPass& pass) {
         std::erase_if(member->positions, [&](const auto& p) { return p.first == queue; });
     }
     queue->release(device_);
-    pass.scene_ = nullptr;
+    pass.detach_draw_source(*this);
     queues_.erase(it);
 }
 
@@ -551,13 +551,13 @@ Status RetainedScene::upload_queue(Queue& queue) {
     return {};
 }
 
-Status RetainedScene::draw(ShaderPass& pass, fg::PassContext& context, const PipelineState& state,
-                           const ShaderPass::PassBinder& bind_pass) {
-    LOOM_TRY(prepare(context.device()));
-    Queue* queue = find_queue(pass);
+Status RetainedScene::draw(DrawSourceContext& context) {
+    fg::PassContext& frame = context.pass_context();
+    LOOM_TRY(prepare(frame.device()));
+    Queue* queue = find_queue(context.pass());
     if (!queue || queue->batches.empty()) return {};
-    rhi::Device& device = context.device();
-    rhi::CommandList& commands = context.commands();
+    rhi::Device& device = frame.device();
+    rhi::CommandList& commands = frame.commands();
     const bool indirect = config_.indirect && device.capabilities().draw_indirect;
 
     rhi::PipelineHandle bound_pipeline;
@@ -571,16 +571,14 @@ Status RetainedScene::draw(ShaderPass& pass, fg::PassContext& context, const Pip
         const Program& program = *batch_state.program;
         bool changed = false;
 
-        PipelineState batch_pipeline = state;
+        PipelineState batch_pipeline = context.state();
         batch_pipeline.raster.cull = batch.cull;
         batch_pipeline.raster.front_face = batch.front_face;
-        auto pipeline = pass.pipeline(device, program, batch_pipeline, batch_state.kind);
+        auto pipeline = context.pipeline(program, batch_pipeline, *batch_state.kind);
         if (!pipeline) return pipeline.take_error();
         if (*pipeline != bound_pipeline) {
             commands.set_pipeline(*pipeline);
-            Bindings pass_set(program, commands, kPassSet);
-            LOOM_TRY(bind_pass(pass_set));
-            LOOM_TRY(pass_set.bind());
+            LOOM_TRY(context.bind_pass_set(program));
             bound_pipeline = *pipeline;
             ++stats_.pipeline_changes;
             changed = true;
@@ -597,7 +595,7 @@ Status RetainedScene::draw(ShaderPass& pass, fg::PassContext& context, const Pip
                 }
                 for (const MaterialTexture& texture : m.textures()) {
                     if (!program.find(texture.name)) continue;
-                    auto sampler = pass.sampler(device, texture.sampler);
+                    auto sampler = context.sampler(texture.sampler);
                     if (!sampler) return sampler.take_error();
                     object_set.texture(texture.name, texture.texture, *sampler);
                 }

@@ -24,9 +24,13 @@ ShaderPart& ShaderPart::stage_file(rhi::ShaderStage stage, std::string_view file
     if (auto it = files.find(std::string(file)); it != files.end()) {
         return this->stage(stage, it->second, std::string(file));
     }
-    // Reported when the part is composed, with the part's name.
-    return this->stage(stage, "#error shader part " + name_ + ": embedded file " + std::string(file) + " not found\n",
-                       std::string(file));
+    return set_problem("its " + std::string(rhi::shader_stage_name(stage)) + " code file " + fg::quoted_name(file) +
+                       " is not embedded (shaders::include_files())");
+}
+
+ShaderPart& ShaderPart::set_problem(std::string problem) {
+    if (!problem_) problem_ = std::move(problem);
+    return *this;
 }
 
 const StageCode* ShaderPart::code(rhi::ShaderStage stage) const {

@@ -4,7 +4,6 @@
 
 #include "loom/framegraph/resolved_spec.hpp"
 #include "loom/passes/geometry_buffers.hpp"
-#include "loom/passes/retained_scene.hpp"
 
 namespace loom::passes {
 namespace {
@@ -129,8 +128,21 @@ ShaderPass::ShaderPass(std::string name, std::shared_ptr<ShaderLibrary> library)
     : fg::Pass(std::move(name)), library_(library ? std::move(library) : std::make_shared<ShaderLibrary>()) {}
 
 ShaderPass::~ShaderPass() {
-    if (scene_) scene_->detach(*this);
+    if (draw_source_) draw_source_->detach(*this);
     release_gpu();
+}
+
+Status ShaderPass::attach_draw_source(DrawSource& source) {
+    if (draw_source_ == &source) return {};
+    if (draw_source_ != nullptr) {
+        return make_error(ErrorCode::InvalidState, "pass '" + name() + "' is attached to another draw source");
+    }
+    draw_source_ = &source;
+    return {};
+}
+
+void ShaderPass::detach_draw_source(const DrawSource& source) {
+    if (draw_source_ == &source) draw_source_ = nullptr;
 }
 
 ShaderPass& ShaderPass::add(const PassPart& part) {
@@ -359,8 +371,40 @@ Status ShaderPass::draw_objects(fg::PassContext& context, const PipelineState& s
         DrawContext draw{commands, *program};
         LOOM_TRY(render_with(draw, *object));
     }
-    if (scene_) LOOM_TRY(scene_->draw(*this, context, state, bind_pass));
-    return {};
+    if (!draw_source_) return {};
+
+    // The pass's side of DrawSource::draw. A local class of this member function, so that it
+    // may hand the source the pass's pipeline and sampler caches without the pass naming the
+    // source's type or befriending it.
+    class PassSide final : public DrawSourceContext {
+    public:
+        PassSide(ShaderPass& pass, fg::PassContext& context, const PipelineState& state, const PassBinder& bind_pass)
+            : pass_(pass), context_(context), state_(state), bind_pass_(bind_pass) {}
+
+        const ShaderPass& pass() const override { return pass_; }
+        fg::PassContext& pass_context() override { return context_; }
+        const PipelineState& state() const override { return state_; }
+        Result<rhi::PipelineHandle> pipeline(const Program& program, const PipelineState& state,
+                                             const ObjectKind& kind) override {
+            return pass_.pipeline(context_.device(), program, state, &kind);
+        }
+        Result<rhi::SamplerHandle> sampler(const rhi::SamplerDesc& desc) override {
+            return pass_.sampler(context_.device(), desc);
+        }
+        Status bind_pass_set(const Program& program) override {
+            Bindings pass_set(program, context_.commands(), kPassSet);
+            LOOM_TRY(bind_pass_(pass_set));
+            return pass_set.bind();
+        }
+
+    private:
+        ShaderPass& pass_;
+        fg::PassContext& context_;
+        const PipelineState& state_;
+        const PassBinder& bind_pass_;
+    };
+    PassSide side(*this, context, state, bind_pass);
+    return draw_source_->draw(side);
 }
 
 Status ShaderPass::draw_fullscreen(fg::PassContext& context, const PipelineState& state, const PassBinder& bind_pass) {

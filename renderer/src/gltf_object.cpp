@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include "loom/passes/parts.hpp"
 #include "loom/passes/program.hpp"
 #include "loom/passes/shader_pass.hpp"
 #include "loom/scene/mesh.hpp"
@@ -58,11 +59,8 @@ const std::shared_ptr<const passes::ObjectKind>& gltf_mesh_kind() {
     static const std::shared_ptr<const passes::ObjectKind> kind = std::make_shared<const passes::ObjectKind>(
         "gltf-mesh",
         std::vector<passes::ShaderPart>{
-            passes::ShaderPart("gltf-geometry", 1)
-                .stage_file(rhi::ShaderStage::Vertex, "loom/parts/gltf_geometry.vert.glsl")
-                .stage_file(rhi::ShaderStage::Fragment, "loom/parts/gltf_geometry.frag.glsl"),
-            passes::ShaderPart("gltf-material", static_cast<uint32_t>(kSamplers.size()))
-                .stage_file(rhi::ShaderStage::Fragment, "loom/parts/gltf_material.frag.glsl"),
+            passes::standard_part("gltf-geometry").shader,
+            passes::standard_part("gltf-material").shader,  // one resource per sampler of kSamplers
         },
         std::vector<rhi::VertexBufferLayout>{scene::vertex_buffer_layout()});
     return kind;

@@ -4,24 +4,14 @@
 #include "loom/passes/parts.hpp"
 
 namespace loom::renderer {
-namespace {
-
-passes::PassPart masked_shadow_caster_part(const passes::PassConfig& config) {
-    passes::PassPart part("masked-shadow-caster");
-    // Any size: the standard shadow pass decides it.
-    part.ports.inout("shadow_map", passes::depth_spec(config));
-    part.shader.stage_file(rhi::ShaderStage::Fragment, "loom/parts/masked_shadow_caster.frag.glsl");
-    return part;
-}
-
-}  // namespace
 
 MaskedShadowPass::MaskedShadowPass(const passes::PassConfig& config, std::string name)
     : ShaderPass(std::move(name), config.library) {
     // The camera part, given the light's view: it places the vertices and interpolates the
     // surface for the material.
     add(passes::camera_part());
-    add(masked_shadow_caster_part(config));
+    // The shadow map in/out, of any size: the standard shadow pass decides it.
+    add(passes::standard_part("masked-shadow-caster", {.config = config}));
 }
 
 Status MaskedShadowPass::execute(fg::PassContext& context) {

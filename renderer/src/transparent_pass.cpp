@@ -9,22 +9,11 @@
 namespace loom::renderer {
 namespace {
 
-constexpr rhi::ShaderStage kFragment = rhi::ShaderStage::Fragment;
-
-/// "blend-render": in/out color and depth; the lighting uniforms.
-passes::PassPart blend_render_part(const passes::PassConfig& config) {
-    passes::PassPart part("blend-render", 1);
-    part.ports.inout("color", passes::color_spec(config))
-        .inout("depth", passes::depth_spec(config).with_scale(1.0f));
-    part.shader.stage_file(kFragment, "loom/parts/blend_render.frag.glsl");
-    return part;
-}
-
 /// The standard "shadow-render" code with this pass's ports: the shadow map in, and colour
 /// in/out (the standard part's colour is an output: here the lit frame is blended onto).
 passes::PassPart shadow_receiver_part(const passes::PassConfig& config) {
     passes::PassPart part = passes::shadow_render_part(config);
-    part.ports = fg::Part(part.name());
+    part.ports = fg::PortSet(part.name());
     part.ports.input("shadow_map", fg::TextureSpec::of(rhi::Format::Depth32F)).inout("color", passes::color_spec(config));
     return part;
 }
@@ -33,7 +22,7 @@ passes::PassPart shadow_receiver_part(const passes::PassConfig& config) {
 /// high pass in/out.
 passes::PassPart blended_high_pass_part(const passes::PassConfig& config) {
     passes::PassPart part = passes::high_pass_render_part(config);
-    part.ports = fg::Part(part.name());
+    part.ports = fg::PortSet(part.name());
     part.ports.inout("high_pass", passes::color_spec(config));
     return part;
 }
@@ -57,7 +46,7 @@ TransparentPass::TransparentPass(const passes::PassConfig& config, passes::Light
     if (parts_.shadows) add(shadow_receiver_part(config));
     // Before blend-render, whose main() writes the high-pass output this part declares.
     if (parts_.high_pass) add(blended_high_pass_part(config));
-    add(blend_render_part(config));
+    add(passes::standard_part("blend-render", {.config = config}));  // in/out color and depth
 }
 
 Status TransparentPass::register_object(std::shared_ptr<const passes::Object> object, const scene::Bounds& world_bounds) {

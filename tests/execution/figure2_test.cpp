@@ -1,4 +1,4 @@
-// The paper's Figure 2 graph shape (shadow map, G-buffer, deferred with three parts, blur,
+// The paper's Figure 2 graph shape (shadow map, G-buffer, deferred with three port sets, blur,
 // composite) with simple test passes, run by the executor with every allocator: the final
 // picture is exact, and the textures (and on Vulkan with `heap`, the heaps and their bytes) the
 // backend really created are the plan's.
@@ -72,9 +72,9 @@ fg::FrameGraph figure2(const Figure2Programs& p) {
                                        return Status{};
                                    }))
                     .ok());
-    const fg::Part deferred = fg::Part("deferred").input("position", kColor).input("normal", kColor).input("albedo", kColor).output("color", kColor);
-    const fg::Part shadow_receiver = fg::Part("shadow-render").input("shadow_map", kShadow).output("color", kColor);
-    const fg::Part high_pass = fg::Part("high-pass-render").output("high_pass", kColor);
+    const fg::PortSet deferred = fg::PortSet("deferred").input("position", kColor).input("normal", kColor).input("albedo", kColor).output("color", kColor);
+    const fg::PortSet shadow_receiver = fg::PortSet("shadow-render").input("shadow_map", kShadow).output("color", kColor);
+    const fg::PortSet high_pass = fg::PortSet("high-pass-render").output("high_pass", kColor);
     EXPECT_TRUE(graph.add_pass(fg::Pass("deferred").add(deferred).add(shadow_receiver).add(high_pass).on_execute([p](fg::PassContext& ctx) {
         ctx.begin_render_pass({"color", "high_pass"});
         ctx.commands().set_pipeline(p.deferred);

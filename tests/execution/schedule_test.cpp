@@ -23,9 +23,9 @@ FrameGraph figure2() {
     EXPECT_TRUE(graph.add_pass(Pass("shadow").output("shadow_map", kShadow)).ok());
     EXPECT_TRUE(graph.add_pass(Pass("geometry").output("position", kColor).output("normal", kColor).output("albedo", kColor)).ok());
     EXPECT_TRUE(graph.add_pass(Pass("deferred")
-                                   .add(Part("deferred").input("position").input("normal").input("albedo").output("color", kColor))
-                                   .add(Part("shadow-render").input("shadow_map", kShadow).output("color"))
-                                   .add(Part("high-pass-render").output("high_pass", kColor)))
+                                   .add(PortSet("deferred").input("position").input("normal").input("albedo").output("color", kColor))
+                                   .add(PortSet("shadow-render").input("shadow_map", kShadow).output("color"))
+                                   .add(PortSet("high-pass-render").output("high_pass", kColor)))
                     .ok());
     EXPECT_TRUE(graph.add_pass(Pass("blur").input("previous_pass").output("color", kColor)).ok());
     EXPECT_TRUE(graph.add_pass(Pass("composite").input("color").input("bloom").output("final", kColor)).ok());

@@ -1,5 +1,5 @@
 // The paper's Figure 2 / Listing 6 pipeline: shadow map, G-buffer, deferred shading composed
-// from three parts, bloom blur, composite. Seven colour outputs share one spec; the paper's
+// from three port sets, bloom blur, composite. Seven colour outputs share one spec; the paper's
 // port colouring needs five textures for them, the depth map is allocated separately.
 #include <memory>
 
@@ -16,19 +16,19 @@ const TextureSpec kColor = TextureSpec::of(Format::RGBA16Float).with_scale(1.0f)
 const TextureSpec kShadow = TextureSpec::of(Format::Depth32F).with_size(2048, 2048);
 
 // Listing 3: deferred shading reads the G-buffer and writes a colour texture.
-Part deferred_part() {
-    return Part("deferred").input("position", kColor).input("normal", kColor).input("albedo", kColor).output("color", kColor);
+PortSet deferred_ports() {
+    return PortSet("deferred").input("position", kColor).input("normal", kColor).input("albedo", kColor).output("color", kColor);
 }
 // Listing 4: a shadow-receiving pass reads a shadow map and writes colour.
-Part shadow_receiver_part() { return Part("shadow-render").input("shadow_map", kShadow).output("color", kColor); }
+PortSet shadow_receiver_ports() { return PortSet("shadow-render").input("shadow_map", kShadow).output("color", kColor); }
 // Listing 5: a high-pass splits bright colours into their own output.
-Part high_pass_part() { return Part("high-pass-render").output("high_pass", kColor); }
+PortSet high_pass_ports() { return PortSet("high-pass-render").output("high_pass", kColor); }
 
 FrameGraph figure2() {
     FrameGraph graph;
     EXPECT_TRUE(graph.add_pass(Pass("shadow").output("shadow_map", kShadow)).ok());
     EXPECT_TRUE(graph.add_pass(Pass("geometry").output("position", kColor).output("normal", kColor).output("albedo", kColor)).ok());
-    EXPECT_TRUE(graph.add_pass(Pass("deferred").add(deferred_part()).add(shadow_receiver_part()).add(high_pass_part())).ok());
+    EXPECT_TRUE(graph.add_pass(Pass("deferred").add(deferred_ports()).add(shadow_receiver_ports()).add(high_pass_ports())).ok());
     EXPECT_TRUE(graph.add_pass(Pass("blur").input("previous_pass", kColor).output("color", kColor)).ok());
     EXPECT_TRUE(graph.add_pass(Pass("composite").input("color", kColor).input("bloom", kColor).output("final", kColor)).ok());
     // Listing 6, connection for connection.
@@ -63,7 +63,7 @@ uint32_t texture(const Plan& plan, std::string_view pass, std::string_view port_
 constexpr uint64_t kColorBytes = 254ull * 65536;
 constexpr uint64_t kShadowBytes = 2048ull * 2048 * 4;
 
-TEST(Figure2, DeferredPassIsComposedFromThreeParts) {
+TEST(Figure2, DeferredPassIsComposedFromThreePortSets) {
     FrameGraph graph = figure2();
     const Pass& deferred = graph.pass(*graph.find_pass("deferred"));
     std::vector<std::string> names;
@@ -72,8 +72,8 @@ TEST(Figure2, DeferredPassIsComposedFromThreeParts) {
     const Port* color = deferred.find_port("color");
     ASSERT_NE(color, nullptr);
     EXPECT_EQ(color->kind, PortKind::Output);
-    EXPECT_EQ(color->parts, (std::vector<std::string>{"deferred", "shadow-render"}));
-    EXPECT_EQ(deferred.find_port("high_pass")->parts, (std::vector<std::string>{"high-pass-render"}));
+    EXPECT_EQ(color->port_sets, (std::vector<std::string>{"deferred", "shadow-render"}));
+    EXPECT_EQ(deferred.find_port("high_pass")->port_sets, (std::vector<std::string>{"high-pass-render"}));
 }
 
 TEST(Figure2, OrderAndLifetimes) {

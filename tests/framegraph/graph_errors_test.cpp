@@ -63,33 +63,33 @@ TEST(GraphErrors, NamesThatWouldCollideOrSplitLinesAreRefused) {
     EXPECT_EQ(name_problem("ok"), std::nullopt);
 }
 
-TEST(GraphErrors, PartNamesFollowTheRulesOfPassAndPortNames) {
-    // A part's name is printed in errors and in every port's list of parts (loom-plan's table,
-    // the JSON plan): a newline in it would split those lines like one in a port name.
+TEST(GraphErrors, PortSetNamesFollowTheRulesOfPassAndPortNames) {
+    // A port set's name is printed in errors and kept in every port's list of port sets
+    // (Port::port_sets): a newline in it would split those lines like one in a port name.
     FrameGraph graph;
     Pass lit("lit");
-    lit.add(Part("shadow\nrender").input("shadow"));
+    lit.add(PortSet("shadow\nrender").input("shadow"));
     EXPECT_EQ(lit.find_port("shadow"), nullptr);
     const auto newline = graph.add_pass(std::move(lit));
     ASSERT_FALSE(newline.ok());
     EXPECT_EQ(newline.error().code, ErrorCode::Graph);
     EXPECT_EQ(newline.error().message,
-              "pass 'lit': the part name 'shadow\\nrender' contains a control character (code 10)");
-    EXPECT_EQ(graph.add_pass(Pass("lit").add(Part("deferred.render").output("color"))).error().message,
-              "pass 'lit': the part name 'deferred.render' contains '.', which separates pass and port names");
-    EXPECT_EQ(graph.add_pass(Pass("lit").add(Part("").output("color"))).error().message,
-              "pass 'lit': the part name '' is empty");
+              "pass 'lit': the port set name 'shadow\\nrender' contains a control character (code 10)");
+    EXPECT_EQ(graph.add_pass(Pass("lit").add(PortSet("deferred.render").output("color"))).error().message,
+              "pass 'lit': the port set name 'deferred.render' contains '.', which separates pass and port names");
+    EXPECT_EQ(graph.add_pass(Pass("lit").add(PortSet("").output("color"))).error().message,
+              "pass 'lit': the port set name '' is empty");
     // A bad name is what is reported, also where its ports would have clashed with others.
-    EXPECT_EQ(graph.add_pass(Pass("tonemap").add(Part("ok").output("c")).add(Part("x\ty").input("c"))).error().message,
-              "pass 'tonemap': the part name 'x\\ty' contains a control character (code 9)");
-    // A bad pass name is reported as such even when its parts also clash.
-    EXPECT_EQ(graph.add_pass(Pass("a\nb").add(Part("p").output("c")).add(Part("q").input("c"))).error().message,
+    EXPECT_EQ(graph.add_pass(Pass("tonemap").add(PortSet("ok").output("c")).add(PortSet("x\ty").input("c"))).error().message,
+              "pass 'tonemap': the port set name 'x\\ty' contains a control character (code 9)");
+    // A bad pass name is reported as such even when its port sets also clash.
+    EXPECT_EQ(graph.add_pass(Pass("a\nb").add(PortSet("p").output("c")).add(PortSet("q").input("c"))).error().message,
               "add_pass: the pass name 'a\\nb' contains a control character (code 10)");
     EXPECT_EQ(graph.pass_count(), 0u);
-    EXPECT_TRUE(graph.add_pass(Pass("lit").add(Part("shadow-render 2").input("shadow"))).ok());
+    EXPECT_TRUE(graph.add_pass(Pass("lit").add(PortSet("shadow-render 2").input("shadow"))).ok());
 }
 
-TEST(GraphErrors, GraphFilePartNamesAreCheckedAndLocated) {
+TEST(GraphErrors, GraphFilePortSetNamesAreCheckedAndLocated) {
     auto file = parse_graph_json(
         R"({"passes": [{"name": "lit", "parts": [{"name": "shadow\nrender", "inputs": [{"name": "shadow"}]}]}]})",
         "g.json");
@@ -97,7 +97,7 @@ TEST(GraphErrors, GraphFilePartNamesAreCheckedAndLocated) {
     EXPECT_EQ(file.error().code, ErrorCode::Graph);
     EXPECT_EQ(file.error().message.find('\n'), std::string::npos) << file.error().message;
     EXPECT_NE(file.error().message.find("/passes/0"), std::string::npos) << file.error().message;
-    EXPECT_NE(file.error().message.find("the part name 'shadow\\nrender' contains a control character"),
+    EXPECT_NE(file.error().message.find("the port set name 'shadow\\nrender' contains a control character"),
               std::string::npos)
         << file.error().message;
 }

@@ -88,7 +88,7 @@ TEST(GraphFile, PortProperties) {
     EXPECT_EQ(pass.find_port("maybe")->spec.format, rhi::format_info(Format::RGBA8Srgb).features);
 }
 
-TEST(GraphFile, PassesComposedFromParts) {
+TEST(GraphFile, PassesComposedFromPortSets) {
     auto file = parse_graph_json(R"({"passes": [
         {"name": "deferred", "outputs": [{"name": "color", "channels": 3, "bits": 16, "kind": "float"}],
          "parts": [{"name": "shadow-render", "inputs": [{"name": "shadow_map", "optional": true}],
@@ -96,14 +96,14 @@ TEST(GraphFile, PassesComposedFromParts) {
         "outputs": ["deferred.color"]})");
     ASSERT_TRUE(file.ok()) << file.error().to_string();
     const Port* color = file->graph.pass(PassId{0}).find_port("color");
-    EXPECT_EQ(color->parts, (std::vector<std::string>{"deferred", "shadow-render"}));
+    EXPECT_EQ(color->port_sets, (std::vector<std::string>{"deferred", "shadow-render"}));
     EXPECT_EQ(color->spec.format, rhi::format_info(Format::RGBA16Float).features);
 
     const Error clash = parse_error(R"({"passes": [{"name": "d", "outputs": [{"name": "c"}],
         "parts": [{"name": "other", "inputs": [{"name": "c"}]}]}]})");
     EXPECT_EQ(clash.code, ErrorCode::Graph);
-    EXPECT_EQ(clash.message, "g.json: /passes/0: pass 'd': port 'c' is declared as output by part 'd' and as input "
-                             "by part 'other'");
+    EXPECT_EQ(clash.message, "g.json: /passes/0: pass 'd': port 'c' is declared as output by port set 'd' and as input "
+                             "by port set 'other'");
 }
 
 TEST(GraphFile, ErrorsCarryTheJsonPath) {
@@ -181,7 +181,7 @@ Error planning_error(std::string_view text) {
 }
 
 TEST(GraphFile, PlanningErrorsNameTheFileAndTheJsonPointerOfWhatTheyBlame) {
-    // An input nobody feeds: where the input is declared (here in a part of the pass).
+    // An input nobody feeds: where the input is declared (here in a port set of the pass).
     const Error unconnected = planning_error(R"({"passes": [
         {"name": "a", "outputs": [{"name": "out", "format": "RGBA8"}]},
         {"name": "b", "outputs": [{"name": "out", "format": "RGBA8"}],

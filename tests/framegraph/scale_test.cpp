@@ -28,7 +28,7 @@ std::string numbered(const char* prefix, uint32_t i) { return prefix + std::to_s
 
 TEST(Scale, PassWithTenThousandPortsMergesAndPlansEveryPort) {
     constexpr uint32_t kPorts = 10000;
-    Part extra("extra");
+    PortSet extra("extra");
     extra.output("o5", small_texture()).output("o9999");  // merge into ports declared by the pass
     Pass wide("wide");
     for (uint32_t i = 0; i < kPorts; ++i) wide.output(numbered("o", i), small_texture());
@@ -37,7 +37,7 @@ TEST(Scale, PassWithTenThousandPortsMergesAndPlansEveryPort) {
     ASSERT_EQ(wide.ports().size(), kPorts);
     EXPECT_EQ(wide.port_index("o9999"), 9999u);
     EXPECT_EQ(wide.port_index("o10000"), std::nullopt);
-    EXPECT_EQ(wide.ports()[5].parts, (std::vector<std::string>{"wide", "extra"}));
+    EXPECT_EQ(wide.ports()[5].port_sets, (std::vector<std::string>{"wide", "extra"}));
 
     FrameGraph graph;
     ASSERT_TRUE(graph.add_pass(std::move(wide)).ok());

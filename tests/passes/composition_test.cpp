@@ -218,12 +218,18 @@ TEST(Composition, NamesThatWouldRewriteTheComposedSourceAreRefused) {
     EXPECT_THAT(compose_stage(composition, ShaderStage::Fragment).error().message,
                 HasSubstr("the part name 'a\"b' contains '\"', which would end the #line name"));
 
-    // An embedded file name is the code's origin, written into the #line directive too.
+    // The code's origin (an embedded file name) is written into the #line directive too.
     ShaderPart ghost("ghost");
-    ghost.stage_file(ShaderStage::Fragment, "x.glsl\n#error injected");
+    ghost.stage(ShaderStage::Fragment, "void main() {}\n", "x.glsl\n#error injected");
     composition.pass_parts = {&vertex, &ghost};
     EXPECT_THAT(compose_stage(composition, ShaderStage::Fragment).error().message,
                 HasSubstr("part 'ghost': the code origin 'x.glsl\\n#error injected' contains a control character"));
+    // A file of that name is not embedded: it is the part's problem, reported on one line.
+    ShaderPart lost("lost");
+    lost.stage_file(ShaderStage::Fragment, "x.glsl\n#error injected");
+    composition.pass_parts = {&vertex, &lost};
+    EXPECT_THAT(compose_stage(composition, ShaderStage::Fragment).error().message,
+                HasSubstr("part 'lost': its fragment code file 'x.glsl\\n#error injected' is not embedded"));
 
     composition.pass_parts = {&vertex};
     composition.pass = "a\nb";
@@ -247,8 +253,10 @@ TEST(Composition, AMissingEmbeddedFileIsReportedWithThePart) {
     pass.add_shader(ShaderPart("ghost").stage_file(ShaderStage::Fragment, "loom/parts/no_such_part.frag.glsl"));
     auto program = pass.own_program();
     ASSERT_FALSE(program.ok());
-    EXPECT_THAT(program.error().message, HasSubstr("ghost"));
-    EXPECT_THAT(program.error().message, HasSubstr("loom/parts/no_such_part.frag.glsl"));
+    EXPECT_EQ(program.error().code, ErrorCode::InvalidArgument);
+    EXPECT_EQ(program.error().message,
+              "pass 'lost', object kind 'none', vertex stage: part 'ghost': its fragment code file "
+              "'loom/parts/no_such_part.frag.glsl' is not embedded (shaders::include_files())");
 }
 
 TEST(Composition, AStageWithoutPassCodeIsAnError) {
@@ -264,9 +272,9 @@ TEST(Composition, DeferredPassHasTheUnionOfItsPartsPortsAndResources) {
     DeferredPass pass;
     EXPECT_EQ(port_names(pass),
               (std::vector<std::string>{"position", "normal", "albedo", "color", "shadow_map", "high_pass"}));
-    EXPECT_EQ(pass.find_port("color")->parts, (std::vector<std::string>{"deferred-render", "shadow-render"}));
-    EXPECT_EQ(pass.find_port("shadow_map")->parts, (std::vector<std::string>{"shadow-render"}));
-    EXPECT_EQ(pass.find_port("high_pass")->parts, (std::vector<std::string>{"high-pass-render"}));
+    EXPECT_EQ(pass.find_port("color")->port_sets, (std::vector<std::string>{"deferred-render", "shadow-render"}));
+    EXPECT_EQ(pass.find_port("shadow_map")->port_sets, (std::vector<std::string>{"shadow-render"}));
+    EXPECT_EQ(pass.find_port("high_pass")->port_sets, (std::vector<std::string>{"high-pass-render"}));
     EXPECT_EQ(pass.find_port("shadow_map")->kind, fg::PortKind::Input);
     EXPECT_EQ(pass.find_port("high_pass")->kind, fg::PortKind::Output);
 
@@ -288,7 +296,7 @@ TEST(Composition, DeferredPassHasTheUnionOfItsPartsPortsAndResources) {
 TEST(Composition, LeavingPartsOutLeavesOutTheirPortsAndCode) {
     DeferredPass pass(PassConfig{}, LightingParts{.shadows = false, .high_pass = false}, "plain");
     EXPECT_EQ(port_names(pass), (std::vector<std::string>{"position", "normal", "albedo", "color"}));
-    EXPECT_EQ(pass.find_port("color")->parts, (std::vector<std::string>{"deferred-render"}));
+    EXPECT_EQ(pass.find_port("color")->port_sets, (std::vector<std::string>{"deferred-render"}));
     auto program = pass.own_program();
     ASSERT_TRUE(program.ok()) << program.error().to_string();
     EXPECT_FALSE((*program)->find("ShadowUniforms").has_value());

@@ -1,5 +1,6 @@
 // The pass/object protocol on the GPU: render_with() defers to the object's render() by
-// default, and a pass that overrides it takes full control of how objects are drawn.
+// default, a pass that overrides it takes full control of how objects are drawn, and a pass
+// draws from any draw source besides its objects.
 #include <memory>
 #include <vector>
 
@@ -7,6 +8,7 @@
 
 #include "loom/framegraph/executor.hpp"
 #include "loom/framegraph/graph.hpp"
+#include "loom/passes/draw_source.hpp"
 #include "loom/passes/shader_pass.hpp"
 #include "loom_test/render_fixture.hpp"
 
@@ -129,6 +131,52 @@ public:
     }
 };
 
+/// A draw source of its own, not the retained scene: draws its flat triangles in blue through
+/// the pipelines and set 0 of the pass it serves, and counts what the pass asked of it.
+class BlueTriangleSource final : public passes::DrawSource {
+public:
+    explicit BlueTriangleSource(std::vector<std::shared_ptr<FlatTriangle>> triangles) : triangles_(std::move(triangles)) {}
+
+    Status attach(passes::ShaderPass& pass) {
+        auto program = pass.prepare_kind(flat_kind_);
+        if (!program) return program.take_error();
+        return pass.attach_draw_source(*this);
+    }
+
+    Status draw(passes::DrawSourceContext& context) override {
+        ++draws;
+        const passes::Program* program = context.pass().program_for_kind(*flat_kind_);
+        if (!program) return make_error(ErrorCode::InvalidState, "the flat kind was not prepared");
+        passes::PipelineState state = context.state();
+        state.raster.cull = rhi::CullMode::None;
+        auto pipeline = context.pipeline(*program, state, *flat_kind_);
+        if (!pipeline) return pipeline.take_error();
+        rhi::CommandList& commands = context.pass_context().commands();
+        commands.set_pipeline(*pipeline);
+        LOOM_TRY(context.bind_pass_set(*program));
+        for (const auto& triangle : triangles_) {
+            LOOM_TRY(Bindings(*program, commands, passes::kObjectSet)
+                         .uniforms("FlatUniforms", FlatUniforms{{0.0f, 0.0f, 1.0f, 1.0f}})
+                         .bind());
+            commands.set_vertex_buffer(0, triangle->vertices());
+            commands.draw(3);
+        }
+        return {};
+    }
+
+    void detach(passes::ShaderPass& pass) override {
+        ++detaches;
+        pass.detach_draw_source(*this);
+    }
+
+    int draws = 0;
+    int detaches = 0;
+
+private:
+    std::shared_ptr<const ObjectKind> flat_kind_ = flat_kind();
+    std::vector<std::shared_ptr<FlatTriangle>> triangles_;
+};
+
 class ProtocolTest : public RenderTest {
 protected:
     void TearDown() override {
@@ -204,6 +252,32 @@ TEST_P(ProtocolTest, APassOverridingRenderWithTakesFullControl) {
     EXPECT_EQ(at(image, 16, 8), (std::array<double, 4>{0, 0, 0, 1}));
     EXPECT_EQ(objects[0]->renders, 0);
     EXPECT_EQ(objects[1]->renders, 0);
+}
+
+TEST_P(ProtocolTest, APassDrawsFromAnyDrawSourceAfterItsObjects) {
+    auto objects = triangles();
+    auto pass = std::make_unique<FlatPass>("flat");
+    ASSERT_TRUE(passes::register_object(*pass, objects[0]).ok());  // the left one, red, drawn by the pass
+    BlueTriangleSource source({objects[1]});                       // the right one, drawn by the source
+    ASSERT_TRUE(source.attach(*pass).ok());
+    EXPECT_EQ(pass->draw_source(), &source);
+
+    // A pass draws from one source.
+    BlueTriangleSource other({});
+    auto refused = other.attach(*pass);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error().code, ErrorCode::InvalidState);
+    EXPECT_EQ(refused.error().message, "pass 'flat' is attached to another draw source");
+
+    const rhi::Image image = render(std::move(pass));
+    EXPECT_EQ(at(image, 2, 8), (std::array<double, 4>{1, 0, 0, 1}));
+    EXPECT_EQ(at(image, 29, 8), (std::array<double, 4>{0, 0, 1, 1}));
+    EXPECT_EQ(at(image, 16, 8), (std::array<double, 4>{0, 0, 0, 1}));
+    EXPECT_EQ(objects[1]->renders, 0);
+    EXPECT_EQ(source.draws, 1);
+    // The pass went with its graph and detached itself; the other source never held it.
+    EXPECT_EQ(source.detaches, 1);
+    EXPECT_EQ(other.detaches, 0);
 }
 
 /// An object whose render() fails.

@@ -1,5 +1,11 @@
 // The built-in shaders compiled at build time load by name with their reflection; unknown
-// names fail listing the known ones; the embedded snippets compile shaders at run time.
+// names fail listing the known ones; every GLSL file under shaders/include/ is embedded, and the
+// embedded snippets compile shaders at run time.
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -75,6 +81,26 @@ TEST(BuiltinShaders, UnknownNameListsKnownNames) {
     EXPECT_EQ(module.error().code, ErrorCode::InvalidArgument);
     EXPECT_THAT(module.error().message, HasSubstr("nope.frag"));
     EXPECT_THAT(module.error().message, HasSubstr("blit.frag, fullscreen.vert, triangle.frag, triangle.vert"));
+}
+
+TEST(BuiltinShaders, EveryGlslFileUnderIncludeIsEmbeddedVerbatim) {
+    // shaders/CMakeLists.txt finds them by a glob: a new file needs no list entry.
+    const std::filesystem::path root = LOOM_SHADER_INCLUDE_DIR;
+    const auto& files = shaders::include_files();
+    std::size_t found = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(root)) {
+        if (!entry.is_regular_file() || entry.path().extension() != ".glsl") continue;
+        ++found;
+        const std::string name = entry.path().lexically_relative(root).generic_string();
+        auto it = files.find(name);
+        ASSERT_NE(it, files.end()) << name << " is not embedded";
+        std::ifstream in(entry.path(), std::ios::binary);
+        std::ostringstream text;
+        text << in.rdbuf();
+        EXPECT_EQ(it->second, text.str()) << name;
+    }
+    EXPECT_GT(found, 0u);
+    EXPECT_EQ(files.size(), found);  // and nothing else
 }
 
 TEST(BuiltinShaders, EmbeddedSnippetsComposeShadersAtRunTime) {

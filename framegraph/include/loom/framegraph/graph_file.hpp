@@ -11,6 +11,7 @@
 //     "connections": [["shadow.shadow_map", "deferred.shadow_map"], ["deferred.color", "tint.color"]],
 //     "outputs": ["tint.color"] }
 //
+// A pass's "parts" are port sets (fg::PortSet), added after the pass's own ports.
 // A port object has "name" and any of: "format" (an rhi::format_name or a short alias such as
 // "RGBA16F", "RGBA8", "D32F"), or partial format constraints "channels" (1-4), "bits", "kind"
 // (unorm, snorm, float, uint, sint), "srgb", "depth" (bits), "stencil" (bits); "size" [w, h]
@@ -48,8 +49,8 @@ struct GraphFile {
     /// What the text was called in parse_graph_json (the file name for load_graph_file).
     std::string source;
     /// Where each pass ("pass") and port ("pass.port") is declared in the text, as a JSON
-    /// pointer ("/passes/2", "/passes/2/outputs/0"; a port a pass and its parts both declare:
-    /// its first declaration).
+    /// pointer ("/passes/2", "/passes/2/outputs/0"; a port a pass and its port sets both
+    /// declare: its first declaration).
     std::unordered_map<std::string, std::string> pointers;
 };
 

@@ -1,9 +1,9 @@
 #pragma once
 // Passes and their ports. A pass is a node of the frame graph with named ports: `input` (reads a
 // texture), `output` (produces a new texture), `inout` (reads a texture and modifies it in
-// place, e.g. drawing shadows onto an existing colour target). Ports are declared in parts, and
-// a pass is composed from parts the way the paper (Hafner, ELS 2019, §5, Listings 3-5) builds
-// its deferred pass from a deferred, a shadow-receiving and a high-pass part.
+// place, e.g. drawing shadows onto an existing colour target). Ports are declared in port sets,
+// and a pass is composed from port sets the way the paper (Hafner, ELS 2019, §5, Listings 3-5)
+// builds its deferred pass from a deferred, a shadow-receiving and a high-pass class.
 //
 // Declaring and composing ports touches no GPU. Execution is a separate step: the executor
 // (executor.hpp) calls execute() once per frame with a PassContext whose ports are resolved to
@@ -57,37 +57,38 @@ struct Port {
     /// optional inout starts a fresh texture). Output: when nothing reads it and it is not a
     /// graph output, no texture is allocated for it.
     bool optional = false;
-    /// Names of the parts that declared this port, in the order they did.
-    std::vector<std::string> parts;
+    /// Names of the port sets that declared this port, in the order they did.
+    std::vector<std::string> port_sets;
 
     friend bool operator==(const Port&, const Port&) = default;
 };
 
-/// A named set of port declarations that passes are composed from.
-class Part {
+/// A named set of port declarations that passes are composed from. (loom::passes pairs one
+/// with shader code in a PassPart.)
+class PortSet {
 public:
-    /// An empty part called `name` (named in errors about its ports; Pass::add refuses names
-    /// that name_problem() refuses).
-    explicit Part(std::string name) : name_(std::move(name)) {}
+    /// An empty port set called `name` (named in errors about its ports; Pass::add refuses
+    /// names that name_problem() refuses).
+    explicit PortSet(std::string name) : name_(std::move(name)) {}
 
     /// Records a port declaration; Pass::add merges repeated names.
-    Part& declare(std::string port, PortKind kind, TextureSpec spec = {}, bool optional = false);
+    PortSet& declare(std::string port, PortKind kind, TextureSpec spec = {}, bool optional = false);
     /// Declares an input port.
-    Part& input(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Input, std::move(spec)); }
+    PortSet& input(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Input, std::move(spec)); }
     /// Declares an output port.
-    Part& output(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Output, std::move(spec)); }
+    PortSet& output(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Output, std::move(spec)); }
     /// Declares an inout port (modifies its source's texture in place).
-    Part& inout(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::InOut, std::move(spec)); }
+    PortSet& inout(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::InOut, std::move(spec)); }
     /// Declares an input that may stay unconnected.
-    Part& optional_input(std::string port, TextureSpec spec = {}) {
+    PortSet& optional_input(std::string port, TextureSpec spec = {}) {
         return declare(std::move(port), PortKind::Input, std::move(spec), true);
     }
     /// Declares an output that gets no texture when nothing reads it.
-    Part& optional_output(std::string port, TextureSpec spec = {}) {
+    PortSet& optional_output(std::string port, TextureSpec spec = {}) {
         return declare(std::move(port), PortKind::Output, std::move(spec), true);
     }
 
-    /// The part's name.
+    /// The port set's name.
     [[nodiscard]] const std::string& name() const { return name_; }
     /// Declarations in the order they were made (not merged).
     [[nodiscard]] const std::vector<Port>& declarations() const { return declarations_; }
@@ -97,13 +98,13 @@ private:
     std::vector<Port> declarations_;
 };
 
-/// A node of the frame graph. Ports come from parts; the pass's own declarations (input(),
-/// output(), ...) form a part named after the pass.
+/// A node of the frame graph. Ports come from port sets; the pass's own declarations (input(),
+/// output(), ...) form a port set named after the pass.
 ///
-/// Two declarations of the same port name (from two parts, or twice from one) merge when they
+/// Two declarations of the same port name (from two port sets, or twice from one) merge when they
 /// have the same kind: the specs are joined (join.hpp, without a frame size) and the port is
 /// optional only if every declaration says so. Different kinds, or specs that do not join, are
-/// an error naming the pass, the port and both parts. Declaration methods chain; the first
+/// an error naming the pass, the port and both port sets. Declaration methods chain; the first
 /// error is kept and reported by status() and by FrameGraph::add_pass.
 class Pass {
 public:
@@ -116,15 +117,16 @@ public:
     Pass(Pass&&) noexcept = default;
     Pass& operator=(Pass&&) noexcept = default;
 
-    /// Adds every port of `part`, merging names declared before. A part name that name_problem()
-    /// refuses is an error (status()) naming the pass and the part, and its ports are not added.
-    Pass& add(const Part& part);
+    /// Adds every port of `ports`, merging names declared before. A port set name that
+    /// name_problem() refuses is an error (status()) naming the pass and the port set, and its
+    /// ports are not added.
+    Pass& add(const PortSet& ports);
 
-    // Declarations on the pass's own part.
+    // Declarations on the pass's own port set.
     Pass& declare(std::string port, PortKind kind, TextureSpec spec = {}, bool optional = false);
-    /// Declares an input port on the pass's own part.
+    /// Declares an input port on the pass's own port set.
     Pass& input(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Input, std::move(spec)); }
-    /// Declares an output port on the pass's own part.
+    /// Declares an output port on the pass's own port set.
     Pass& output(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Output, std::move(spec)); }
     /// Declares an inout port (modifies its source's texture in place).
     Pass& inout(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::InOut, std::move(spec)); }
@@ -172,7 +174,7 @@ public:
     [[nodiscard]] Status status() const;
 
 private:
-    void merge(const Port& declaration, const std::string& part);
+    void merge(const Port& declaration, const std::string& port_set);
 
     std::string name_;
     std::vector<Port> ports_;

@@ -43,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include "loom/passes/draw_source.hpp"
 #include "loom/passes/geometry_buffers.hpp"
 #include "loom/passes/shader_pass.hpp"
 #include "loom/passes/shape.hpp"
@@ -112,11 +113,12 @@ struct RetainedStats {
     }
 };
 
-class RetainedScene {
+/// The scene is the draw source (draw_source.hpp) of every pass attached to it.
+class RetainedScene final : public DrawSource {
 public:
     explicit RetainedScene(RetainedConfig config = {});
     /// Detaches every pass and destroys the scene's buffers (its device must still be alive).
-    ~RetainedScene();
+    ~RetainedScene() override;
     RetainedScene(const RetainedScene&) = delete;
     RetainedScene& operator=(const RetainedScene&) = delete;
 
@@ -125,7 +127,7 @@ public:
     /// attached to another scene, a shape's kind does not compile for the pass.
     Status attach(ShaderPass& pass, QueueOrder order = QueueOrder::Sorted);
     /// Drops the pass's render queue (a pass that is destroyed detaches itself).
-    void detach(ShaderPass& pass);
+    void detach(ShaderPass& pass) override;
 
     /// Submits `shape`: a bundle in the queue of every attached pass it names (all of them when
     /// it names none), drawn from the next frame on. Composes and compiles the programs of a
@@ -146,11 +148,11 @@ public:
     /// queued it costs nothing, so calling it again in a frame is free. The first call binds
     /// the scene to `device`; another device is an InvalidState error.
     Status prepare(rhi::Device& device);
-    /// Records `pass`'s render queue (ShaderPass::draw_objects calls it): per batch the
-    /// pipeline (`state` with the batch's raster state; `bind_pass` binds set 0 after each
-    /// pipeline change), the shared buffers, the material's set, and the draw.
-    Status draw(ShaderPass& pass, fg::PassContext& context, const PipelineState& state,
-                const ShaderPass::PassBinder& bind_pass);
+    /// Records the render queue of `context.pass()` (ShaderPass::draw_objects calls it): per
+    /// batch the pipeline (the pass's state with the batch's raster state; the pass's set 0
+    /// bound after each pipeline change), the shared buffers, the material's set, and the draw.
+    /// Runs prepare() first.
+    Status draw(DrawSourceContext& context) override;
 
     /// The batches, indirect commands and instance list (object slots) of `pass`'s queue as of
     /// the latest prepare(); empty for a pass that is not attached.

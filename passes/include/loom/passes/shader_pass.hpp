@@ -34,6 +34,7 @@
 #include "loom/framegraph/pass.hpp"
 #include "loom/framegraph/pass_context.hpp"
 #include "loom/passes/composer.hpp"
+#include "loom/passes/draw_source.hpp"
 #include "loom/passes/object.hpp"
 #include "loom/passes/program.hpp"
 #include "loom/passes/shader_part.hpp"
@@ -43,8 +44,6 @@
 #include "loom/rhi/result.hpp"
 
 namespace loom::passes {
-
-class RetainedScene;
 
 /// The fixed-function state of a pipeline a pass builds for one of its programs.
 struct PipelineState {
@@ -150,7 +149,7 @@ public:
     /// The program used for `object`; nullptr when its kind was never registered.
     [[nodiscard]] const Program* program_for(const Object& object) const;
     /// The program for objects of `kind`, composed and compiled the first time the kind is seen
-    /// (register_object's first half; the retained scene calls it when a shape is submitted).
+    /// (register_object's first half; a draw source calls it for the kinds it draws).
     /// Errors: as register_object.
     Result<const Program*> prepare_kind(const std::shared_ptr<const ObjectKind>& kind);
     /// The program prepared for `kind`; nullptr when its kind was never prepared.
@@ -169,9 +168,15 @@ public:
     void clear_objects() { objects_.clear(); }
     /// Programs composed so far, one per object kind (plus the pass's own, once made).
     [[nodiscard]] std::size_t program_count() const { return programs_.size(); }
-    /// The retained scene this pass draws the submitted shapes of (RetainedScene::attach), or
-    /// null. draw_objects() draws them after the registered objects.
-    [[nodiscard]] RetainedScene* retained_scene() const { return scene_; }
+    /// The draw source whose draw list this pass draws after its registered objects
+    /// (draw_objects()), or null.
+    [[nodiscard]] DrawSource* draw_source() const { return draw_source_; }
+    /// Makes draw_objects() end with `source`'s draw list for this pass. A source calls it when
+    /// it takes the pass on; a pass that is destroyed calls source.detach(*this). InvalidState,
+    /// naming the pass, when another source is attached.
+    Status attach_draw_source(DrawSource& source);
+    /// Forgets `source` when it is this pass's (a source calls it from its detach()).
+    void detach_draw_source(const DrawSource& source);
     /// The pass's own program (no object), composed on first use.
     Result<const Program*> own_program();
 
@@ -206,8 +211,7 @@ protected:
     /// Draws every registered object inside the current render pass: grouped by program, each
     /// group with its pipeline (`state` with the object's raster state) and `bind_pass` called to
     /// bind the pass's resources (set 0) for the program; then render_with() per object. Then,
-    /// when the pass is attached to a RetainedScene, the scene's render queue for this pass
-    /// (RetainedScene::draw).
+    /// when the pass has a draw source, the source's draw list for this pass (DrawSource::draw).
     using PassBinder = std::function<Status(Bindings& pass_set)>;
     Status draw_objects(fg::PassContext& context, const PipelineState& state, const PassBinder& bind_pass);
 
@@ -232,8 +236,6 @@ protected:
     }
 
 private:
-    friend class RetainedScene;
-
     Status use_device(rhi::Device& device);
     Result<std::pair<rhi::ShaderHandle, rhi::ShaderHandle>> shaders_of(const Program& program);
 
@@ -269,7 +271,7 @@ private:
     /// The pass's own uniform sets (bind_pass_uniforms), one pool of one slot per block.
     std::map<std::string, std::unique_ptr<UniformSetPool>, std::less<>> pass_sets_;
     UploadStats pass_uniform_stats_;
-    RetainedScene* scene_ = nullptr;
+    DrawSource* draw_source_ = nullptr;
 };
 
 // The protocol as free functions, as the paper names it.
