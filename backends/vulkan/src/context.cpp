@@ -72,6 +72,14 @@ int device_type_rank(VkPhysicalDeviceType type) {
     }
 }
 
+// A physical device loom can use and the queue family it would take.
+struct Candidate {
+    VkPhysicalDevice device;
+    uint32_t index;
+    uint32_t queue_family;
+    VkPhysicalDeviceProperties properties;
+};
+
 }  // namespace
 
 std::string_view vk_result_name(VkResult result) {
@@ -117,6 +125,19 @@ loom::Result<std::unique_ptr<VulkanContext>> VulkanContext::create(const Context
 }
 
 loom::Status VulkanContext::init(const ContextOptions& options) {
+    LOOM_TRY(create_instance(options));
+    if (options.create_surface) {
+        auto surface = options.create_surface(instance_);
+        if (!surface.ok()) return surface.take_error();
+        surface_ = *surface;
+    }
+    LOOM_TRY(choose_physical_device());
+    return create_logical_device();
+}
+
+// The instance with the validation layer, debug utils and synchronisation validation when
+// asked for and installed.
+loom::Status VulkanContext::create_instance(const ContextOptions& options) {
     uint32_t loader_version = 0;
     vkEnumerateInstanceVersion(&loader_version);
     if (loader_version < VK_API_VERSION_1_3) {
@@ -184,25 +205,17 @@ loom::Status VulkanContext::init(const ContextOptions& options) {
         if (create) create(instance_, &m, nullptr, &messenger_);
         load_debug_utils();
     }
+    return {};
+}
 
-    if (options.create_surface) {
-        auto surface = options.create_surface(instance_);
-        if (!surface.ok()) return surface.take_error();
-        surface_ = *surface;
-    }
-
-    // ---- physical device ------------------------------------------------------------------
+// The first Vulkan 1.3 device with a graphics+compute queue (that can present, with a surface),
+// discrete GPUs first, or the one LOOM_VK_DEVICE names (index or part of the name).
+loom::Status VulkanContext::choose_physical_device() {
     uint32_t count = 0;
     vkEnumeratePhysicalDevices(instance_, &count, nullptr);
     std::vector<VkPhysicalDevice> devices(count);
     vkEnumeratePhysicalDevices(instance_, &count, devices.data());
 
-    struct Candidate {
-        VkPhysicalDevice device;
-        uint32_t index;
-        uint32_t queue_family;
-        VkPhysicalDeviceProperties properties;
-    };
     std::vector<Candidate> candidates;
     std::string rejected;
     for (uint32_t i = 0; i < count; ++i) {
@@ -255,8 +268,11 @@ loom::Status VulkanContext::init(const ContextOptions& options) {
     physical_device_ = chosen->device;
     queue_family_ = chosen->queue_family;
     query_device_properties();
+    return {};
+}
 
-    // ---- logical device -------------------------------------------------------------------
+// The device with the features loom uses (those the physical device has) and its one queue.
+loom::Status VulkanContext::create_logical_device() {
     VkPhysicalDeviceFeatures supported{};
     vkGetPhysicalDeviceFeatures(physical_device_, &supported);
     auto supported13 = vk_init<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);

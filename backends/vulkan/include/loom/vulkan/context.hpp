@@ -95,7 +95,11 @@ public:
 
 private:
     VulkanContext() = default;
+    /// create_instance, the surface (if asked for), choose_physical_device, create_logical_device.
     loom::Status init(const ContextOptions& options);
+    loom::Status create_instance(const ContextOptions& options);
+    loom::Status choose_physical_device();
+    loom::Status create_logical_device();
     /// Properties, memory properties and timestamp bits of the chosen device and queue family.
     void query_device_properties();
     /// The debug-utils entry points, once the instance has the extension.
