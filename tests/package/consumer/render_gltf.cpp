@@ -13,13 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "every_backend.hpp"
 #include "loom/gltf/gltf.hpp"
 #include "loom/renderer/deferred_pipeline.hpp"
 #include "loom/renderer/gltf_scene.hpp"
 #include "loom/renderer/gpu_scene.hpp"
 #include "loom/renderer/scene_objects.hpp"
 #include "loom/rhi/device.hpp"
-#include "loom/rhi/log.hpp"
 
 namespace {
 
@@ -99,12 +99,7 @@ Status render(rhi::Device& device, const std::shared_ptr<const renderer::Prepare
 }  // namespace
 
 int main() {
-    int logged_errors = 0;
-    set_log_sink([&](LogLevel level, std::string_view source, std::string_view message) {
-        if (level < LogLevel::Warning) return;
-        std::fprintf(stderr, "[%s] %.*s\n", std::string(source).c_str(), static_cast<int>(message.size()), message.data());
-        if (level == LogLevel::Error) ++logged_errors;
-    });
+    const consumer::LoggedErrors logged;
     const std::filesystem::path dir = std::filesystem::current_path() / "render_gltf_model";
     if (auto written = write_square(dir); !written) {
         std::fprintf(stderr, "render_gltf: %s\n", written.error().to_string().c_str());
@@ -116,22 +111,9 @@ int main() {
         return 1;
     }
     const auto prepared = renderer::prepare_scene(std::move(*scene));
-    int failures = 0;
-    int backends = 0;
-    for (rhi::Backend backend : rhi::compiled_backends()) {
-        ++backends;
-        rhi::DeviceDesc desc;
-        desc.backend = backend;
-        auto device = rhi::create_device(desc);
-        Status status = device ? render(**device, prepared) : Status(device.error());
-        std::printf("render_gltf: %s: %s\n", std::string(rhi::backend_name(backend)).c_str(),
-                    status ? "drew the red square on the sky" : status.error().to_string().c_str());
-        if (!status) ++failures;
-    }
-    if (backends == 0) {
-        std::fprintf(stderr, "render_gltf: loom has no backend\n");
-        return 1;
-    }
-    if (logged_errors > 0) std::fprintf(stderr, "render_gltf: %d error(s) logged\n", logged_errors);
-    return failures == 0 && logged_errors == 0 ? 0 : 1;
+    const int failures = consumer::on_every_backend(
+        "render_gltf", "drew the red square on the sky", [&](rhi::Device& device) { return render(device, prepared); });
+    if (failures < 0) return 1;
+    if (logged.count() > 0) std::fprintf(stderr, "render_gltf: %d error(s) logged\n", logged.count());
+    return failures == 0 && logged.count() == 0 ? 0 : 1;
 }

@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <memory>
 
+#include "every_backend.hpp"
 #include "loom/framegraph/framegraph.hpp"
 #include "loom/passes/blit_pass.hpp"
 #include "loom/rhi/device.hpp"
-#include "loom/rhi/log.hpp"
 #include "loom/shaders/builtin.hpp"
 #if defined(CONSUMER_HAS_GL)
 #include "loom/gl/gl_device.hpp"
@@ -55,29 +55,13 @@ Status render(rhi::Device& device) {
 }  // namespace
 
 int main() {
-    // API debug output and validation are on (DeviceDesc::debug): any error they report fails.
-    int logged_errors = 0;
-    set_log_sink([&](LogLevel level, std::string_view source, std::string_view message) {
-        if (level < LogLevel::Warning) return;
-        std::fprintf(stderr, "[%s] %.*s\n", std::string(source).c_str(), static_cast<int>(message.size()), message.data());
-        if (level == LogLevel::Error) ++logged_errors;
-    });
+    const consumer::LoggedErrors logged;
     if (auto shader = shaders::builtin("fullscreen.vert"); !shader) {
         std::fprintf(stderr, "render_headless: %s\n", shader.error().to_string().c_str());
         return 1;
     }
-    int failures = 0;
-    int backends = 0;
-    for (rhi::Backend backend : rhi::compiled_backends()) {
-        ++backends;
-        rhi::DeviceDesc desc;
-        desc.backend = backend;
-        auto device = rhi::create_device(desc);
-        Status status = device ? render(**device) : Status(device.error());
-        std::printf("render_headless: %s: %s\n", std::string(rhi::backend_name(backend)).c_str(),
-                    status ? "drew the expected colour" : status.error().to_string().c_str());
-        if (!status) ++failures;
-    }
+    int failures = consumer::on_every_backend("render_headless", "drew the expected colour", render);
+    if (failures < 0) return 1;
 #if defined(CONSUMER_HAS_GL)
     // The backend's own factory is there too.
     if (!gl::create_gl_device({})) ++failures;
@@ -87,10 +71,6 @@ int main() {
     vulkan_desc.backend = rhi::Backend::Vulkan;
     if (!vulkan::create_vulkan_device(vulkan_desc)) ++failures;
 #endif
-    if (backends == 0) {
-        std::fprintf(stderr, "render_headless: loom has no backend\n");
-        return 1;
-    }
-    if (logged_errors > 0) std::fprintf(stderr, "render_headless: %d error(s) logged\n", logged_errors);
-    return failures == 0 && logged_errors == 0 ? 0 : 1;
+    if (logged.count() > 0) std::fprintf(stderr, "render_headless: %d error(s) logged\n", logged.count());
+    return failures == 0 && logged.count() == 0 ? 0 : 1;
 }
