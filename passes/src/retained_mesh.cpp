@@ -46,7 +46,7 @@ std::shared_ptr<const ObjectKind> retained_checker_mesh_kind() {
     return retained_kind("retained-checker-mesh", "checker-material");
 }
 
-std::shared_ptr<Material> make_mesh_material(std::string name, std::shared_ptr<Param<MeshSurface>> params) {
+std::shared_ptr<GpuMaterial> make_mesh_material(std::string name, std::shared_ptr<Param<MeshSurface>> params) {
     const rhi::CullMode cull = params->value().material.double_sided ? rhi::CullMode::None : rhi::CullMode::Back;
     auto uniforms = std::make_shared<UniformSet>(
         "MaterialUniforms", UpdateFrequency::PerMaterial, static_cast<uint32_t>(sizeof(MeshSurfaceUniforms)),
@@ -55,10 +55,10 @@ std::shared_ptr<Material> make_mesh_material(std::string name, std::shared_ptr<P
             std::memcpy(block.data(), &u, sizeof(u));
         },
         std::vector<std::shared_ptr<ParamNode>>{params});
-    return std::make_shared<Material>(std::move(name), std::move(uniforms), std::vector<MaterialTexture>{}, cull);
+    return std::make_shared<GpuMaterial>(std::move(name), std::move(uniforms), std::vector<MaterialTexture>{}, cull);
 }
 
-std::shared_ptr<Material> make_mesh_material(std::string name, const MeshSurface& value) {
+std::shared_ptr<GpuMaterial> make_mesh_material(std::string name, const MeshSurface& value) {
     return make_mesh_material(std::move(name), std::make_shared<InputParam<MeshSurface>>(value));
 }
 

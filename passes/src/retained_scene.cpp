@@ -39,7 +39,7 @@ bool names_pass(const Shape& shape, const ShaderPass& pass) {
 }
 
 /// Whether `program` reads `material`'s resources (a pass may leave the material parts out).
-bool reads_material(const Program& program, const Material& material) {
+bool reads_material(const Program& program, const GpuMaterial& material) {
     if (material.uniforms() && program.find(material.uniforms()->block())) return true;
     return std::any_of(material.textures().begin(), material.textures().end(),
                        [&](const MaterialTexture& t) { return program.find(t.name).has_value(); });
@@ -103,7 +103,7 @@ struct RetainedScene::GeometryEntry {
 };
 
 struct RetainedScene::MaterialEntry {
-    std::shared_ptr<Material> material;
+    std::shared_ptr<GpuMaterial> material;
     uint32_t users = 0;
     UniformSetPool* pool = nullptr;  ///< of its uniform set's size; null without a set
     std::optional<uint32_t> slot;    ///< in `pool`
@@ -290,7 +290,7 @@ Status RetainedScene::submit(std::shared_ptr<Shape> shape) {
     }
     ++geometry->users;
 
-    // Material: a slot for its uniform set, uploaded by the next prepare() and whenever its
+    // GpuMaterial: a slot for its uniform set, uploaded by the next prepare() and whenever its
     // parameters change.
     auto& material = materials_[shape->material().get()];
     if (!material) {
@@ -474,7 +474,7 @@ Status RetainedScene::rebuild(Queue& queue) {
             return make_error(ErrorCode::InvalidState, "pass '" + queue.pass->name() + "': " + shape_name(shape) +
                                                            " has no program or no place in the shared buffers");
         }
-        const Material& material = *object->material->material;
+        const GpuMaterial& material = *object->material->material;
         const bool reads = reads_material(*program, material);
         items.push_back(Item{kind_ranks_.at(shape.kind()->name()), material.cull(), object->front_face,
                              object->geometry->placement->vertex_pool, reads ? material.id() : 0,
@@ -589,7 +589,7 @@ Status RetainedScene::draw(DrawSourceContext& context) {
             Bindings object_set(program, commands, kObjectSet);
             if (program.find("ObjectRecords")) object_set.buffer("ObjectRecords", object_records_.whole());
             if (const MaterialEntry* material = batch_state.material) {
-                const Material& m = *material->material;
+                const GpuMaterial& m = *material->material;
                 if (material->slot && program.find(m.uniforms()->block())) {
                     object_set.buffer(m.uniforms()->block(), material->pool->binding(*material->slot));
                 }

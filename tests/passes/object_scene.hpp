@@ -78,7 +78,7 @@ Result<NaiveObjects> make_naive_objects(rhi::Device& device, const ObjectScene& 
 /// per object with its own model parameter (set it to move the object).
 struct RetainedObjects {
     std::vector<std::shared_ptr<const passes::Geometry>> geometries;
-    std::vector<std::shared_ptr<passes::Material>> materials;
+    std::vector<std::shared_ptr<passes::GpuMaterial>> materials;
     std::vector<std::shared_ptr<passes::InputParam<glm::mat4>>> models;
     std::vector<std::shared_ptr<passes::Shape>> shapes;
 };

@@ -534,7 +534,7 @@ TEST_P(RetainedSceneTest, SeparateVertexStreamsShareTheirOwnPool) {
     auto red = quad("red quad", {1, 0, 0});
     auto blue = quad("blue quad", {0, 0, 1});
     ASSERT_TRUE(red.ok() && blue.ok()) << (red.ok() ? blue.error().to_string() : red.error().to_string());
-    auto plain = std::make_shared<passes::Material>("plain", nullptr);
+    auto plain = std::make_shared<passes::GpuMaterial>("plain", nullptr);
     scene::CameraMatrices camera;
     camera.position = glm::vec3(0.0f, 10.0f, 0.0f);
     camera.view = glm::lookAtRH(camera.position, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));

@@ -63,8 +63,8 @@ std::shared_ptr<const ObjectKind> retained_checker_mesh_kind();
 /// A material for the retained mesh kinds whose values follow `params` (set it to change
 /// them: only this material's set is uploaded again). Double-sided materials draw without
 /// culling (fixed at creation, from the value `params` has now).
-std::shared_ptr<Material> make_mesh_material(std::string name, std::shared_ptr<Param<MeshSurface>> params);
+std::shared_ptr<GpuMaterial> make_mesh_material(std::string name, std::shared_ptr<Param<MeshSurface>> params);
 /// make_mesh_material of a fixed value.
-std::shared_ptr<Material> make_mesh_material(std::string name, const MeshSurface& value);
+std::shared_ptr<GpuMaterial> make_mesh_material(std::string name, const MeshSurface& value);
 
 }  // namespace loom::passes

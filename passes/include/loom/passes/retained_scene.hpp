@@ -195,7 +195,7 @@ private:
     std::vector<std::unique_ptr<Queue>> queues_;
     std::map<const Shape*, std::unique_ptr<ObjectEntry>> objects_;
     std::map<const Geometry*, std::unique_ptr<GeometryEntry>> geometries_;
-    std::map<const Material*, std::unique_ptr<MaterialEntry>> materials_;
+    std::map<const GpuMaterial*, std::unique_ptr<MaterialEntry>> materials_;
     std::map<std::string, uint32_t> kind_ranks_;  ///< kinds in order of first submission
     // The finalize queue (geometries to place) and the upload queue (stale sets).
     std::vector<GeometryEntry*> to_place_;

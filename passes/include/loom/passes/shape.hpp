@@ -27,15 +27,16 @@ struct MaterialTexture {
     rhi::SamplerDesc sampler;
 };
 
-/// The appearance shared by many shapes: the per-material uniform set (the block its parts
-/// declare, "MaterialUniforms" for the retained mesh kinds), textures, and the face culling it
-/// needs. Shapes with one material are drawn with one binding of it.
-class Material {
+/// A material as the GPU draws it, shared by many shapes: the per-material uniform set (the
+/// block its parts declare, "MaterialUniforms" for the retained mesh kinds), textures, and the
+/// face culling it needs. Shapes with one material are drawn with one binding of it. (What a
+/// material is made of, in glTF's terms, is scene::Material.)
+class GpuMaterial {
 public:
     /// `uniforms` is the per-material set (UpdateFrequency::PerMaterial); null for a material
     /// without one. `cull` is fixed for the material's lifetime (it is part of the pipeline).
-    Material(std::string name, std::shared_ptr<UniformSet> uniforms, std::vector<MaterialTexture> textures = {},
-             rhi::CullMode cull = rhi::CullMode::Back);
+    GpuMaterial(std::string name, std::shared_ptr<UniformSet> uniforms, std::vector<MaterialTexture> textures = {},
+                rhi::CullMode cull = rhi::CullMode::Back);
 
     [[nodiscard]] const std::string& name() const { return name_; }
     /// Unique per material, increasing in creation order (render queues sort by it).
@@ -59,12 +60,12 @@ private:
 class Shape {
 public:
     Shape(std::string name, std::shared_ptr<const ObjectKind> kind, std::shared_ptr<const Geometry> geometry,
-          std::shared_ptr<Material> material, std::shared_ptr<Param<glm::mat4>> model);
+          std::shared_ptr<GpuMaterial> material, std::shared_ptr<Param<glm::mat4>> model);
 
     [[nodiscard]] const std::string& name() const { return name_; }
     [[nodiscard]] const std::shared_ptr<const ObjectKind>& kind() const { return kind_; }
     [[nodiscard]] const std::shared_ptr<const Geometry>& geometry() const { return geometry_; }
-    [[nodiscard]] const std::shared_ptr<Material>& material() const { return material_; }
+    [[nodiscard]] const std::shared_ptr<GpuMaterial>& material() const { return material_; }
     [[nodiscard]] const std::shared_ptr<Param<glm::mat4>>& model() const { return model_; }
 
     /// Names of the passes that draw the shape; empty (the default): every pass attached to the
@@ -75,7 +76,7 @@ private:
     std::string name_;
     std::shared_ptr<const ObjectKind> kind_;
     std::shared_ptr<const Geometry> geometry_;
-    std::shared_ptr<Material> material_;
+    std::shared_ptr<GpuMaterial> material_;
     std::shared_ptr<Param<glm::mat4>> model_;
 };
 
