@@ -14,14 +14,19 @@ namespace {
 struct ObjectUniforms {
     glm::mat4 model;
     glm::mat4 normal_matrix;
-    glm::vec4 base_color;
-    glm::vec4 secondary_color;
-    glm::vec4 emissive;
-    glm::vec4 material;
+    MeshSurfaceUniforms surface;  // base_color, secondary_color, emissive, material
 };
 static_assert(sizeof(ObjectUniforms) == 192);
 
 }  // namespace
+
+MeshSurfaceUniforms mesh_surface_uniforms(const MeshSurface& surface) {
+    const scene::Material& material = surface.material;
+    return MeshSurfaceUniforms{material.base_color_factor, surface.checker.secondary_color,
+                               glm::vec4(material.emissive_factor, 0.0f),
+                               glm::vec4(material.metallic_factor, material.roughness_factor,
+                                         surface.checker.cells_per_unit, 0.0f)};
+}
 
 rhi::VertexBufferLayout mesh_vertex_layout() {
     rhi::VertexBufferLayout layout;
@@ -114,11 +119,7 @@ Status MeshObject::render(DrawContext& context) const {
     ObjectUniforms uniforms;
     uniforms.model = model_;
     uniforms.normal_matrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(model_))));
-    const scene::Material& material = surface_.material;
-    uniforms.base_color = material.base_color_factor;
-    uniforms.secondary_color = surface_.checker.secondary_color;
-    uniforms.emissive = glm::vec4(material.emissive_factor, 0.0f);
-    uniforms.material = glm::vec4(material.metallic_factor, material.roughness_factor, surface_.checker.cells_per_unit, 0.0f);
+    uniforms.surface = mesh_surface_uniforms(surface_);
     Bindings object_set(context.program, context.commands, kObjectSet);
     LOOM_TRY(object_set.uniforms("ObjectUniforms", uniforms).bind());
 

@@ -22,14 +22,6 @@ ObjectRecord object_record(const glm::mat4& model) {
     return ObjectRecord{model, glm::mat4(glm::transpose(glm::inverse(glm::mat3(model))))};
 }
 
-MeshSurfaceUniforms mesh_surface_uniforms(const MeshSurface& surface) {
-    const scene::Material& material = surface.material;
-    return MeshSurfaceUniforms{material.base_color_factor, surface.checker.secondary_color,
-                               glm::vec4(material.emissive_factor, 0.0f),
-                               glm::vec4(material.metallic_factor, material.roughness_factor,
-                                         surface.checker.cells_per_unit, 0.0f)};
-}
-
 rhi::VertexBufferLayout object_index_layout() {
     rhi::VertexBufferLayout layout;
     layout.stride = sizeof(uint32_t);

@@ -80,6 +80,20 @@ struct MeshSurface {
     CheckerPattern checker;
 };
 
+/// A MeshSurface as the mesh kinds' shaders read it (std140): the material half of a
+/// MeshObject's ObjectUniforms, and the retained mesh kinds' per-material set.
+struct MeshSurfaceUniforms {
+    glm::vec4 base_color;
+    glm::vec4 secondary_color;
+    glm::vec4 emissive;
+    glm::vec4 material;  ///< metallic, roughness, checker cells per unit
+};
+static_assert(sizeof(MeshSurfaceUniforms) == 64);
+
+/// The one packing of a MeshSurface, so that MeshObject and the retained mesh kinds upload the
+/// same bits.
+MeshSurfaceUniforms mesh_surface_uniforms(const MeshSurface& surface);
+
 /// The kind "pbr-mesh": parts "mesh-geometry" and "pbr-material".
 std::shared_ptr<const ObjectKind> pbr_mesh_kind();
 /// The kind "checker-mesh": parts "mesh-geometry" and "checker-material".

@@ -35,21 +35,9 @@ struct ObjectRecord {
 };
 static_assert(sizeof(ObjectRecord) == 128);
 
-/// The per-material set of the retained mesh kinds (std140), the members of ObjectUniforms'
-/// material half.
-struct MeshSurfaceUniforms {
-    glm::vec4 base_color;
-    glm::vec4 secondary_color;
-    glm::vec4 emissive;
-    glm::vec4 material;  ///< metallic, roughness, checker cells per unit
-};
-static_assert(sizeof(MeshSurfaceUniforms) == 64);
-
 /// The record of a model matrix: the matrix and its normal matrix (inverse transpose of its
 /// upper 3x3), computed as MeshObject computes them.
 ObjectRecord object_record(const glm::mat4& model);
-/// MeshSurfaceUniforms of a MeshSurface, as MeshObject packs them.
-MeshSurfaceUniforms mesh_surface_uniforms(const MeshSurface& surface);
 
 /// The per-instance vertex buffer slot carrying the object index (stride 4, one Uint at
 /// kObjectIndexLocation).
