@@ -57,15 +57,39 @@ std::string describe_slot(const TextureSlot& slot) {
     return "none";
 }
 
+std::string describe_slot(const BufferSlot& slot) {
+    switch (slot.kind) {
+        case BufferSlot::Kind::None: return "none";
+        case BufferSlot::Kind::Plan: return "b" + std::to_string(slot.index);
+        case BufferSlot::Kind::Import: return "buffer import " + std::to_string(slot.index);
+    }
+    return "none";
+}
+
+rhi::ResourceState buffer_state(PortKind kind, rhi::BufferUsage usage) {
+    using rhi::BufferUsage;
+    using rhi::ResourceState;
+    if (port_writes(kind)) return usage == BufferUsage::CopyDst ? ResourceState::CopyDst : ResourceState::Storage;
+    switch (usage) {
+        case BufferUsage::Vertex: return ResourceState::VertexBuffer;
+        case BufferUsage::Index: return ResourceState::IndexBuffer;
+        case BufferUsage::Indirect: return ResourceState::IndirectArgument;
+        case BufferUsage::CopySrc: return ResourceState::CopySrc;
+        default: return ResourceState::ShaderRead;
+    }
+}
+
 rhi::ResourceState sampled_state(rhi::Format format) {
     return rhi::format_info(format).is_depth_stencil() ? rhi::ResourceState::DepthRead : rhi::ResourceState::ShaderRead;
 }
 
 Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<const ImportBinding> imports,
-                                                   std::span<const HistoryBinding> histories) {
+                                                   std::span<const HistoryBinding> histories,
+                                                   std::span<const ImportBinding> buffer_imports) {
     ExecutionSchedule schedule;
     schedule.resource_import.assign(plan.resources.size(), std::nullopt);
     schedule.texture_needed.assign(plan.textures.size(), false);
+    schedule.buffer_needed.assign(plan.buffers.size(), false);
     const auto uses = resource_uses(plan);
 
     // Imports: a port with a resource hands over the resource, a port without one gets its own.
@@ -76,11 +100,16 @@ Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<c
     }
     port_import.assign(port_offset.back(), std::nullopt);
     std::vector<std::optional<uint32_t>> port_history(port_offset.back(), std::nullopt);
+    std::vector<std::optional<uint32_t>> port_buffer_import(port_offset.back(), std::nullopt);
 
     for (uint32_t i = 0; i < imports.size(); ++i) {
         auto at = locate(plan, imports[i].port, "import");
         if (!at) return at.take_error();
         const PlanPort& port = plan.order[at->position].ports[at->port];
+        if (port.type != ResourceType::Texture) {
+            return graph_error("import " + imports[i].port.to_string() +
+                               ": a buffer port takes a buffer (Executor::import_buffer), not a texture");
+        }
         if (port.resource) {
             if (auto& existing = schedule.resource_import[*port.resource]) {
                 return graph_error("import " + imports[i].port.to_string() + ": its texture (resource " +
@@ -92,11 +121,39 @@ Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<c
             port_import[port_offset[at->position] + at->port] = i;
         }
     }
+    for (uint32_t i = 0; i < buffer_imports.size(); ++i) {
+        auto at = locate(plan, buffer_imports[i].port, "buffer import");
+        if (!at) return at.take_error();
+        const PlanPort& port = plan.order[at->position].ports[at->port];
+        if (port.type != ResourceType::Buffer) {
+            return graph_error("buffer import " + buffer_imports[i].port.to_string() +
+                               ": a texture port takes a texture (Executor::import_texture), not a buffer");
+        }
+        if (port.resource) {
+            if (auto& existing = schedule.resource_import[*port.resource]) {
+                return graph_error("buffer import " + buffer_imports[i].port.to_string() + ": its buffer (resource " +
+                                   plan.resources[*port.resource].name + ") is already imported through " +
+                                   buffer_imports[*existing].port.to_string());
+            }
+            schedule.resource_import[*port.resource] = i;
+        } else {
+            port_buffer_import[port_offset[at->position] + at->port] = i;
+        }
+    }
     for (uint32_t t = 0; t < plan.textures.size(); ++t) {
         for (uint32_t r : plan.textures[t].resources) {
             if (!schedule.resource_import[r]) schedule.texture_needed[t] = true;
         }
     }
+    for (uint32_t b = 0; b < plan.buffers.size(); ++b) {
+        for (uint32_t r : plan.buffers[b].resources) {
+            if (!schedule.resource_import[r]) schedule.buffer_needed[b] = true;
+        }
+    }
+    auto buffer_slot = [&](uint32_t r) {
+        if (auto import = schedule.resource_import[r]) return BufferSlot{BufferSlot::Kind::Import, *import};
+        return BufferSlot{BufferSlot::Kind::Plan, plan.resources[r].buffer};
+    };
     auto resource_slot = [&](uint32_t r) {
         if (auto import = schedule.resource_import[r]) return TextureSlot{TextureSlot::Kind::Import, *import};
         return TextureSlot{TextureSlot::Kind::Plan, plan.resources[r].texture};
@@ -107,6 +164,9 @@ Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<c
         auto reader = locate(plan, binding.reader, "history reader");
         if (!reader) return reader.take_error();
         const PlanPort& reader_port = plan.order[reader->position].ports[reader->port];
+        if (reader_port.type != ResourceType::Texture) {
+            return graph_error("history reader " + binding.reader.to_string() + " is a buffer port; history is kept for textures");
+        }
         if (reader_port.kind != PortKind::Input) {
             return graph_error("history reader " + binding.reader.to_string() + " is an " +
                                std::string(port_kind_name(reader_port.kind)) + " port; history is read through inputs");
@@ -124,6 +184,9 @@ Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<c
         if (!source_port.resource) {
             return graph_error("history source " + binding.source.to_string() +
                                " has no texture in the plan (an unconnected optional port)");
+        }
+        if (source_port.type != ResourceType::Texture) {
+            return graph_error("history source " + binding.source.to_string() + " is a buffer port; history is kept for textures");
         }
         const uint32_t r = *source_port.resource;
         uint32_t h = 0;
@@ -156,6 +219,25 @@ Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<c
             ps.kind = port.kind;
             ps.resource = port.resource;
             ps.usage = port.usage;
+            if (port.type == ResourceType::Buffer) {
+                ps.buffer_usage = port.buffer_usage;
+                if (port.resource) {
+                    ps.buffer = buffer_slot(*port.resource);
+                    ps.first_write = port_writes(port.kind) && plan.resources[*port.resource].name == pass.name + "." + port.name;
+                } else if (auto import = port_buffer_import[port_offset[p] + i]) {
+                    ps.buffer = {BufferSlot::Kind::Import, *import};
+                    // The plan gave the port no usage (it had no buffer); its role says it.
+                    if (ps.buffer_usage == rhi::BufferUsage::None) {
+                        const bool copy = pass.kind == PassKind::Copy;
+                        ps.buffer_usage = port_writes(port.kind) ? (copy ? rhi::BufferUsage::CopyDst : rhi::BufferUsage::Storage)
+                                                                 : (copy ? rhi::BufferUsage::CopySrc : rhi::BufferUsage::Storage);
+                    }
+                    out.buffers_after.push_back({ps.buffer, buffer_imports[*import].final_state});
+                }
+                if (!ps.buffer.empty()) out.buffers_before.push_back({ps.buffer, buffer_state(port.kind, ps.buffer_usage)});
+                out.ports.push_back(std::move(ps));
+                continue;
+            }
             rhi::Format format = rhi::Format::Undefined;
             const bool storage = rhi::has_all(port.usage, rhi::TextureUsage::Storage);
             if (port.resource) {
@@ -195,7 +277,10 @@ Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<c
                 ps.store = rhi::StoreOp::Store;
             }
             if (!ps.texture.empty()) {
-                if (storage) {
+                if (pass.kind == PassKind::Copy) {
+                    out.before.push_back({ps.texture, port_writes(port.kind) ? rhi::ResourceState::CopyDst
+                                                                             : rhi::ResourceState::CopySrc});
+                } else if (storage) {
                     out.before.push_back({ps.texture, rhi::ResourceState::Storage});
                 } else if (!port_writes(port.kind) && rhi::has_all(ps.usage, rhi::TextureUsage::Sampled)) {
                     // Imported inputs without a plan resource: format known only at run time;
@@ -209,6 +294,13 @@ Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<c
     }
     // Imports of resources reach their final state after the resource's last use.
     for (uint32_t r = 0; r < plan.resources.size(); ++r) {
+        if (plan.resources[r].type == ResourceType::Buffer) {
+            if (auto import = schedule.resource_import[r]) {
+                schedule.passes[uses[r].back()].buffers_after.push_back(
+                    {BufferSlot{BufferSlot::Kind::Import, *import}, buffer_imports[*import].final_state});
+            }
+            continue;
+        }
         if (auto import = schedule.resource_import[r]) {
             schedule.passes[uses[r].back()].after.push_back(
                 {TextureSlot{TextureSlot::Kind::Import, *import}, imports[*import].final_state});

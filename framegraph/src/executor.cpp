@@ -41,6 +41,10 @@ struct Executor::Impl {
         ImportBinding binding;
         rhi::TextureHandle texture;
     };
+    struct BufferImport {
+        ImportBinding binding;
+        rhi::BufferHandle buffer;
+    };
     // Textures carrying a source into the next frame.
     struct History {
         HistoryTexture layout;
@@ -65,11 +69,19 @@ struct Executor::Impl {
         for (const Import& i : imports) out.push_back(i.binding);
         return out;
     }
+    std::vector<ImportBinding> buffer_import_bindings() const {
+        std::vector<ImportBinding> out;
+        for (const BufferImport& i : buffer_imports) out.push_back(i.binding);
+        return out;
+    }
+    Status create_plan_buffers();
+    Status check_buffer_imports(FrameState& frame);
 
     rhi::Device& device;
     std::shared_ptr<DeviceMemoryModel> memory;
 
     std::vector<Import> imports;
+    std::vector<BufferImport> buffer_imports;
     std::vector<HistoryBinding> history_bindings;
     uint64_t bindings_revision = 0;
 
@@ -81,6 +93,8 @@ struct Executor::Impl {
     std::vector<uint64_t> heap_sizes;
     std::vector<rhi::TextureHandle> textures;  // per Plan::textures
     std::vector<bool> created_for;             // texture_needed the textures were created for
+    std::vector<rhi::BufferHandle> buffers;    // per Plan::buffers
+    std::vector<bool> buffers_created_for;     // buffer_needed the buffers were created for
     std::vector<History> histories;            // per schedule->histories
     uint64_t realisations = 0;
 
@@ -95,11 +109,17 @@ Status Executor::Impl::destroy_plan_resources() {
     auto keep_first = [&](Status s) {
         if (!s && first.ok()) first = std::move(s);
     };
-    // Placed textures go before their heaps.
+    // Placed textures and buffers go before their heaps.
     for (rhi::TextureHandle& t : textures) {
         if (t) keep_first(device.destroy(t));
         t = {};
     }
+    for (rhi::BufferHandle& b : buffers) {
+        if (b) keep_first(device.destroy(b));
+        b = {};
+    }
+    buffers.clear();
+    buffers_created_for.clear();
     for (rhi::HeapHandle& h : heaps) {
         if (h) keep_first(device.destroy(h));
     }
@@ -175,6 +195,25 @@ Status Executor::Impl::create_plan_resources() {
         if (!texture) return make_error(texture.error().code, "executor: texture " + in_quotes(desc.name) + ": " + texture.error().message);
         textures[t] = *texture;
     }
+    return create_plan_buffers();
+}
+
+Status Executor::Impl::create_plan_buffers() {
+    const Plan& p = *plan;
+    buffers.assign(p.buffers.size(), {});
+    buffers_created_for = schedule->buffer_needed;
+    for (uint32_t b = 0; b < p.buffers.size(); ++b) {
+        if (!schedule->buffer_needed[b]) continue;
+        const PlanBuffer& planned = p.buffers[b];
+        std::string label = planned.name + " [";
+        for (std::size_t i = 0; i < planned.resources.size(); ++i) {
+            label += (i ? ", " : "") + p.resources[planned.resources[i]].name;
+        }
+        rhi::BufferDesc desc = to_buffer_desc(planned.spec, label + "]");
+        auto buffer = device.create_buffer(desc);
+        if (!buffer) return make_error(buffer.error().code, "executor: buffer " + in_quotes(desc.name) + ": " + buffer.error().message);
+        buffers[b] = *buffer;
+    }
     return {};
 }
 
@@ -234,11 +273,11 @@ Status Executor::Impl::reconcile_histories() {
 
 Status Executor::Impl::prepare(const std::shared_ptr<const Plan>& next) {
     if (next == plan && realised_bindings_revision == bindings_revision && schedule) return {};
-    auto built = build_execution_schedule(*next, import_bindings(), history_bindings);
+    auto built = build_execution_schedule(*next, import_bindings(), history_bindings, buffer_import_bindings());
     if (!built) return built.take_error();
     // A plan equal to the realised one (e.g. from a graph rebuilt every frame) reuses its resources.
     const bool plan_changed = next != plan && !(plan && *next == *plan);
-    const bool needed_changed = built->texture_needed != created_for;
+    const bool needed_changed = built->texture_needed != created_for || built->buffer_needed != buffers_created_for;
     schedule = std::move(*built);
     if (plan_changed || needed_changed) {
         LOOM_TRY(destroy_plan_resources());
@@ -292,6 +331,35 @@ Status Executor::Impl::check_imports(FrameState& frame) {
     return {};
 }
 
+Status Executor::Impl::check_buffer_imports(FrameState& frame) {
+    frame.buffer_imports.resize(buffer_imports.size());
+    frame.buffer_import_sizes.resize(buffer_imports.size());
+    for (uint32_t i = 0; i < buffer_imports.size(); ++i) {
+        const BufferImport& import = buffer_imports[i];
+        const std::string what = "buffer import " + import.binding.port.to_string();
+        if (!import.buffer) return make_error(ErrorCode::InvalidHandle, what + ": no buffer bound (null handle)");
+        auto desc = device.buffer_desc(import.buffer);
+        if (!desc) return make_error(desc.error().code, what + ": " + desc.error().message);
+        frame.buffer_imports[i] = import.buffer;
+        frame.buffer_import_sizes[i] = desc->size;
+        // A buffer standing in for a plan resource must hold it and allow what its ports do.
+        for (uint32_t r = 0; r < plan->resources.size(); ++r) {
+            if (plan->resources[r].type != ResourceType::Buffer || schedule->resource_import[r] != i) continue;
+            const ResolvedBufferSpec& wanted = plan->resources[r].buffer_spec;
+            // Copy usage is always allowed on rhi buffers; the graph adds CopySrc for graph outputs.
+            const auto copy_bits = static_cast<uint32_t>(rhi::BufferUsage::CopySrc | rhi::BufferUsage::CopyDst);
+            const auto needed = static_cast<rhi::BufferUsage>(static_cast<uint32_t>(wanted.usage) & ~copy_bits);
+            if (desc->size < wanted.size || (desc->usage & needed) != needed) {
+                return make_error(ErrorCode::InvalidArgument,
+                                  what + ": buffer " + in_quotes(desc->name) + " is " + std::to_string(desc->size) +
+                                      " bytes " + describe_buffer_usage(desc->usage) + " but the port's buffer is " +
+                                      describe_resolved_buffer(wanted));
+            }
+        }
+    }
+    return {};
+}
+
 void Executor::Impl::clear_new_histories(rhi::CommandList& commands) {
     for (History& history : histories) {
         if (history.cleared) continue;
@@ -337,6 +405,7 @@ Status Executor::Impl::run_passes(FrameGraph& graph, rhi::CommandList& commands,
         if (timed) commands.begin_timer(planned.name);
         commands.push_debug_group(planned.name);
         for (const Transition& t : around.before) commands.transition(frame.resolve(t.texture), state_for(t));
+        for (const BufferTransition& t : around.buffers_before) commands.transition(frame.resolve(t.buffer), t.state);
 
         frame.pass_commands.begin_pass(commands);
         PassContext context(frame, p);
@@ -348,6 +417,7 @@ Status Executor::Impl::run_passes(FrameGraph& graph, rhi::CommandList& commands,
 
         if (!frame.pass_error) {
             for (const Transition& t : around.after) commands.transition(frame.resolve(t.texture), t.state);
+            for (const BufferTransition& t : around.buffers_after) commands.transition(frame.resolve(t.buffer), t.state);
             for (const HistoryCopy& copy : around.copies) {
                 History& history = histories[copy.history];
                 const rhi::TextureHandle target = history.textures[frame.frame_index % history.layout.textures];
@@ -402,6 +472,30 @@ void Executor::import_texture(const PortRef& port, rhi::TextureHandle texture, r
     ++impl_->bindings_revision;
 }
 
+void Executor::import_buffer(const PortRef& port, rhi::BufferHandle buffer, rhi::ResourceState final_state) {
+    for (Impl::BufferImport& import : impl_->buffer_imports) {
+        if (import.binding.port == port) {
+            import.buffer = buffer;
+            if (import.binding.final_state != final_state) {
+                import.binding.final_state = final_state;
+                ++impl_->bindings_revision;
+            }
+            return;
+        }
+    }
+    impl_->buffer_imports.push_back({ImportBinding{port, final_state}, buffer});
+    ++impl_->bindings_revision;
+}
+
+bool Executor::remove_buffer_import(const PortRef& port) {
+    auto& imports = impl_->buffer_imports;
+    auto it = std::find_if(imports.begin(), imports.end(), [&](const Impl::BufferImport& i) { return i.binding.port == port; });
+    if (it == imports.end()) return false;
+    imports.erase(it);
+    ++impl_->bindings_revision;
+    return true;
+}
+
 bool Executor::remove_import(const PortRef& port) {
     auto& imports = impl_->imports;
     auto it = std::find_if(imports.begin(), imports.end(), [&](const Impl::Import& i) { return i.binding.port == port; });
@@ -443,7 +537,9 @@ Status Executor::execute(FrameGraph& graph, rhi::CommandList& commands, const Pl
     FrameState frame(s.device, *s.plan, *s.schedule);
     frame.frame_index = s.frame_index;
     frame.plan_textures = s.textures;
+    frame.plan_buffers = s.buffers;
     LOOM_TRY(s.check_imports(frame));
+    LOOM_TRY(s.check_buffer_imports(frame));
     for (const Impl::History& history : s.histories) {
         const uint32_t count = history.layout.textures;
         // One texture: readers run before this frame's copy. Two: readers read last frame's.
@@ -498,6 +594,27 @@ rhi::TextureHandle Executor::plan_texture(uint32_t index) const {
     return index < impl_->textures.size() ? impl_->textures[index] : rhi::TextureHandle{};
 }
 
+rhi::BufferHandle Executor::buffer(std::string_view pass, std::string_view port) const {
+    const Impl& s = *impl_;
+    if (!s.plan || !s.schedule) return {};
+    for (uint32_t p = 0; p < s.plan->order.size(); ++p) {
+        if (s.plan->order[p].name != pass) continue;
+        for (const PortSchedule& ps : s.schedule->passes[p].ports) {
+            if (ps.name != port) continue;
+            switch (ps.buffer.kind) {
+                case BufferSlot::Kind::None: return {};
+                case BufferSlot::Kind::Plan: return plan_buffer(ps.buffer.index);
+                case BufferSlot::Kind::Import: return s.buffer_imports[ps.buffer.index].buffer;
+            }
+        }
+    }
+    return {};
+}
+
+rhi::BufferHandle Executor::plan_buffer(uint32_t index) const {
+    return index < impl_->buffers.size() ? impl_->buffers[index] : rhi::BufferHandle{};
+}
+
 std::vector<PassTiming> Executor::timings() const {
     const Impl& s = *impl_;
     std::vector<PassTiming> out;
@@ -532,6 +649,16 @@ ExecutionStats Executor::stats() const {
             ++stats.placed_textures;
         } else {
             stats.texture_bytes += s.plan->textures[t].bytes;
+        }
+    }
+    stats.plan_buffers = static_cast<uint32_t>(s.plan->buffers.size());
+    for (uint32_t b = 0; b < s.buffers.size(); ++b) {
+        if (!s.buffers[b]) continue;
+        ++stats.buffers;
+        if (!s.heaps.empty() && s.plan->buffers[b].placement) {
+            ++stats.placed_buffers;
+        } else {
+            stats.buffer_bytes += s.plan->buffers[b].bytes;
         }
     }
     for (const Impl::History& h : s.histories) stats.history_textures += h.layout.textures;

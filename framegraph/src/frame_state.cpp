@@ -28,6 +28,12 @@ std::optional<std::string> PassCommandList::end_pass() {
 }
 
 void PassCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
+    if (frame_.pass_kind() != PassKind::Graphics) {
+        frame_.fail(make_error(ErrorCode::InvalidState, "begin_render_pass '" + desc.label + "' in a " +
+                                                            std::string(pass_kind_name(frame_.pass_kind())) +
+                                                            " pass; only graphics passes open render passes"));
+        return;
+    }
     if (in_render_pass_) {
         frame_.fail(make_error(ErrorCode::InvalidState, "begin_render_pass '" + desc.label + "' while a render pass is open"));
         return;
@@ -124,6 +130,16 @@ rhi::TextureHandle FrameState::resolve(const TextureSlot& slot) const {
         case TextureSlot::Kind::Plan: return slot.index < plan_textures.size() ? plan_textures[slot.index] : rhi::TextureHandle{};
         case TextureSlot::Kind::Import: return slot.index < imports.size() ? imports[slot.index] : rhi::TextureHandle{};
         case TextureSlot::Kind::History: return slot.index < history_read.size() ? history_read[slot.index] : rhi::TextureHandle{};
+    }
+    return {};
+}
+
+rhi::BufferHandle FrameState::resolve(const BufferSlot& slot) const {
+    switch (slot.kind) {
+        case BufferSlot::Kind::None: return {};
+        case BufferSlot::Kind::Plan: return slot.index < plan_buffers.size() ? plan_buffers[slot.index] : rhi::BufferHandle{};
+        case BufferSlot::Kind::Import:
+            return slot.index < buffer_imports.size() ? buffer_imports[slot.index] : rhi::BufferHandle{};
     }
     return {};
 }

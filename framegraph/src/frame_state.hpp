@@ -92,6 +92,10 @@ public:
 
     /// The handle behind a slot this frame (null for None).
     [[nodiscard]] rhi::TextureHandle resolve(const TextureSlot& slot) const;
+    /// The buffer behind a slot this frame (null for None).
+    [[nodiscard]] rhi::BufferHandle resolve(const BufferSlot& slot) const;
+    /// What the running pass records (PlanPass::kind).
+    [[nodiscard]] PassKind pass_kind() const { return plan.order[position].kind; }
     /// The spec behind a slot (plan texture, import or history); nullptr for None.
     [[nodiscard]] const ResolvedSpec* spec_of(const PortSchedule& port) const;
 
@@ -107,6 +111,9 @@ public:
     std::vector<rhi::TextureHandle> plan_textures;  ///< per Plan::textures
     std::vector<rhi::TextureHandle> imports;        ///< per import binding
     std::vector<ResolvedSpec> import_specs;         ///< per import binding, from its description
+    std::vector<rhi::BufferHandle> plan_buffers;    ///< per Plan::buffers
+    std::vector<rhi::BufferHandle> buffer_imports;  ///< per buffer import binding
+    std::vector<uint64_t> buffer_import_sizes;      ///< per buffer import binding
     std::vector<rhi::TextureHandle> history_read;   ///< per history: what readers read this frame
     std::vector<bool> history_valid;                ///< per history: holds an earlier frame
     std::optional<Error> pass_error;                ///< first error of the running pass

@@ -109,6 +109,11 @@ Status FrameGraph::connect(const PortRef& from, const PortRef& to) {
     if (!port_reads(to_port.kind)) {
         return graph_error(what + to.to_string() + " is an output; a connection ends at an input or inout");
     }
+    if (from_port.type != to_port.type) {
+        return graph_error(what + from.to_string() + " is a " + std::string(resource_type_name(from_port.type)) +
+                           " port but " + to.to_string() + " is a " + std::string(resource_type_name(to_port.type)) +
+                           " port");
+    }
     if (auto existing = sources_[flat(*to_address)]) {
         return graph_error(what + to.to_string() + " is already connected to " + port_name(*existing) + "; an " +
                            std::string(port_kind_name(to_port.kind)) + " takes one source");

@@ -151,6 +151,40 @@ Result<TextureSpec> join(const TextureSpec& a, const TextureSpec& b, const JoinC
     return out;
 }
 
+Result<BufferSpec> join_buffer_specs(const BufferSpec& a, const BufferSpec& b, const JoinContext& context) {
+    BufferSpec out;
+    if (a.size && b.size && *a.size != *b.size) {
+        const BufferSize& sa = *a.size;
+        const BufferSize& sb = *b.size;
+        if (!context.frame) {
+            return conflict(context, "buffer size", describe_buffer_size(sa), describe_buffer_size(sb),
+                            "differently declared sizes can only be compared against a frame size");
+        }
+        const std::optional<uint64_t> ea = sa.evaluate(*context.frame);
+        const std::optional<uint64_t> eb = sb.evaluate(*context.frame);
+        if (!ea || !eb || *ea != *eb) {
+            auto show = [](const BufferSize& s, const std::optional<uint64_t>& bytes) {
+                const std::string total = bytes ? std::to_string(*bytes) + " bytes" : "more than 2^64 bytes";
+                return s.kind == BufferSize::Kind::Absolute ? total : total + " (" + describe_buffer_size(s) + ")";
+            };
+            return conflict(context, "buffer size", show(sa, ea), show(sb, eb),
+                            "frame " + std::to_string(context.frame->width) + "x" +
+                                std::to_string(context.frame->height));
+        }
+        // Equal for this frame: keep the absolute one, which says the same.
+        out.size = sa.kind == BufferSize::Kind::Absolute ? sa : sb;
+    } else {
+        out.size = a.size ? a.size : b.size;
+    }
+    if (a.alignment && b.alignment) {
+        out.alignment = std::max(*a.alignment, *b.alignment);
+    } else {
+        out.alignment = a.alignment ? a.alignment : b.alignment;
+    }
+    out.usage = a.usage | b.usage;
+    return out;
+}
+
 bool joinable(const TextureSpec& a, const TextureSpec& b, std::optional<Extent2D> frame) {
     JoinContext context;
     context.frame = frame;

@@ -32,6 +32,15 @@ std::optional<uint64_t> DefaultMemoryModel::checked_texture_bytes(const rhi::Tex
     return total;
 }
 
+Result<rhi::MemoryRequirements> MemoryModel::buffer_requirements(const rhi::BufferDesc& desc) {
+    auto bytes = checked::align_up(desc.size, kDefaultBufferAlignment);
+    if (!bytes) {
+        return make_error(ErrorCode::InvalidArgument,
+                          "buffer '" + desc.name + "' of " + std::to_string(desc.size) + " bytes is too large to align");
+    }
+    return rhi::MemoryRequirements{*bytes, kDefaultBufferAlignment};
+}
+
 uint64_t DefaultMemoryModel::texture_bytes(const rhi::TextureDesc& desc) {
     return checked_texture_bytes(desc).value_or(std::numeric_limits<uint64_t>::max());
 }

@@ -16,6 +16,23 @@ std::string_view port_kind_name(PortKind kind) {
     return "unknown";
 }
 
+std::string_view resource_type_name(ResourceType type) {
+    switch (type) {
+        case ResourceType::Texture: return "texture";
+        case ResourceType::Buffer: return "buffer";
+    }
+    return "unknown";
+}
+
+std::string_view pass_kind_name(PassKind kind) {
+    switch (kind) {
+        case PassKind::Graphics: return "graphics";
+        case PassKind::Compute: return "compute";
+        case PassKind::Copy: return "copy";
+    }
+    return "unknown";
+}
+
 std::optional<std::string> name_problem(std::string_view name) {
     if (name.empty()) return "is empty";
     for (const char c : name) {
@@ -53,7 +70,12 @@ std::string printable_name(std::string_view name) {
 std::string quoted_name(std::string_view name) { return "'" + detail::printable_name(name) + "'"; }
 
 PortSet& PortSet::declare(std::string port, PortKind kind, TextureSpec spec, bool optional) {
-    declarations_.push_back(Port{std::move(port), kind, std::move(spec), optional, {name_}});
+    declarations_.push_back(Port{std::move(port), kind, std::move(spec), optional, {name_}, ResourceType::Texture, {}});
+    return *this;
+}
+
+PortSet& PortSet::declare_buffer(std::string port, PortKind kind, BufferSpec spec, bool optional) {
+    declarations_.push_back(Port{std::move(port), kind, {}, optional, {name_}, ResourceType::Buffer, std::move(spec)});
     return *this;
 }
 
@@ -77,7 +99,12 @@ Pass& Pass::add(const PortSet& ports) {
 }
 
 Pass& Pass::declare(std::string port, PortKind kind, TextureSpec spec, bool optional) {
-    merge(Port{std::move(port), kind, std::move(spec), optional, {name_}}, name_);
+    merge(Port{std::move(port), kind, std::move(spec), optional, {name_}, ResourceType::Texture, {}}, name_);
+    return *this;
+}
+
+Pass& Pass::declare_buffer(std::string port, PortKind kind, BufferSpec spec, bool optional) {
+    merge(Port{std::move(port), kind, {}, optional, {name_}, ResourceType::Buffer, std::move(spec)}, name_);
     return *this;
 }
 
@@ -122,17 +149,35 @@ void Pass::merge(const Port& declaration, const std::string& port_set) {
                                                   quoted_name(port_set));
         return;
     }
+    if (existing.type != declaration.type) {
+        error_ = make_error(ErrorCode::Graph, "pass " + quoted_name(name_) + ": port " +
+                                                  quoted_name(declaration.name) + " is declared as a " +
+                                                  std::string(resource_type_name(existing.type)) + " port by port set " +
+                                                  quoted_name(first_set) + " and as a " +
+                                                  std::string(resource_type_name(declaration.type)) +
+                                                  " port by port set " + quoted_name(port_set));
+        return;
+    }
     const std::string a_name = name_ + "." + existing.name + " (port set '" + first_set + "')";
     const std::string b_name = name_ + "." + declaration.name + " (port set '" + port_set + "')";
     JoinContext context;
     context.a_name = a_name;
     context.b_name = b_name;
-    auto joined = join(existing.spec, declaration.spec, context);
-    if (!joined) {
-        error_ = joined.take_error();
-        return;
+    if (existing.type == ResourceType::Buffer) {
+        auto joined = join_buffer_specs(existing.buffer, declaration.buffer, context);
+        if (!joined) {
+            error_ = joined.take_error();
+            return;
+        }
+        existing.buffer = std::move(*joined);
+    } else {
+        auto joined = join(existing.spec, declaration.spec, context);
+        if (!joined) {
+            error_ = joined.take_error();
+            return;
+        }
+        existing.spec = std::move(*joined);
     }
-    existing.spec = std::move(*joined);
     existing.optional = existing.optional && declaration.optional;
     if (std::find(existing.port_sets.begin(), existing.port_sets.end(), port_set) == existing.port_sets.end()) {
         existing.port_sets.push_back(port_set);

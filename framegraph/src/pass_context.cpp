@@ -37,7 +37,41 @@ bool PassContext::has_texture(std::string_view port) const {
 
 rhi::TextureHandle PassContext::texture(std::string_view port) {
     const PortSchedule* p = find(port, true);
+    if (p && !p->buffer.empty()) {
+        fail(make_error(ErrorCode::InvalidArgument, "port '" + std::string(port) + "' is a buffer port (use buffer())"));
+        return {};
+    }
     return p ? frame_.resolve(p->texture) : rhi::TextureHandle{};
+}
+
+bool PassContext::has_buffer(std::string_view port) const {
+    for (const PortSchedule& p : frame_.schedule.passes[position_].ports) {
+        if (p.name == port) return !frame_.resolve(p.buffer).is_null();
+    }
+    return false;
+}
+
+rhi::BufferHandle PassContext::buffer(std::string_view port) {
+    const PortSchedule* p = find(port, true);
+    if (!p) return {};
+    if (plan_pass().ports[static_cast<std::size_t>(p - frame_.schedule.passes[position_].ports.data())].type !=
+        ResourceType::Buffer) {
+        fail(make_error(ErrorCode::InvalidArgument, "port '" + std::string(port) + "' is a texture port (use texture())"));
+        return {};
+    }
+    return frame_.resolve(p->buffer);
+}
+
+uint64_t PassContext::buffer_size(std::string_view port) {
+    const PortSchedule* p = find(port, true);
+    if (!p) return 0;
+    switch (p->buffer.kind) {
+        case BufferSlot::Kind::None: return 0;
+        case BufferSlot::Kind::Plan: return frame_.plan.buffers[p->buffer.index].spec.size;
+        case BufferSlot::Kind::Import:
+            return p->buffer.index < frame_.buffer_import_sizes.size() ? frame_.buffer_import_sizes[p->buffer.index] : 0;
+    }
+    return 0;
 }
 
 const ResolvedSpec* PassContext::spec(std::string_view port) {

@@ -56,6 +56,11 @@ public:
         add(s.layers);
         add(s.usage);
     }
+    void add(const ResolvedBufferSpec& s) {
+        add(s.size);
+        add(s.usage);
+        add(s.alignment);
+    }
     void add(const HeapRange& r) {
         add(r.heap);
         add(r.offset);
@@ -94,8 +99,14 @@ const PlanResource* Plan::resource_of(std::string_view pass_name, std::string_vi
 
 std::optional<uint32_t> Plan::texture_of(std::string_view pass_name, std::string_view port_name) const {
     const PlanResource* resource = resource_of(pass_name, port_name);
-    if (!resource) return std::nullopt;
+    if (!resource || resource->type != ResourceType::Texture) return std::nullopt;
     return resource->texture;
+}
+
+std::optional<uint32_t> Plan::buffer_of(std::string_view pass_name, std::string_view port_name) const {
+    const PlanResource* resource = resource_of(pass_name, port_name);
+    if (!resource || resource->type != ResourceType::Buffer) return std::nullopt;
+    return resource->buffer;
 }
 
 uint64_t plan_hash(const Plan& plan) {
@@ -109,6 +120,7 @@ uint64_t plan_hash(const Plan& plan) {
         h.add(pass.name);
         h.add(pass.declaration_index);
         h.add(pass.side_effect);
+        h.add(pass.kind);
         h.add(pass.ports.size());
         for (const PlanPort& port : pass.ports) {
             h.add(port.name);
@@ -116,6 +128,8 @@ uint64_t plan_hash(const Plan& plan) {
             h.add(port.optional);
             h.add(port.resource);
             h.add(port.usage);
+            h.add(port.type);
+            h.add(port.buffer_usage);
         }
     }
     h.add(plan.culled.size());
@@ -144,6 +158,9 @@ uint64_t plan_hash(const Plan& plan) {
         h.add(r.bytes);
         h.add(r.alignment);
         h.add(r.texture);
+        h.add(r.type);
+        h.add(r.buffer_spec);
+        h.add(r.buffer);
     }
     h.add(plan.spec_classes.size());
     for (const SpecClass& c : plan.spec_classes) {
@@ -151,6 +168,8 @@ uint64_t plan_hash(const Plan& plan) {
         h.add(c.resources.size());
         for (uint32_t r : c.resources) h.add(r);
         h.add(c.peak_live);
+        h.add(c.type);
+        h.add(c.buffer_spec);
     }
     h.add(plan.textures.size());
     for (const PlanTexture& t : plan.textures) {
@@ -162,6 +181,16 @@ uint64_t plan_hash(const Plan& plan) {
         h.add(t.alignment);
         h.add(t.placement);
     }
+    h.add(plan.buffers.size());
+    for (const PlanBuffer& b : plan.buffers) {
+        h.add(b.name);
+        h.add(b.spec);
+        h.add(b.resources.size());
+        for (uint32_t r : b.resources) h.add(r);
+        h.add(b.bytes);
+        h.add(b.alignment);
+        h.add(b.placement);
+    }
     h.add(plan.heaps.size());
     for (uint64_t size : plan.heaps) h.add(size);
     const PlanSummary& s = plan.summary;
@@ -171,6 +200,10 @@ uint64_t plan_hash(const Plan& plan) {
     h.add(s.naive_bytes);
     h.add(s.lower_bound_textures);
     h.add(s.lower_bound_bytes);
+    h.add(s.buffers);
+    h.add(s.buffer_bytes);
+    h.add(s.naive_buffers);
+    h.add(s.lower_bound_buffers);
     return h.value();
 }
 

@@ -84,40 +84,83 @@ bool well_formed(const Allocation& allocation, std::size_t resource_count) {
            (!placed || allocation.texture_placement.size() == allocation.texture_count);
 }
 
-// The textures of a well-formed allocation numbered by first use, so plans read the same
-// whatever an allocator's own numbering; nullopt when a texture has no resource.
-std::optional<TextureAssignment> number_by_first_use(const Allocation& allocation) {
+// The textures and buffers of a well-formed allocation, each kind numbered by first use, so
+// plans read the same whatever an allocator's own numbering; an error when an object has no
+// resource or holds both textures and buffers.
+Result<TextureAssignment> number_by_first_use(const Allocation& allocation, const std::vector<PlanResource>& resources,
+                                              const std::string& allocator_name) {
     std::vector<uint32_t> first_user(allocation.texture_count, kNoResource);
     for (uint32_t r = 0; r < allocation.texture_of_resource.size(); ++r) {
         uint32_t& first = first_user[allocation.texture_of_resource[r]];
         first = std::min(first, r);
     }
-    if (std::find(first_user.begin(), first_user.end(), kNoResource) != first_user.end()) return std::nullopt;
+    if (std::find(first_user.begin(), first_user.end(), kNoResource) != first_user.end()) {
+        return make_error(ErrorCode::Graph, "allocator '" + allocator_name + "' made a texture no resource uses");
+    }
+    for (uint32_t r = 0; r < allocation.texture_of_resource.size(); ++r) {
+        const PlanResource& first = resources[first_user[allocation.texture_of_resource[r]]];
+        if (first.type != resources[r].type) {
+            return make_error(ErrorCode::Graph, "allocator '" + allocator_name + "' put " + resources[r].name + " (a " +
+                                                    std::string(resource_type_name(resources[r].type)) + ") and " +
+                                                    first.name + " (a " + std::string(resource_type_name(first.type)) +
+                                                    ") into one object");
+        }
+    }
     std::vector<uint32_t> by_first_use(allocation.texture_count);
     std::iota(by_first_use.begin(), by_first_use.end(), 0u);
     std::sort(by_first_use.begin(), by_first_use.end(),
               [&](uint32_t a, uint32_t b) { return first_user[a] < first_user[b]; });
+    // Allocator object -> index among the textures or among the buffers.
     std::vector<uint32_t> renumbered(allocation.texture_count);
-    for (uint32_t t = 0; t < by_first_use.size(); ++t) renumbered[by_first_use[t]] = t;
-
     TextureAssignment out;
     const bool placed = !allocation.texture_placement.empty();
-    out.textures.resize(allocation.texture_count);
-    for (uint32_t t = 0; t < allocation.texture_count; ++t) {
-        out.textures[t].name = "t" + std::to_string(t);
-        if (placed) out.textures[t].placement = allocation.texture_placement[by_first_use[t]];
+    for (uint32_t object : by_first_use) {
+        std::optional<HeapRange> placement;
+        if (placed) placement = allocation.texture_placement[object];
+        if (resources[first_user[object]].type == ResourceType::Buffer) {
+            renumbered[object] = static_cast<uint32_t>(out.buffers.size());
+            PlanBuffer buffer;
+            buffer.name = "b" + std::to_string(out.buffers.size());
+            buffer.placement = placement;
+            out.buffers.push_back(std::move(buffer));
+        } else {
+            renumbered[object] = static_cast<uint32_t>(out.textures.size());
+            PlanTexture texture;
+            texture.name = "t" + std::to_string(out.textures.size());
+            texture.placement = placement;
+            out.textures.push_back(std::move(texture));
+        }
     }
     out.texture_of_resource.reserve(allocation.texture_of_resource.size());
-    for (uint32_t t : allocation.texture_of_resource) out.texture_of_resource.push_back(renumbered[t]);
+    for (uint32_t r = 0; r < allocation.texture_of_resource.size(); ++r) {
+        const uint32_t index = renumbered[allocation.texture_of_resource[r]];
+        const bool buffer = resources[r].type == ResourceType::Buffer;
+        out.texture_of_resource.push_back(buffer ? kNoPhysical : index);
+        out.buffer_of_resource.push_back(buffer ? index : kNoPhysical);
+    }
     out.heaps = allocation.heap_sizes;
     return out;
 }
 
-// Each texture's resources, its spec (the join of theirs) and its bytes.
-Status describe_textures(const std::string& allocator_name, const std::vector<PlanResource>& resources, Extent2D frame,
-                         MemoryModel& memory, TextureAssignment& assignment) {
+// Each texture's resources, its spec (the join of theirs) and its bytes; each buffer's likewise.
+Status describe_objects(const std::string& allocator_name, const std::vector<PlanResource>& resources, Extent2D frame,
+                        MemoryModel& memory, TextureAssignment& assignment) {
     for (uint32_t r = 0; r < resources.size(); ++r) {
         const PlanResource& resource = resources[r];
+        if (resource.type == ResourceType::Buffer) {
+            PlanBuffer& buffer = assignment.buffers[assignment.buffer_of_resource[r]];
+            if (buffer.resources.empty()) {
+                buffer.spec = resource.buffer_spec;
+            } else if (buffer.spec.size == resource.buffer_spec.size) {
+                buffer.spec.usage |= resource.buffer_spec.usage;
+                buffer.spec.alignment = std::max(buffer.spec.alignment, resource.buffer_spec.alignment);
+            } else {
+                return make_error(ErrorCode::Graph, "allocator '" + allocator_name + "' put " + resource.name +
+                                                        " into a buffer of another size");
+            }
+            buffer.resources.push_back(r);
+            continue;
+        }
         PlanTexture& texture = assignment.textures[assignment.texture_of_resource[r]];
         if (texture.resources.empty()) {
             texture.spec = resource.spec;
@@ -140,6 +183,13 @@ Status describe_textures(const std::string& allocator_name, const std::vector<Pl
             texture.alignment = std::max<uint64_t>(requirements->alignment, 1);
         }
     }
+    for (PlanBuffer& buffer : assignment.buffers) {
+        // Members share size and alignment (one spec class); the largest figures hold them all.
+        for (uint32_t r : buffer.resources) {
+            buffer.bytes = std::max(buffer.bytes, resources[r].bytes);
+            buffer.alignment = std::max(buffer.alignment, resources[r].alignment);
+        }
+    }
     return {};
 }
 
@@ -156,9 +206,26 @@ SpecClassAssignment assign_spec_classes(const std::vector<PlanResource>& resourc
         return ShapeKey{spec.format, spec.extent.width, spec.extent.height, spec.samples, spec.mips, spec.layers};
     };
     std::map<ShapeKey, uint32_t> class_of_shape;
+    // Buffers share only with buffers of the same size and alignment, under either sharing.
+    std::map<std::pair<uint64_t, uint64_t>, uint32_t> class_of_buffer_shape;
     for (uint32_t r = 0; r < resources.size(); ++r) {
         const PlanResource& resource = resources[r];
         uint32_t chosen = kNoClass;
+        if (resource.type == ResourceType::Buffer) {
+            const std::pair key{resource.buffer_spec.size, resource.buffer_spec.alignment};
+            auto [it, inserted] = class_of_buffer_shape.try_emplace(key, static_cast<uint32_t>(classes.size()));
+            if (inserted) {
+                SpecClass fresh;
+                fresh.type = ResourceType::Buffer;
+                fresh.buffer_spec = resource.buffer_spec;
+                classes.push_back(std::move(fresh));
+            } else {
+                classes[it->second].buffer_spec.usage |= resource.buffer_spec.usage;
+            }
+            out.class_of_resource.push_back(it->second);
+            classes[it->second].resources.push_back(r);
+            continue;
+        }
         if (sharing == SpecSharing::Equal) {
             auto it = class_of_shape.find(shape_key(resource.spec));
             if (it != class_of_shape.end()) {
@@ -169,6 +236,7 @@ SpecClassAssignment assign_spec_classes(const std::vector<PlanResource>& resourc
             }
         }
         for (uint32_t c = 0; sharing != SpecSharing::Equal && c < classes.size() && chosen == kNoClass; ++c) {
+            if (classes[c].type != ResourceType::Texture) continue;
             if (auto joined = join_resolved(classes[c].spec, resource.spec, frame)) {
                 classes[c].spec = *joined;
                 chosen = c;
@@ -176,7 +244,7 @@ SpecClassAssignment assign_spec_classes(const std::vector<PlanResource>& resourc
         }
         if (chosen == kNoClass) {
             chosen = static_cast<uint32_t>(classes.size());
-            classes.push_back(SpecClass{resource.spec, {}, 0});
+            classes.push_back(SpecClass{resource.spec, {}, 0, ResourceType::Texture, {}});
         }
         out.class_of_resource.push_back(chosen);
         classes[chosen].resources.push_back(r);
@@ -223,25 +291,37 @@ Result<TextureAssignment> allocate_textures(const Allocator& allocator, const Al
     if (!well_formed(*allocation, resources.size())) {
         return make_error(ErrorCode::Graph, "allocator '" + name + "' returned a malformed allocation");
     }
-    std::optional<TextureAssignment> assignment = number_by_first_use(*allocation);
-    if (!assignment) return make_error(ErrorCode::Graph, "allocator '" + name + "' made a texture no resource uses");
-    LOOM_TRY(describe_textures(name, resources, frame, memory, *assignment));
+    auto assignment = number_by_first_use(*allocation, resources, name);
+    if (!assignment) return assignment.take_error();
+    LOOM_TRY(describe_objects(name, resources, frame, memory, *assignment));
     return std::move(*assignment);
 }
 
 PlanSummary summarize_plan(const Plan& plan, uint64_t peak_live_bytes) {
     PlanSummary summary;
     summary.textures = static_cast<uint32_t>(plan.textures.size());
-    // An allocator that places textures places every one of them (allocate_textures checks it).
-    const bool placed = !plan.textures.empty() && plan.textures.front().placement.has_value();
+    summary.buffers = static_cast<uint32_t>(plan.buffers.size());
+    for (const PlanBuffer& buffer : plan.buffers) summary.buffer_bytes += buffer.bytes;
+    // An allocator that places resources places every one of them (allocate_textures checks it).
+    const bool placed = !plan.heaps.empty();
     if (placed) {
         summary.bytes = std::accumulate(plan.heaps.begin(), plan.heaps.end(), uint64_t{0});
     } else {
         for (const PlanTexture& texture : plan.textures) summary.bytes += texture.bytes;
+        summary.bytes += summary.buffer_bytes;
     }
-    summary.naive_textures = static_cast<uint32_t>(plan.resources.size());
-    for (const PlanResource& resource : plan.resources) summary.naive_bytes += resource.bytes;
-    for (const SpecClass& spec_class : plan.spec_classes) summary.lower_bound_textures += spec_class.peak_live;
+    for (const PlanResource& resource : plan.resources) {
+        summary.naive_bytes += resource.bytes;
+        if (resource.type == ResourceType::Buffer) {
+            ++summary.naive_buffers;
+        } else {
+            ++summary.naive_textures;
+        }
+    }
+    for (const SpecClass& spec_class : plan.spec_classes) {
+        (spec_class.type == ResourceType::Buffer ? summary.lower_bound_buffers : summary.lower_bound_textures) +=
+            spec_class.peak_live;
+    }
     summary.lower_bound_bytes = peak_live_bytes;
     return summary;
 }

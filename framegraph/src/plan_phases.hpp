@@ -54,9 +54,28 @@ Schedule schedule_passes(const Dependencies& dependencies, const std::vector<boo
 struct JoinedGroup {
     std::vector<PortAddress> ports;  ///< the starting port first, then breadth-first by connection order
     /// The join of the ports' specs in group order; on a conflict, the error naming the port that
-    /// first constrained the property and the port that contradicts it.
+    /// first constrained the property and the port that contradicts it. For a buffer group the
+    /// empty spec.
     Result<TextureSpec> spec;
+    ResourceType type = ResourceType::Texture;
+    /// A buffer group's join, as `spec` is a texture group's; the empty spec for textures.
+    Result<BufferSpec> buffer = BufferSpec{};
+
+    /// The group's join error, if any.
+    [[nodiscard]] Status status() const;
 };
+
+/// How a port uses its texture given its role and its pass's kind: a graphics pass writes
+/// attachments (an explicit Storage request turns an attachment write or a sampled read into a
+/// storage access) and samples; a compute pass writes storage images and samples; a copy pass
+/// writes copy destinations and reads copy sources.
+rhi::TextureUsage port_texture_usage(const Port& port, PassKind pass_kind, rhi::Format format);
+
+/// How a port uses its buffer: a write is Storage (CopyDst in a copy pass); a read is the one
+/// read usage the port declares (vertex, index, indirect, uniform, storage; copy in a copy pass),
+/// Storage (CopySrc) when it declares none. ErrorCode::Graph naming the port when it declares
+/// several read usages.
+Result<rhi::BufferUsage> port_buffer_usage(const Port& port, PassKind pass_kind, std::string_view port_name);
 
 /// Join: every group of the graph, in declaration order of their starting ports, with its join.
 /// Groups of culled passes are joined too: a bad connection is an error either way.
@@ -84,7 +103,7 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::
                                             const Schedule& schedule, Extent2D frame, MemoryModel& memory);
 
 /// The passes that run, in order, each port with its resource and the usage its role needs
-/// (Plan::order).
+/// (Plan::order). The resources come from resolve_resources, which checked every port's usage.
 std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& schedule, const ResolvedResources& resolved);
 
 /// The connections between passes that run, by position, each with its resource (Plan::edges).
@@ -113,17 +132,20 @@ AllocationProblem make_allocation_problem(const std::vector<PlanPass>& order,
                                           std::vector<uint32_t> graph_output_resources, uint32_t spec_class_count,
                                           uint64_t max_heap_bytes);
 
-/// The textures an allocation makes.
+/// The textures and buffers an allocation makes.
 struct TextureAssignment {
-    std::vector<uint32_t> texture_of_resource;  ///< per resource, an index into `textures`
+    std::vector<uint32_t> texture_of_resource;  ///< per resource, an index into `textures` (kNoPhysical: a buffer)
     std::vector<PlanTexture> textures;          ///< numbered by first use (Plan::textures)
     std::vector<uint64_t> heaps;                ///< Plan::heaps
+    std::vector<uint32_t> buffer_of_resource;   ///< per resource, an index into `buffers` (kNoPhysical: a texture)
+    std::vector<PlanBuffer> buffers;            ///< numbered by first use (Plan::buffers)
 };
 
 /// Allocate: runs `allocator` on `problem` and checks its answer (ErrorCode::Graph naming the
 /// allocator: a texture index per resource below the texture count, a placement per texture if
-/// any, no texture without a resource, only resources whose specs join in one texture). Textures
-/// are numbered by their first resource; each has the join of its resources' specs and, when
+/// any, no texture without a resource, only resources whose specs join in one texture, never a
+/// texture and a buffer in one object). Textures and buffers are each numbered by their first
+/// resource; each has the join of its resources' specs and, when
 /// shared, the bytes `memory` gives for that join (else its resource's bytes).
 Result<TextureAssignment> allocate_textures(const Allocator& allocator, const AllocationProblem& problem,
                                             const std::vector<PlanResource>& resources, Extent2D frame,

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "loom/framegraph/join.hpp"
+#include "loom/rhi/checked_math.hpp"
 #include "plan_phases.hpp"
 
 namespace loom::fg::detail {
@@ -89,18 +90,30 @@ Result<TextureSpec> join_group(const FrameGraph& graph, const std::vector<PortAd
     return joined;
 }
 
-// The role of a port decides the usage it needs; an explicit Storage request turns an
-// attachment write or a sampled read into a storage access.
-TextureUsage port_usage(const Port& port, rhi::Format format) {
-    TextureUsage usage = port.spec.usage;
-    if (rhi::has_all(port.spec.usage, TextureUsage::Storage)) return usage;
-    if (port_writes(port.kind)) {
-        usage |= rhi::format_info(format).is_depth_stencil() ? TextureUsage::DepthStencilAttachment
-                                                             : TextureUsage::ColorAttachment;
-    } else {
-        usage |= TextureUsage::Sampled;
+// A buffer group's join in group order; on a size conflict the error names the port that first
+// gave a size and the port that contradicts it.
+Result<BufferSpec> join_buffer_group(const FrameGraph& graph, const std::vector<PortAddress>& group, Extent2D frame) {
+    BufferSpec joined;
+    std::optional<PortAddress> sized;
+    for (const PortAddress& address : group) {
+        const BufferSpec& spec = graph.port_at(address).buffer;
+        const std::string a_name = sized ? graph.port_name(*sized) : std::string("a");
+        const std::string b_name = graph.port_name(address);
+        JoinContext context;
+        context.frame = frame;
+        context.a_name = a_name;
+        context.b_name = b_name;
+        auto result = join_buffer_specs(joined, spec, context);
+        if (!result) {
+            Error error = result.take_error();
+            error.subjects = {b_name};
+            if (sized) error.subjects.push_back(a_name);
+            return error;
+        }
+        if (spec.size && !sized) sized = address;
+        joined = std::move(*result);
     }
-    return usage;
+    return joined;
 }
 
 // `value` for every port of the graph, by pass and port.
@@ -139,6 +152,38 @@ PendingResource running_part(const std::vector<PortAddress>& group, const Schedu
     return item;
 }
 
+// Fills in what a buffer group's joined spec decides: the resolved spec with the usage of the
+// running ports, the port names, and the bytes the memory model asks for.
+Status resolve_pending_buffer(const FrameGraph& graph, const BufferSpec& joined, Extent2D frame, MemoryModel& memory,
+                              PendingResource& item) {
+    PlanResource& r = item.resource;
+    r.name = graph.port_name(item.start);
+    r.type = ResourceType::Buffer;
+    r.texture = kNoPhysical;
+    auto subjects = [&](Error error) {
+        for (const PortAddress& address : item.kept_ports) error.subjects.push_back(graph.port_name(address));
+        return error;
+    };
+    auto resolved = resolve_buffer(joined, frame, r.name);
+    if (!resolved) return subjects(resolved.take_error());
+    for (const PortAddress& address : item.kept_ports) {
+        const Port& port = graph.port_at(address);
+        auto role = port_buffer_usage(port, graph.pass(PassId{address.pass}).kind(), graph.port_name(address));
+        if (!role) return role.take_error();
+        resolved->usage |= *role;
+    }
+    if (r.graph_output) resolved->usage |= rhi::BufferUsage::CopySrc;
+    for (const PortAddress& address : item.kept_ports) r.ports.push_back(graph.port_name(address));
+    r.buffer_spec = *resolved;
+    auto requirements = memory.buffer_requirements(to_buffer_desc(r.buffer_spec, r.name));
+    if (!requirements) return requirements.take_error();
+    r.alignment = std::max({requirements->alignment, r.buffer_spec.alignment, uint64_t{1}});
+    auto bytes = checked::align_up(std::max(requirements->size, r.buffer_spec.size), r.alignment);
+    if (!bytes) return subjects(make_error(ErrorCode::Graph, "buffer " + r.name + ": its size overflows when aligned"));
+    r.bytes = *bytes;
+    return {};
+}
+
 // Fills in what the joined spec decides: the resolved spec with the usage of the running
 // ports, the port names, and the bytes the memory model asks for.
 Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Extent2D frame, MemoryModel& memory,
@@ -152,7 +197,9 @@ Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Exten
         return error;
     }
     TextureUsage usage = TextureUsage::None;
-    for (const PortAddress& address : item.kept_ports) usage |= port_usage(graph.port_at(address), resolved->format);
+    for (const PortAddress& address : item.kept_ports) {
+        usage |= port_texture_usage(graph.port_at(address), graph.pass(PassId{address.pass}).kind(), resolved->format);
+    }
     if (r.graph_output) usage |= TextureUsage::CopySrc;
     resolved->usage = usage;
 
@@ -168,9 +215,62 @@ Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Exten
 
 }  // namespace
 
+Status JoinedGroup::status() const {
+    if (!spec) return spec.error();
+    if (!buffer) return buffer.error();
+    return {};
+}
+
+TextureUsage port_texture_usage(const Port& port, PassKind pass_kind, rhi::Format format) {
+    TextureUsage usage = port.spec.usage;
+    switch (pass_kind) {
+        case PassKind::Copy:
+            return usage | (port_writes(port.kind) ? TextureUsage::CopyDst : TextureUsage::CopySrc);
+        case PassKind::Compute:
+            return usage | (port_writes(port.kind) ? TextureUsage::Storage : TextureUsage::Sampled);
+        case PassKind::Graphics: break;
+    }
+    if (rhi::has_all(port.spec.usage, TextureUsage::Storage)) return usage;
+    if (port_writes(port.kind)) {
+        usage |= rhi::format_info(format).is_depth_stencil() ? TextureUsage::DepthStencilAttachment
+                                                             : TextureUsage::ColorAttachment;
+    } else {
+        usage |= TextureUsage::Sampled;
+    }
+    return usage;
+}
+
+Result<rhi::BufferUsage> port_buffer_usage(const Port& port, PassKind pass_kind, std::string_view port_name) {
+    using rhi::BufferUsage;
+    const bool copy = pass_kind == PassKind::Copy;
+    if (port_writes(port.kind)) return copy ? BufferUsage::CopyDst : BufferUsage::Storage;
+    static constexpr BufferUsage kReads[] = {BufferUsage::Vertex, BufferUsage::Index, BufferUsage::Uniform,
+                                             BufferUsage::Storage, BufferUsage::Indirect, BufferUsage::CopySrc};
+    BufferUsage read = BufferUsage::None;
+    for (BufferUsage flag : kReads) {
+        if (!rhi::has_all(port.buffer.usage, flag)) continue;
+        if (read != BufferUsage::None) {
+            Error error = make_error(ErrorCode::Graph,
+                                     "port " + std::string(port_name) + " reads its buffer in several ways (" +
+                                         describe_buffer_usage(read | flag) +
+                                         "); a port reads a buffer one way: declare one input port per use");
+            error.subjects = {std::string(port_name)};
+            return error;
+        }
+        read = flag;
+    }
+    if (read != BufferUsage::None) return read;
+    return copy ? BufferUsage::CopySrc : BufferUsage::Storage;
+}
+
 std::vector<JoinedGroup> join_port_groups(const FrameGraph& graph, Extent2D frame) {
     std::vector<JoinedGroup> joined;
     for (std::vector<PortAddress>& group : collect_groups(graph)) {
+        if (graph.port_at(group.front()).type == ResourceType::Buffer) {
+            Result<BufferSpec> buffer = join_buffer_group(graph, group, frame);
+            joined.push_back(JoinedGroup{std::move(group), TextureSpec{}, ResourceType::Buffer, std::move(buffer)});
+            continue;
+        }
         Result<TextureSpec> spec = join_group(graph, group, frame);
         joined.push_back(JoinedGroup{std::move(group), std::move(spec)});
     }
@@ -187,13 +287,17 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::
         // A join error is reported only when its group is reached: the first group at fault (in
         // declaration order) gives the error, whether its ports do not join or its spec does not
         // resolve.
-        if (!group.spec) return group.spec.error();
+        LOOM_TRY(group.status());
         const PortAddress start = group.ports.front();
         if (schedule.position[start.pass] == kNotScheduled) continue;
         PendingResource item = running_part(group.ports, schedule, is_graph_output);
         // An optional output nobody reads gets no texture.
         if (item.kept_ports.size() == 1 && !item.resource.graph_output && graph.port_at(start).optional) continue;
-        LOOM_TRY(resolve_pending(graph, *group.spec, frame, memory, item));
+        if (group.type == ResourceType::Buffer) {
+            LOOM_TRY(resolve_pending_buffer(graph, *group.buffer, frame, memory, item));
+        } else {
+            LOOM_TRY(resolve_pending(graph, *group.spec, frame, memory, item));
+        }
         pending.push_back(std::move(item));
     }
     // Resources in order of their producers' positions, then by port.
@@ -228,14 +332,19 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
     passes.reserve(schedule.order.size());
     for (uint32_t p : schedule.order) {
         const Pass& pass = graph.pass(PassId{p});
-        PlanPass planned{pass.name(), p, pass.side_effect(), {}};
+        PlanPass planned{pass.name(), p, pass.side_effect(), {}, pass.kind()};
         for (uint32_t i = 0; i < pass.ports().size(); ++i) {
             const Port& port = pass.ports()[i];
-            PlanPort planned_port{port.name, port.kind, port.optional, std::nullopt, TextureUsage::None};
+            PlanPort planned_port{port.name, port.kind, port.optional, std::nullopt, TextureUsage::None, port.type};
             const uint32_t r = resolved.resource_of_port[p][i];
             if (r != kNoResource) {
                 planned_port.resource = r;
-                planned_port.usage = port_usage(port, resolved.resources[r].spec.format);
+                if (port.type == ResourceType::Buffer) {
+                    // Checked when the resource was resolved.
+                    planned_port.buffer_usage = port_buffer_usage(port, pass.kind(), {}).value_or(rhi::BufferUsage::None);
+                } else {
+                    planned_port.usage = port_texture_usage(port, pass.kind(), resolved.resources[r].spec.format);
+                }
             }
             planned.ports.push_back(std::move(planned_port));
         }

@@ -48,8 +48,12 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
                                         static_cast<uint32_t>(plan.spec_classes.size()), options.max_heap_bytes);
     auto textures = detail::allocate_textures(**allocator, problem, plan.resources, options.frame, *memory);
     if (!textures) return textures.take_error();
-    for (uint32_t r = 0; r < plan.resources.size(); ++r) plan.resources[r].texture = textures->texture_of_resource[r];
+    for (uint32_t r = 0; r < plan.resources.size(); ++r) {
+        plan.resources[r].texture = textures->texture_of_resource[r];
+        plan.resources[r].buffer = textures->buffer_of_resource[r];
+    }
     plan.textures = std::move(textures->textures);
+    plan.buffers = std::move(textures->buffers);
     plan.heaps = std::move(textures->heaps);
     plan.summary = detail::summarize_plan(plan, classes.peak_live_bytes);
     return plan;

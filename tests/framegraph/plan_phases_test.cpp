@@ -344,10 +344,12 @@ TEST(PlanPhases, EqualSharingMakesAClassPerTextureShape) {
     EXPECT_EQ(
         classes.classes,
         (std::vector<SpecClass>{
-            {rgba8, {0, 2}, 2},  // a and c are both alive at position 1
-            {resolved_spec(Format::R8Unorm, FormatMatch::Exact, {64, 64}, TextureUsage::Sampled), {1}, 1},
-            {resolved_spec(Format::RGBA16Float, FormatMatch::Exact, {64, 64}, TextureUsage::ColorAttachment), {3}, 1},
-            {resolved_spec(Format::RGBA8Unorm, FormatMatch::Exact, {32, 32}, TextureUsage::ColorAttachment), {4}, 1},
+            {rgba8, {0, 2}, 2, ResourceType::Texture, {}},  // a and c are both alive at position 1
+            {resolved_spec(Format::R8Unorm, FormatMatch::Exact, {64, 64}, TextureUsage::Sampled), {1}, 1, ResourceType::Texture, {}},
+            {resolved_spec(Format::RGBA16Float, FormatMatch::Exact, {64, 64}, TextureUsage::ColorAttachment), {3}, 1,
+             ResourceType::Texture, {}},
+            {resolved_spec(Format::RGBA8Unorm, FormatMatch::Exact, {32, 32}, TextureUsage::ColorAttachment), {4}, 1,
+             ResourceType::Texture, {}},
         }));
     EXPECT_EQ(classes.peak_live_bytes, 200u + 100u + 400u + 50u);  // position 2: b, c, d, e
 }
@@ -506,7 +508,8 @@ TEST(PlanPhases, SummaryCountsTexturesBytesAndBounds) {
     plan.resources = {resource("a", Format::RGBA8Unorm, kFrame, {}, {0, 0}, 100),
                       resource("b", Format::RGBA8Unorm, kFrame, {}, {1, 1}, 50),
                       resource("c", Format::RGBA16Float, kFrame, {}, {0, 1}, 300)};
-    plan.spec_classes = {{plan.resources[0].spec, {0, 1}, 1}, {plan.resources[2].spec, {2}, 1}};
+    plan.spec_classes = {{plan.resources[0].spec, {0, 1}, 1, ResourceType::Texture, {}},
+                         {plan.resources[2].spec, {2}, 1, ResourceType::Texture, {}}};
     plan.textures = {{"t0", plan.resources[0].spec, {0, 1}, 100, 256, std::nullopt},
                      {"t1", plan.resources[2].spec, {2}, 300, 256, std::nullopt}};
     EXPECT_EQ(summarize_plan(plan, 400), (PlanSummary{2, 400, 3, 450, 2, 400}));

@@ -154,6 +154,7 @@ public:
     Status destroy(rhi::HeapHandle heap) override;
 
     Result<rhi::TextureDesc> texture_desc(rhi::TextureHandle texture) override;
+    Result<rhi::BufferDesc> buffer_desc(rhi::BufferHandle buffer) override;
 
     Status write_buffer(rhi::BufferHandle buffer, uint64_t offset, std::span<const std::byte> data) override;
     Status write_texture(rhi::TextureHandle texture, const rhi::TextureRegion& region,

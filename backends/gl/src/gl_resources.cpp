@@ -221,6 +221,12 @@ Result<rhi::TextureDesc> GlDevice::texture_desc(rhi::TextureHandle texture) {
     return (*found)->desc;
 }
 
+Result<rhi::BufferDesc> GlDevice::buffer_desc(rhi::BufferHandle buffer) {
+    auto found = buffers_.get(buffer);
+    if (!found.ok()) return found.take_error();
+    return (*found)->desc;
+}
+
 // ---- buffers and samplers --------------------------------------------------------------------
 
 Result<rhi::BufferHandle> GlDevice::create_buffer(const rhi::BufferDesc& desc) {

@@ -300,6 +300,12 @@ loom::Result<rhi::TextureDesc> VulkanDevice::texture_desc(rhi::TextureHandle han
     return (*t)->desc;
 }
 
+loom::Result<rhi::BufferDesc> VulkanDevice::buffer_desc(rhi::BufferHandle handle) {
+    auto b = buffers_.get(handle);
+    if (!b.ok()) return b.take_error();
+    return (*b)->desc;
+}
+
 loom::Status VulkanDevice::destroy(rhi::TextureHandle handle) {
     auto t = textures_.get(handle);
     if (!t.ok()) return t.take_error();

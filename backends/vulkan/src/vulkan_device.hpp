@@ -73,6 +73,7 @@ public:
     loom::Status destroy(rhi::HeapHandle heap) override;
 
     loom::Result<rhi::TextureDesc> texture_desc(rhi::TextureHandle texture) override;
+    loom::Result<rhi::BufferDesc> buffer_desc(rhi::BufferHandle buffer) override;
 
     loom::Status write_buffer(rhi::BufferHandle buffer, uint64_t offset, std::span<const std::byte> data) override;
     loom::Status write_texture(rhi::TextureHandle texture, const rhi::TextureRegion& region,

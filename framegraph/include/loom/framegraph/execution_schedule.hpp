@@ -54,7 +54,26 @@ struct TextureSlot {
 /// "t3", "import 0", "history 1", "none".
 std::string describe_slot(const TextureSlot& slot);
 
-/// An application texture bound to a port (Executor::import_texture). A port that has a
+/// Where the buffer behind a buffer port comes from.
+struct BufferSlot {
+    /// Where the buffer behind a port comes from.
+    enum class Kind : uint8_t {
+        None,    ///< no buffer (an unconnected optional port, or a texture port)
+        Plan,    ///< Plan::buffers[index]
+        Import,  ///< the application's buffer bound by buffer import number `index`
+    };
+    Kind kind = Kind::None;
+    uint32_t index = 0;
+
+    /// True when the port has no buffer.
+    [[nodiscard]] bool empty() const { return kind == Kind::None; }
+    friend bool operator==(const BufferSlot&, const BufferSlot&) = default;
+};
+
+/// "b3", "buffer import 0", "none".
+std::string describe_slot(const BufferSlot& slot);
+
+/// An application texture (or buffer) bound to a port (Executor::import_texture, import_buffer). A port that has a
 /// resource in the plan (output, inout, connected input) hands the whole resource to the
 /// imported texture; a port without one (an unconnected optional input, an optional output
 /// nobody reads) reads or writes the imported texture alone.
@@ -79,6 +98,20 @@ struct Transition {
     friend bool operator==(const Transition&, const Transition&) = default;
 };
 
+/// A buffer state change recorded outside render passes. A write followed by another write
+/// (two compute passes filling one buffer in turn) is a transition to the same state: the
+/// backends make it a barrier all the same.
+struct BufferTransition {
+    BufferSlot buffer;
+    rhi::ResourceState state = rhi::ResourceState::Undefined;
+    friend bool operator==(const BufferTransition&, const BufferTransition&) = default;
+};
+
+/// The state a buffer port's role puts its buffer in: Storage for a write, CopyDst for a copy's
+/// write; for reads VertexBuffer, IndexBuffer, IndirectArgument, CopySrc, and ShaderRead for
+/// uniform and storage reads.
+rhi::ResourceState buffer_state(PortKind kind, rhi::BufferUsage usage);
+
 /// One port of a scheduled pass.
 struct PortSchedule {
     std::string name;
@@ -92,6 +125,9 @@ struct PortSchedule {
     /// ask for DontCare instead).
     rhi::LoadOp load = rhi::LoadOp::Load;
     rhi::StoreOp store = rhi::StoreOp::Store;
+    /// Buffer ports: where the buffer comes from and how the port uses it.
+    BufferSlot buffer;
+    rhi::BufferUsage buffer_usage = rhi::BufferUsage::None;
     friend bool operator==(const PortSchedule&, const PortSchedule&) = default;
 };
 
@@ -109,6 +145,8 @@ struct PassSchedule {
     std::vector<Transition> before;   ///< transitions before the pass runs
     std::vector<Transition> after;    ///< transitions after it (final states of imports)
     std::vector<HistoryCopy> copies;  ///< history copies after it
+    std::vector<BufferTransition> buffers_before;  ///< buffer transitions before the pass runs
+    std::vector<BufferTransition> buffers_after;   ///< after it (final states of imported buffers)
     friend bool operator==(const PassSchedule&, const PassSchedule&) = default;
 };
 
@@ -128,8 +166,11 @@ struct HistoryTexture {
 struct ExecutionSchedule {
     std::vector<PassSchedule> passes;           ///< one per Plan::order entry
     std::vector<bool> texture_needed;           ///< per Plan::textures: false when imports replace all its resources
-    std::vector<std::optional<uint32_t>> resource_import;  ///< per Plan::resources: the import backing it
+    /// Per Plan::resources: the import backing it (an index into the texture imports, or for a
+    /// buffer resource into the buffer imports).
+    std::vector<std::optional<uint32_t>> resource_import;
     std::vector<HistoryTexture> histories;
+    std::vector<bool> buffer_needed;            ///< per Plan::buffers: false when imports replace all its resources
     friend bool operator==(const ExecutionSchedule&, const ExecutionSchedule&) = default;
 };
 
@@ -139,9 +180,11 @@ rhi::ResourceState sampled_state(rhi::Format format);
 
 /// Builds the schedule of `plan`. Errors (ErrorCode::Graph) name the port at fault: an import
 /// or history on a port that does not exist or whose pass does not run, two imports on one
-/// resource, a history reader that is connected in the graph or is not an input, a history
-/// source without a texture.
+/// resource, a texture import on a buffer port or a buffer import on a texture port, a history
+/// reader that is connected in the graph or is not an input, a history source without a
+/// texture or on a buffer port.
 Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<const ImportBinding> imports,
-                                                   std::span<const HistoryBinding> histories);
+                                                   std::span<const HistoryBinding> histories,
+                                                   std::span<const ImportBinding> buffer_imports = {});
 
 }  // namespace loom::fg

@@ -25,9 +25,9 @@
 //   device.end_frame();
 //
 // The executor plans the graph every frame (FrameGraph::plan returns the cached plan when
-// nothing changed) and realises a plan once: one texture per plan texture, placed at the plan's
-// heap offsets where the plan has heaps and the device supports placed resources, otherwise one
-// texture each. Resources persist across frames and are rebuilt only when the plan changes
+// nothing changed) and realises a plan once: one texture per plan texture and one buffer per
+// plan buffer, placed at the plan's heap offsets where the plan has heaps and the device
+// supports placed resources, otherwise one each. Resources persist across frames and are rebuilt only when the plan changes
 // (a new frame size re-evaluates relative sizes: the old resources are released first).
 // Transitions and load/store actions come from the ExecutionSchedule (execution_schedule.hpp),
 // computed once per plan. Every pass is timed (CPU recording time, and GPU time through the
@@ -81,6 +81,7 @@ struct ExecutionStats {
     uint32_t plan_heaps = 0;      ///< Plan::heaps.size()
     uint64_t plan_heap_bytes = 0; ///< sum of Plan::heaps
     uint64_t plan_bytes = 0;      ///< PlanSummary::bytes
+    uint32_t plan_buffers = 0;    ///< Plan::buffers.size()
     // What the executor created for it (live now).
     uint32_t textures = 0;          ///< plan textures created (those all of whose resources are imported are not)
     uint32_t placed_textures = 0;   ///< of those, placed in heaps
@@ -88,6 +89,9 @@ struct ExecutionStats {
     uint32_t heaps = 0;
     uint64_t heap_bytes = 0;        ///< sum of the created heaps' sizes
     uint64_t texture_bytes = 0;     ///< unplaced plan textures, by the plan's byte figures
+    uint32_t buffers = 0;           ///< plan buffers created (those all of whose resources are imported are not)
+    uint32_t placed_buffers = 0;    ///< of those, placed in heaps
+    uint64_t buffer_bytes = 0;      ///< unplaced plan buffers, by the plan's byte figures
     /// How many times resources were (re)built; an unchanged plan builds nothing.
     uint64_t realisations = 0;
     /// What the device reports now (all objects on it, not only the executor's).
@@ -131,6 +135,16 @@ public:
     /// Removes the import of `port`; false when it had none.
     bool remove_import(const PortRef& port);
 
+    /// Binds an application buffer to buffer port `port`, as import_texture does a texture (e.g.
+    /// a scene's persistent light buffer that a compute pass fills and a lighting pass reads);
+    /// it is left in `final_state` after its last use in the frame. Errors (checked at
+    /// execute(), naming the port): unknown port, a texture port, a buffer smaller than the
+    /// port's buffer or without the usage the ports need.
+    void import_buffer(const PortRef& port, rhi::BufferHandle buffer,
+                       rhi::ResourceState final_state = rhi::ResourceState::ShaderRead);
+    /// Removes the buffer import of `port`; false when it had none.
+    bool remove_buffer_import(const PortRef& port);
+
     /// Lets `reader` (an input port left unconnected; declare it optional) read the contents
     /// `source` had at the end of the previous frame. The executor keeps a history texture
     /// alive across frames and copies `source` into it once `source` is final in the frame (the
@@ -157,6 +171,11 @@ public:
     [[nodiscard]] rhi::TextureHandle texture(std::string_view pass, std::string_view port) const;
     /// The texture created for Plan::textures[index]; null when not created.
     [[nodiscard]] rhi::TextureHandle plan_texture(uint32_t index) const;
+    /// The buffer behind buffer port `pass`.`port` in the latest plan (a plan buffer or an
+    /// import); null when it has none.
+    [[nodiscard]] rhi::BufferHandle buffer(std::string_view pass, std::string_view port) const;
+    /// The buffer created for Plan::buffers[index]; null when not created.
+    [[nodiscard]] rhi::BufferHandle plan_buffer(uint32_t index) const;
 
     /// Per-pass timings of the latest frame, in Plan::order.
     [[nodiscard]] std::vector<PassTiming> timings() const;

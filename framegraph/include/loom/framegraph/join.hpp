@@ -16,6 +16,7 @@
 #include <string>
 #include <string_view>
 
+#include "loom/framegraph/buffer_spec.hpp"
 #include "loom/framegraph/texture_spec.hpp"
 #include "loom/rhi/result.hpp"
 
@@ -38,6 +39,11 @@ Result<rhi::FormatFeatures> join_features(const rhi::FormatFeatures& a, const rh
 /// Join of two specs, property by property. Fails with ErrorCode::Join naming both sides, the
 /// conflicting property and its two values.
 Result<TextureSpec> join(const TextureSpec& a, const TextureSpec& b, const JoinContext& context = {});
+
+/// Join of two buffer specs (buffer_spec.hpp): sizes equal once evaluated for the frame, the
+/// largest alignment, the union of the usages. Fails with ErrorCode::Join naming both sides,
+/// the property and its two values.
+Result<BufferSpec> join_buffer_specs(const BufferSpec& a, const BufferSpec& b, const JoinContext& context = {});
 
 /// True when join(a, b, {frame}) succeeds.
 bool joinable(const TextureSpec& a, const TextureSpec& b, std::optional<Extent2D> frame = std::nullopt);

@@ -18,6 +18,13 @@ public:
     virtual ~MemoryModel() = default;
     /// Size and alignment of a texture described by `desc` inside a heap.
     virtual Result<rhi::MemoryRequirements> requirements(const rhi::TextureDesc& desc) = 0;
+
+    /// The alignment buffer_requirements() gives by default: 256 bytes, the largest offset
+    /// alignment Vulkan allows a device to ask of uniform and storage buffers.
+    static constexpr uint64_t kDefaultBufferAlignment = 256;
+    /// Size and alignment of a buffer described by `desc` inside a heap. By default its size
+    /// rounded up to kDefaultBufferAlignment, aligned to that; a device's model asks the device.
+    virtual Result<rhi::MemoryRequirements> buffer_requirements(const rhi::BufferDesc& desc);
 };
 
 /// bytes_per_texel × width × height × layers × samples, summed over the mip chain, rounded up

@@ -17,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "loom/framegraph/buffer_spec.hpp"
 #include "loom/framegraph/texture_spec.hpp"
 #include "loom/rhi/result.hpp"
 
@@ -33,6 +34,22 @@ enum class PortKind : uint8_t {
 
 /// "input", "output", "inout".
 std::string_view port_kind_name(PortKind kind);
+
+/// What flows through a port: a texture or a buffer. Connected ports carry the same type.
+enum class ResourceType : uint8_t { Texture, Buffer };
+
+/// "texture", "buffer".
+std::string_view resource_type_name(ResourceType type);
+
+/// What a pass records, which decides what its ports' roles imply and what it may record:
+/// a graphics pass draws in render passes (written textures are attachments, read ones are
+/// sampled); a compute pass dispatches and never opens a render pass (written textures are
+/// storage images, read ones sampled; buffers storage); a copy pass copies (written resources
+/// are copy destinations, read ones copy sources).
+enum class PassKind : uint8_t { Graphics, Compute, Copy };
+
+/// "graphics", "compute", "copy".
+std::string_view pass_kind_name(PassKind kind);
 
 /// True for the kinds that take a source (input, inout).
 inline bool port_reads(PortKind kind) { return kind != PortKind::Output; }
@@ -52,6 +69,7 @@ std::string quoted_name(std::string_view name);
 struct Port {
     std::string name;
     PortKind kind = PortKind::Input;
+    /// The texture constraints (texture ports).
     TextureSpec spec;
     /// Input/inout: may stay unconnected (the pass then runs without it; an unconnected
     /// optional inout starts a fresh texture). Output: when nothing reads it and it is not a
@@ -59,6 +77,10 @@ struct Port {
     bool optional = false;
     /// Names of the port sets that declared this port, in the order they did.
     std::vector<std::string> port_sets;
+    /// Texture or buffer.
+    ResourceType type = ResourceType::Texture;
+    /// The buffer constraints (buffer ports).
+    BufferSpec buffer;
 
     friend bool operator==(const Port&, const Port&) = default;
 };
@@ -86,6 +108,21 @@ public:
     /// Declares an output that gets no texture when nothing reads it.
     PortSet& optional_output(std::string port, TextureSpec spec = {}) {
         return declare(std::move(port), PortKind::Output, std::move(spec), true);
+    }
+
+    /// Records a buffer port declaration.
+    PortSet& declare_buffer(std::string port, PortKind kind, BufferSpec spec = {}, bool optional = false);
+    /// Declares a port reading a buffer.
+    PortSet& buffer_input(std::string port, BufferSpec spec = {}) {
+        return declare_buffer(std::move(port), PortKind::Input, std::move(spec));
+    }
+    /// Declares a port producing a new buffer.
+    PortSet& buffer_output(std::string port, BufferSpec spec = {}) {
+        return declare_buffer(std::move(port), PortKind::Output, std::move(spec));
+    }
+    /// Declares a port reading a buffer and modifying it in place.
+    PortSet& buffer_inout(std::string port, BufferSpec spec = {}) {
+        return declare_buffer(std::move(port), PortKind::InOut, std::move(spec));
     }
 
     /// The port set's name.
@@ -139,6 +176,37 @@ public:
         return declare(std::move(port), PortKind::Output, std::move(spec), true);
     }
 
+    // Buffer ports on the pass's own port set (see BufferSpec for what a port's usage means).
+    Pass& declare_buffer(std::string port, PortKind kind, BufferSpec spec = {}, bool optional = false);
+    /// Declares a port reading a buffer.
+    Pass& buffer_input(std::string port, BufferSpec spec = {}) {
+        return declare_buffer(std::move(port), PortKind::Input, std::move(spec));
+    }
+    /// Declares a port producing a new buffer.
+    Pass& buffer_output(std::string port, BufferSpec spec = {}) {
+        return declare_buffer(std::move(port), PortKind::Output, std::move(spec));
+    }
+    /// Declares a port reading a buffer and modifying it in place.
+    Pass& buffer_inout(std::string port, BufferSpec spec = {}) {
+        return declare_buffer(std::move(port), PortKind::InOut, std::move(spec));
+    }
+    /// Declares a buffer input that may stay unconnected.
+    Pass& optional_buffer_input(std::string port, BufferSpec spec = {}) {
+        return declare_buffer(std::move(port), PortKind::Input, std::move(spec), true);
+    }
+    /// Declares a buffer output that gets no buffer when nothing reads it.
+    Pass& optional_buffer_output(std::string port, BufferSpec spec = {}) {
+        return declare_buffer(std::move(port), PortKind::Output, std::move(spec), true);
+    }
+
+    /// Sets what the pass records (graphics by default; see PassKind).
+    Pass& set_kind(PassKind kind) {
+        kind_ = kind;
+        return *this;
+    }
+    /// What the pass records.
+    [[nodiscard]] PassKind kind() const { return kind_; }
+
     /// Marks the pass as having effects outside the graph (present, readback, writes to a
     /// buffer): it is never culled.
     Pass& set_side_effect(bool side_effect = true) {
@@ -182,6 +250,7 @@ private:
     // not scan every port (a pass may have very many).
     std::map<std::string, uint32_t, std::less<>> port_indices_;
     bool side_effect_ = false;
+    PassKind kind_ = PassKind::Graphics;
     std::optional<Error> error_;
     ExecuteFunction execute_function_;
 };

@@ -105,6 +105,15 @@ public:
     [[nodiscard]] const ResolvedSpec* spec(std::string_view port);
     /// Shorthand for spec(port)->extent; {0, 0} when the port has no texture.
     [[nodiscard]] Extent2D extent(std::string_view port);
+    /// True when `port` is a buffer port of this pass with a buffer behind it.
+    [[nodiscard]] bool has_buffer(std::string_view port) const;
+    /// The buffer behind buffer port `port`: null for an unconnected optional port (no error);
+    /// an unknown port or a texture port records an error and returns null.
+    [[nodiscard]] rhi::BufferHandle buffer(std::string_view port);
+    /// The size in bytes of the buffer behind `port` (the plan's, or an imported buffer's); 0
+    /// when it has none.
+    [[nodiscard]] uint64_t buffer_size(std::string_view port);
+
     /// For a history port: true once it holds a real earlier frame (false on the first frame
     /// and after the history was recreated, e.g. by a resize; it then reads zeros, depth 1).
     [[nodiscard]] bool history_valid(std::string_view port);

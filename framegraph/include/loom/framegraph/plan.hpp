@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "loom/framegraph/buffer_spec.hpp"
 #include "loom/framegraph/pass.hpp"
 #include "loom/framegraph/resolved_spec.hpp"
 #include "loom/framegraph/texture_spec.hpp"
@@ -36,6 +37,9 @@ struct Lifetime {
     friend bool operator==(const Lifetime&, const Lifetime&) = default;
 };
 
+/// PlanResource::texture of a buffer, PlanResource::buffer of a texture.
+inline constexpr uint32_t kNoPhysical = UINT32_MAX;
+
 /// One port of a scheduled pass.
 struct PlanPort {
     std::string name;
@@ -44,8 +48,13 @@ struct PlanPort {
     /// Index into Plan::resources; empty for an unconnected optional input, or an optional
     /// output nobody reads (no texture is allocated for it).
     std::optional<uint32_t> resource;
-    /// How this port uses the texture (Sampled, ColorAttachment, DepthStencilAttachment, Storage).
+    /// How this texture port uses the texture (Sampled, ColorAttachment, DepthStencilAttachment,
+    /// Storage, CopySrc, CopyDst); None for buffer ports.
     rhi::TextureUsage usage = rhi::TextureUsage::None;
+    ResourceType type = ResourceType::Texture;
+    /// How this buffer port uses the buffer: one flag (Storage, Uniform, Vertex, Index,
+    /// Indirect, CopySrc, CopyDst); None for texture ports.
+    rhi::BufferUsage buffer_usage = rhi::BufferUsage::None;
 
     friend bool operator==(const PlanPort&, const PlanPort&) = default;
 };
@@ -56,12 +65,14 @@ struct PlanPass {
     uint32_t declaration_index = 0;  ///< position among the graph's passes
     bool side_effect = false;
     std::vector<PlanPort> ports;     ///< in the pass's port order
+    PassKind kind = PassKind::Graphics;
 
     friend bool operator==(const PlanPass&, const PlanPass&) = default;
 };
 
-/// A logical texture: one output (or unconnected optional inout) with everything it feeds,
-/// directly or through in-place modifications (inouts). Its ports share one physical texture.
+/// A logical texture or buffer: one output (or unconnected optional inout) with everything it
+/// feeds, directly or through in-place modifications (inouts). Its ports share one physical
+/// texture (or buffer).
 struct PlanResource {
     std::string name;                ///< "pass.port" of the port that starts it
     std::vector<std::string> ports;  ///< every port on it that runs, "pass.port", the starting port first
@@ -73,7 +84,12 @@ struct PlanResource {
     uint32_t spec_class = 0;         ///< index into Plan::spec_classes
     uint64_t bytes = 0;              ///< memory model size of a texture of `spec`
     uint64_t alignment = 0;
-    uint32_t texture = 0;            ///< index into Plan::textures
+    uint32_t texture = 0;            ///< index into Plan::textures; kNoPhysical for a buffer
+    ResourceType type = ResourceType::Texture;
+    /// A buffer's joined spec made concrete (usage: what its ports need); empty for a texture,
+    /// whose `spec` and `requested_format` are unused for a buffer.
+    ResolvedBufferSpec buffer_spec;
+    uint32_t buffer = kNoPhysical;   ///< index into Plan::buffers; kNoPhysical for a texture
 
     friend bool operator==(const PlanResource&, const PlanResource&) = default;
 };
@@ -109,23 +125,42 @@ struct PlanTexture {
     friend bool operator==(const PlanTexture&, const PlanTexture&) = default;
 };
 
-/// The resources that may share textures with each other (see SpecSharing).
+/// A physical buffer to create.
+struct PlanBuffer {
+    std::string name;                 ///< "b0", "b1", ...
+    ResolvedBufferSpec spec;          ///< its resources' size, the union of their usage, the largest alignment
+    std::vector<uint32_t> resources;  ///< resources it holds, in order of their lifetimes
+    uint64_t bytes = 0;               ///< the memory model's size for it (at least spec.size)
+    uint64_t alignment = 0;
+    std::optional<HeapRange> placement;  ///< set by allocators that place resources in heaps
+
+    friend bool operator==(const PlanBuffer&, const PlanBuffer&) = default;
+};
+
+/// The resources that may share textures (or buffers) with each other (see SpecSharing).
+/// Buffers share only with buffers of the same size and alignment.
 struct SpecClass {
-    ResolvedSpec spec;                ///< the join of its members (usage: union)
+    ResolvedSpec spec;                ///< the join of its members (usage: union); textures
     std::vector<uint32_t> resources;
     uint32_t peak_live = 0;           ///< most members alive at once over the order
+    ResourceType type = ResourceType::Texture;
+    ResolvedBufferSpec buffer_spec;   ///< buffers: the members' size and alignment, usage the union
 
     friend bool operator==(const SpecClass&, const SpecClass&) = default;
 };
 
-/// The figures that make allocators comparable.
+/// The figures that make allocators comparable. Byte figures count textures and buffers.
 struct PlanSummary {
     uint32_t textures = 0;              ///< physical textures allocated
-    uint64_t bytes = 0;                 ///< their memory (for heaps: the heap sizes)
-    uint32_t naive_textures = 0;        ///< one texture per resource (per output)
-    uint64_t naive_bytes = 0;
-    uint32_t lower_bound_textures = 0;  ///< sum over spec classes of the peak live count
+    uint64_t bytes = 0;                 ///< their memory and the buffers' (for heaps: the heap sizes)
+    uint32_t naive_textures = 0;        ///< one texture per texture resource (per output)
+    uint64_t naive_bytes = 0;           ///< one texture or buffer per resource
+    uint32_t lower_bound_textures = 0;  ///< sum over texture spec classes of the peak live count
     uint64_t lower_bound_bytes = 0;     ///< peak over the order of the bytes of live resources
+    uint32_t buffers = 0;               ///< physical buffers allocated
+    uint64_t buffer_bytes = 0;          ///< their bytes (placed or not), part of `bytes` unless placed
+    uint32_t naive_buffers = 0;         ///< buffer resources
+    uint32_t lower_bound_buffers = 0;   ///< sum over buffer spec classes of the peak live count
 
     friend bool operator==(const PlanSummary&, const PlanSummary&) = default;
 };
@@ -142,6 +177,7 @@ struct Plan {
     std::vector<PlanResource> resources;  ///< ordered by (first use, starting port)
     std::vector<SpecClass> spec_classes;
     std::vector<PlanTexture> textures;
+    std::vector<PlanBuffer> buffers;
     std::vector<uint64_t> heaps;      ///< heap sizes in bytes; empty unless the allocator places
     PlanSummary summary;
 
@@ -149,8 +185,10 @@ struct Plan {
     [[nodiscard]] const PlanPass* find_pass(std::string_view name) const;
     /// The resource behind `pass`.`port`, or nullptr.
     [[nodiscard]] const PlanResource* resource_of(std::string_view pass, std::string_view port) const;
-    /// The physical texture behind `pass`.`port`.
+    /// The physical texture behind `pass`.`port` (nullopt for a buffer port).
     [[nodiscard]] std::optional<uint32_t> texture_of(std::string_view pass, std::string_view port) const;
+    /// The physical buffer behind `pass`.`port` (nullopt for a texture port).
+    [[nodiscard]] std::optional<uint32_t> buffer_of(std::string_view pass, std::string_view port) const;
 
     friend bool operator==(const Plan&, const Plan&) = default;
 };

@@ -265,6 +265,8 @@ public:
 
     /// The description a texture was created with.
     virtual Result<TextureDesc> texture_desc(TextureHandle texture) = 0;
+    /// The description a buffer was created with.
+    virtual Result<BufferDesc> buffer_desc(BufferHandle buffer) = 0;
 
     // -- data transfer --------------------------------------------------------------------
     virtual Status write_buffer(BufferHandle buffer, uint64_t offset, std::span<const std::byte> data) = 0;
