@@ -219,6 +219,7 @@ Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<c
             ps.kind = port.kind;
             ps.resource = port.resource;
             ps.usage = port.usage;
+            if (port.type == ResourceType::Texture && port.resource) ps.range = port.range;
             if (port.type == ResourceType::Buffer) {
                 ps.buffer_usage = port.buffer_usage;
                 if (port.resource) {
@@ -278,15 +279,16 @@ Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<c
             }
             if (!ps.texture.empty()) {
                 if (pass.kind == PassKind::Copy) {
-                    out.before.push_back({ps.texture, port_writes(port.kind) ? rhi::ResourceState::CopyDst
-                                                                             : rhi::ResourceState::CopySrc});
+                    out.before.push_back(
+                        {ps.texture, port_writes(port.kind) ? rhi::ResourceState::CopyDst : rhi::ResourceState::CopySrc, ps.range});
                 } else if (storage) {
-                    out.before.push_back({ps.texture, rhi::ResourceState::Storage});
+                    out.before.push_back({ps.texture, rhi::ResourceState::Storage, ps.range});
                 } else if (!port_writes(port.kind) && rhi::has_all(ps.usage, rhi::TextureUsage::Sampled)) {
                     // Imported inputs without a plan resource: format known only at run time;
                     // the executor substitutes DepthRead for depth textures.
-                    out.before.push_back({ps.texture, format == rhi::Format::Undefined ? rhi::ResourceState::ShaderRead
-                                                                                      : sampled_state(format)});
+                    out.before.push_back({ps.texture,
+                                          format == rhi::Format::Undefined ? rhi::ResourceState::ShaderRead : sampled_state(format),
+                                          ps.range});
                 }
             }
             out.ports.push_back(std::move(ps));

@@ -131,9 +131,16 @@ Result<Dependencies> analyze(const FrameGraph& graph) {
             for (const PortAddress& reader : graph.consumers(*source)) {
                 if (reader == address) continue;
                 if (reader.pass == pass_index) {
+                    // Reading one part of a texture while writing another (mip k-1 into mip k,
+                    // one cube face into the next) is no hazard.
+                    const Port& read = graph.port_at(reader);
+                    const bool disjoint = port.type == ResourceType::Buffer ? !overlaps(read.bytes, port.bytes)
+                                                                            : !overlaps(read.range, port.range);
+                    if (disjoint) continue;
                     Error error = graph_error("pass '" + pass.name() + "' reads " + graph.port_name(*source) +
                                               " through " + graph.port_name(reader) +
-                                              " while modifying it in place through " + graph.port_name(address));
+                                              " while modifying it in place through " + graph.port_name(address) +
+                                              " (one pass may read and modify one resource only in disjoint ranges)");
                     error.subjects = {graph.port_name(address), graph.port_name(reader), graph.port_name(*source)};
                     return error;
                 }

@@ -69,13 +69,76 @@ std::string printable_name(std::string_view name) {
 
 std::string quoted_name(std::string_view name) { return "'" + detail::printable_name(name) + "'"; }
 
-PortSet& PortSet::declare(std::string port, PortKind kind, TextureSpec spec, bool optional) {
-    declarations_.push_back(Port{std::move(port), kind, std::move(spec), optional, {name_}, ResourceType::Texture, {}});
+namespace {
+
+Port texture_port(std::string name, PortKind kind, TextureSpec spec, bool optional, const std::string& port_set,
+                  SubresourceRange range) {
+    Port port;
+    port.name = std::move(name);
+    port.kind = kind;
+    port.spec = std::move(spec);
+    port.optional = optional;
+    port.port_sets = {port_set};
+    port.range = range;
+    return port;
+}
+
+Port buffer_port(std::string name, PortKind kind, BufferSpec spec, bool optional, const std::string& port_set,
+                 BufferRange bytes) {
+    Port port;
+    port.name = std::move(name);
+    port.kind = kind;
+    port.optional = optional;
+    port.port_sets = {port_set};
+    port.type = ResourceType::Buffer;
+    port.buffer = std::move(spec);
+    port.bytes = bytes;
+    return port;
+}
+
+// The end of a range's counted part: base + count, saturating for open counts.
+uint64_t range_end(uint32_t base, uint32_t count) {
+    return count == rhi::kRemainingSubresources ? UINT64_MAX : uint64_t{base} + count;
+}
+
+}  // namespace
+
+std::string describe_range(const SubresourceRange& range) {
+    auto part = [](std::string_view one, std::string_view many, uint32_t base, uint32_t count) -> std::string {
+        if (base == 0 && count == rhi::kRemainingSubresources) return {};
+        if (count == 1) return std::string(one) + " " + std::to_string(base);
+        if (count == rhi::kRemainingSubresources) return std::string(many) + " " + std::to_string(base) + "..";
+        return std::string(many) + " " + std::to_string(base) + ".." + std::to_string(uint64_t{base} + count - 1);
+    };
+    const std::string mips = part("mip", "mips", range.base_mip, range.mip_count);
+    const std::string layers = part("layer", "layers", range.base_layer, range.layer_count);
+    if (mips.empty() && layers.empty()) return "whole";
+    if (mips.empty()) return layers;
+    if (layers.empty()) return mips;
+    return mips + " " + layers;
+}
+
+bool overlaps(const SubresourceRange& a, const SubresourceRange& b) {
+    auto intersect = [](uint32_t a_base, uint32_t a_count, uint32_t b_base, uint32_t b_count) {
+        return a_base < range_end(b_base, b_count) && b_base < range_end(a_base, a_count);
+    };
+    return intersect(a.base_mip, a.mip_count, b.base_mip, b.mip_count) &&
+           intersect(a.base_layer, a.layer_count, b.base_layer, b.layer_count);
+}
+
+bool overlaps(const BufferRange& a, const BufferRange& b) {
+    const uint64_t a_end = a.size == 0 ? UINT64_MAX : a.offset + a.size;
+    const uint64_t b_end = b.size == 0 ? UINT64_MAX : b.offset + b.size;
+    return a.offset < b_end && b.offset < a_end;
+}
+
+PortSet& PortSet::declare(std::string port, PortKind kind, TextureSpec spec, bool optional, SubresourceRange range) {
+    declarations_.push_back(texture_port(std::move(port), kind, std::move(spec), optional, name_, range));
     return *this;
 }
 
-PortSet& PortSet::declare_buffer(std::string port, PortKind kind, BufferSpec spec, bool optional) {
-    declarations_.push_back(Port{std::move(port), kind, {}, optional, {name_}, ResourceType::Buffer, std::move(spec)});
+PortSet& PortSet::declare_buffer(std::string port, PortKind kind, BufferSpec spec, bool optional, BufferRange bytes) {
+    declarations_.push_back(buffer_port(std::move(port), kind, std::move(spec), optional, name_, bytes));
     return *this;
 }
 
@@ -98,13 +161,13 @@ Pass& Pass::add(const PortSet& ports) {
     return *this;
 }
 
-Pass& Pass::declare(std::string port, PortKind kind, TextureSpec spec, bool optional) {
-    merge(Port{std::move(port), kind, std::move(spec), optional, {name_}, ResourceType::Texture, {}}, name_);
+Pass& Pass::declare(std::string port, PortKind kind, TextureSpec spec, bool optional, SubresourceRange range) {
+    merge(texture_port(std::move(port), kind, std::move(spec), optional, name_, range), name_);
     return *this;
 }
 
-Pass& Pass::declare_buffer(std::string port, PortKind kind, BufferSpec spec, bool optional) {
-    merge(Port{std::move(port), kind, {}, optional, {name_}, ResourceType::Buffer, std::move(spec)}, name_);
+Pass& Pass::declare_buffer(std::string port, PortKind kind, BufferSpec spec, bool optional, BufferRange bytes) {
+    merge(buffer_port(std::move(port), kind, std::move(spec), optional, name_, bytes), name_);
     return *this;
 }
 
@@ -156,6 +219,18 @@ void Pass::merge(const Port& declaration, const std::string& port_set) {
                                                   quoted_name(first_set) + " and as a " +
                                                   std::string(resource_type_name(declaration.type)) +
                                                   " port by port set " + quoted_name(port_set));
+        return;
+    }
+    if (existing.range != declaration.range || existing.bytes != declaration.bytes) {
+        const bool buffer = existing.type == ResourceType::Buffer;
+        auto bytes = [](const BufferRange& r) {
+            return r.whole() ? std::string("whole") : std::to_string(r.offset) + "+" + std::to_string(r.size);
+        };
+        error_ = make_error(ErrorCode::Graph, "pass " + quoted_name(name_) + ": port " + quoted_name(declaration.name) +
+                                                  " covers " + (buffer ? bytes(existing.bytes) : describe_range(existing.range)) +
+                                                  " in port set " + quoted_name(first_set) + " but " +
+                                                  (buffer ? bytes(declaration.bytes) : describe_range(declaration.range)) +
+                                                  " in port set " + quoted_name(port_set));
         return;
     }
     const std::string a_name = name_ + "." + existing.name + " (port set '" + first_set + "')";

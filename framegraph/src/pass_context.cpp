@@ -1,5 +1,7 @@
 #include "loom/framegraph/pass_context.hpp"
 
+#include <algorithm>
+
 #include "frame_state.hpp"
 #include "loom/framegraph/execution_schedule.hpp"
 
@@ -84,6 +86,19 @@ Extent2D PassContext::extent(std::string_view port) {
     return s ? s->extent : Extent2D{};
 }
 
+rhi::TextureRange PassContext::range(std::string_view port) {
+    const PortSchedule* p = find(port, true);
+    return p ? p->range : rhi::TextureRange{};
+}
+
+Extent2D PassContext::range_extent(std::string_view port) {
+    const PortSchedule* p = find(port, true);
+    const ResolvedSpec* s = p ? frame_.spec_of(*p) : nullptr;
+    if (!s) return {};
+    const uint32_t mip = p->range.base_mip < 32 ? p->range.base_mip : 31;
+    return {std::max(1u, s->extent.width >> mip), std::max(1u, s->extent.height >> mip)};
+}
+
 bool PassContext::history_valid(std::string_view port) {
     const PortSchedule* p = find(port, true);
     if (!p) return false;
@@ -103,8 +118,8 @@ rhi::ColorAttachment PassContext::color_attachment(const ColorPort& port) {
         fail(make_error(ErrorCode::InvalidArgument, "port '" + port.port + "' has no texture to render to (unconnected)"));
         return attachment;
     }
-    attachment.mip = port.mip;
-    attachment.layer = port.layer;
+    attachment.mip = port.mip.value_or(p->range.base_mip);
+    attachment.layer = port.layer.value_or(p->range.base_layer);
     attachment.load = p->load;
     if (attachment.load == rhi::LoadOp::Clear && port.writes_every_texel) attachment.load = rhi::LoadOp::DontCare;
     attachment.store = p->store;
@@ -121,8 +136,8 @@ rhi::DepthAttachment PassContext::depth_attachment(const DepthPort& port) {
         fail(make_error(ErrorCode::InvalidArgument, "port '" + port.port + "' has no texture to render to (unconnected)"));
         return attachment;
     }
-    attachment.mip = port.mip;
-    attachment.layer = port.layer;
+    attachment.mip = port.mip.value_or(p->range.base_mip);
+    attachment.layer = port.layer.value_or(p->range.base_layer);
     rhi::LoadOp load = p->load;
     if (load == rhi::LoadOp::Clear && port.writes_every_texel) load = rhi::LoadOp::DontCare;
     attachment.depth_load = load;

@@ -130,6 +130,12 @@ uint64_t plan_hash(const Plan& plan) {
             h.add(port.usage);
             h.add(port.type);
             h.add(port.buffer_usage);
+            h.add(port.range.base_mip);
+            h.add(port.range.mip_count);
+            h.add(port.range.base_layer);
+            h.add(port.range.layer_count);
+            h.add(port.bytes.offset);
+            h.add(port.bytes.size);
         }
     }
     h.add(plan.culled.size());

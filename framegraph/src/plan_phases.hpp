@@ -71,6 +71,12 @@ struct JoinedGroup {
 /// writes copy destinations and reads copy sources.
 rhi::TextureUsage port_texture_usage(const Port& port, PassKind pass_kind, rhi::Format format);
 
+/// `range` with concrete counts for a texture of `mips` levels and `layers` layers; nullopt
+/// when it reaches past them or is empty.
+std::optional<SubresourceRange> resolve_range(const SubresourceRange& range, uint32_t mips, uint32_t layers);
+/// `bytes` with a concrete size for a buffer of `size` bytes; nullopt when it reaches past it.
+std::optional<BufferRange> resolve_bytes(const BufferRange& bytes, uint64_t size);
+
 /// How a port uses its buffer: a write is Storage (CopyDst in a copy pass); a read is the one
 /// read usage the port declares (vertex, index, indirect, uniform, storage; copy in a copy pass),
 /// Storage (CopySrc) when it declares none. ErrorCode::Graph naming the port when it declares

@@ -173,6 +173,17 @@ Status resolve_pending_buffer(const FrameGraph& graph, const BufferSpec& joined,
         resolved->usage |= *role;
     }
     if (r.graph_output) resolved->usage |= rhi::BufferUsage::CopySrc;
+    for (const PortAddress& address : item.kept_ports) {
+        const BufferRange& bytes = graph.port_at(address).bytes;
+        if (!resolve_bytes(bytes, resolved->size)) {
+            Error error = make_error(ErrorCode::Graph, "port " + graph.port_name(address) + " uses bytes " +
+                                                           std::to_string(bytes.offset) + "+" + std::to_string(bytes.size) +
+                                                           " of buffer " + r.name + ", which has " +
+                                                           std::to_string(resolved->size) + " bytes");
+            error.subjects = {graph.port_name(address)};
+            return error;
+        }
+    }
     for (const PortAddress& address : item.kept_ports) r.ports.push_back(graph.port_name(address));
     r.buffer_spec = *resolved;
     auto requirements = memory.buffer_requirements(to_buffer_desc(r.buffer_spec, r.name));
@@ -202,6 +213,17 @@ Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Exten
     }
     if (r.graph_output) usage |= TextureUsage::CopySrc;
     resolved->usage = usage;
+    for (const PortAddress& address : item.kept_ports) {
+        const SubresourceRange& range = graph.port_at(address).range;
+        if (!resolve_range(range, resolved->mips, resolved->layers)) {
+            Error error = make_error(ErrorCode::Graph, "port " + graph.port_name(address) + " uses " + describe_range(range) +
+                                                           " of texture " + r.name + ", which has " +
+                                                           std::to_string(resolved->mips) + " mips and " +
+                                                           std::to_string(resolved->layers) + " layers");
+            error.subjects = {graph.port_name(address)};
+            return error;
+        }
+    }
 
     for (const PortAddress& address : item.kept_ports) r.ports.push_back(graph.port_name(address));
     r.requested_format = joined.format;
@@ -214,6 +236,26 @@ Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Exten
 }
 
 }  // namespace
+
+std::optional<SubresourceRange> resolve_range(const SubresourceRange& range, uint32_t mips, uint32_t layers) {
+    auto resolve_part = [](uint32_t base, uint32_t count, uint32_t total) -> std::optional<uint32_t> {
+        if (base >= total) return std::nullopt;
+        if (count == rhi::kRemainingSubresources) return total - base;
+        if (count == 0 || count > total - base) return std::nullopt;
+        return count;
+    };
+    auto mip_count = resolve_part(range.base_mip, range.mip_count, mips);
+    auto layer_count = resolve_part(range.base_layer, range.layer_count, layers);
+    if (!mip_count || !layer_count) return std::nullopt;
+    return SubresourceRange{range.base_mip, *mip_count, range.base_layer, *layer_count};
+}
+
+std::optional<BufferRange> resolve_bytes(const BufferRange& bytes, uint64_t size) {
+    if (bytes.offset >= size) return std::nullopt;
+    if (bytes.size == 0) return BufferRange{bytes.offset, size - bytes.offset};
+    if (bytes.size > size - bytes.offset) return std::nullopt;
+    return bytes;
+}
 
 Status JoinedGroup::status() const {
     if (!spec) return spec.error();
@@ -339,11 +381,15 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
             const uint32_t r = resolved.resource_of_port[p][i];
             if (r != kNoResource) {
                 planned_port.resource = r;
+                // Usages and ranges were checked when the resource was resolved.
+                const PlanResource& resource = resolved.resources[r];
                 if (port.type == ResourceType::Buffer) {
-                    // Checked when the resource was resolved.
                     planned_port.buffer_usage = port_buffer_usage(port, pass.kind(), {}).value_or(rhi::BufferUsage::None);
+                    planned_port.bytes = resolve_bytes(port.bytes, resource.buffer_spec.size).value_or(BufferRange{});
                 } else {
-                    planned_port.usage = port_texture_usage(port, pass.kind(), resolved.resources[r].spec.format);
+                    planned_port.usage = port_texture_usage(port, pass.kind(), resource.spec.format);
+                    planned_port.range =
+                        resolve_range(port.range, resource.spec.mips, resource.spec.layers).value_or(SubresourceRange{});
                 }
             }
             planned.ports.push_back(std::move(planned_port));

@@ -84,6 +84,17 @@ struct BufferSpec {
     friend bool operator==(const BufferSpec&, const BufferSpec&) = default;
 };
 
+/// The bytes of a buffer a port reads or writes: `size` bytes from `offset` (size 0: to the end).
+/// Two ports of one pass may read and modify one buffer in place when their ranges do not overlap.
+struct BufferRange {
+    uint64_t offset = 0;
+    uint64_t size = 0;
+
+    /// True for the whole buffer.
+    [[nodiscard]] bool whole() const { return offset == 0 && size == 0; }
+    friend bool operator==(const BufferRange&, const BufferRange&) = default;
+};
+
 /// A joined buffer spec made concrete: what a physical buffer is created from.
 struct ResolvedBufferSpec {
     uint64_t size = 0;

@@ -95,6 +95,8 @@ struct HistoryBinding {
 struct Transition {
     TextureSlot texture;
     rhi::ResourceState state = rhi::ResourceState::Undefined;
+    /// The subresources that change state (a port's range; the whole texture by default).
+    rhi::TextureRange range{};
     friend bool operator==(const Transition&, const Transition&) = default;
 };
 
@@ -125,6 +127,8 @@ struct PortSchedule {
     /// ask for DontCare instead).
     rhi::LoadOp load = rhi::LoadOp::Load;
     rhi::StoreOp store = rhi::StoreOp::Store;
+    /// Texture ports: the mip levels and layers the port uses (PlanPort::range).
+    rhi::TextureRange range{};
     /// Buffer ports: where the buffer comes from and how the port uses it.
     BufferSlot buffer;
     rhi::BufferUsage buffer_usage = rhi::BufferUsage::None;

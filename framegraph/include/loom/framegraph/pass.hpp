@@ -65,6 +65,31 @@ std::optional<std::string> name_problem(std::string_view name);
 /// naming a user's name (which may be one name_problem() refuses) is still one line.
 std::string quoted_name(std::string_view name);
 
+/// The mip levels and array layers of a texture a port reads or writes (rhi::TextureRange;
+/// counts of rhi::kRemainingSubresources run to the last level or layer). Two ports of one pass
+/// may read one texture and modify it in place when their ranges are disjoint: a down-sampling
+/// pass reads mip k-1 and writes mip k of one pyramid.
+using SubresourceRange = rhi::TextureRange;
+
+/// Every mip level and layer.
+inline constexpr SubresourceRange kWholeTexture{};
+/// Mip level `level`, every layer.
+inline SubresourceRange mip(uint32_t level) { return {level, 1, 0, rhi::kRemainingSubresources}; }
+/// Layer `index` (of an array; 6 faces of a cube are layers too), every mip level.
+inline SubresourceRange layer(uint32_t index) { return {0, rhi::kRemainingSubresources, index, 1}; }
+/// `count` mip levels from `base`, every layer.
+inline SubresourceRange mips(uint32_t base, uint32_t count) { return {base, count, 0, rhi::kRemainingSubresources}; }
+/// Mip `level` of layer `index`.
+inline SubresourceRange mip_of_layer(uint32_t level, uint32_t index) { return {level, 1, index, 1}; }
+
+/// "whole", "mip 2", "mips 1..3", "layer 4", "mip 0 layers 2..5".
+std::string describe_range(const SubresourceRange& range);
+
+/// True when the two ranges share a subresource (before resolution: open counts run to the end).
+bool overlaps(const SubresourceRange& a, const SubresourceRange& b);
+/// True when the two byte ranges share a byte (size 0: to the end).
+bool overlaps(const BufferRange& a, const BufferRange& b);
+
 /// One declared port.
 struct Port {
     std::string name;
@@ -81,6 +106,10 @@ struct Port {
     ResourceType type = ResourceType::Texture;
     /// The buffer constraints (buffer ports).
     BufferSpec buffer;
+    /// Texture ports: the mip levels and layers it reads or writes (the whole texture by default).
+    SubresourceRange range{};
+    /// Buffer ports: the bytes it reads or writes (the whole buffer by default).
+    BufferRange bytes{};
 
     friend bool operator==(const Port&, const Port&) = default;
 };
@@ -94,13 +123,20 @@ public:
     explicit PortSet(std::string name) : name_(std::move(name)) {}
 
     /// Records a port declaration; Pass::add merges repeated names.
-    PortSet& declare(std::string port, PortKind kind, TextureSpec spec = {}, bool optional = false);
-    /// Declares an input port.
-    PortSet& input(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Input, std::move(spec)); }
+    PortSet& declare(std::string port, PortKind kind, TextureSpec spec = {}, bool optional = false,
+                     SubresourceRange range = {});
+    /// Declares an input port (reading `range` of the texture).
+    PortSet& input(std::string port, TextureSpec spec = {}, SubresourceRange range = {}) {
+        return declare(std::move(port), PortKind::Input, std::move(spec), false, range);
+    }
     /// Declares an output port.
-    PortSet& output(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Output, std::move(spec)); }
-    /// Declares an inout port (modifies its source's texture in place).
-    PortSet& inout(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::InOut, std::move(spec)); }
+    PortSet& output(std::string port, TextureSpec spec = {}, SubresourceRange range = {}) {
+        return declare(std::move(port), PortKind::Output, std::move(spec), false, range);
+    }
+    /// Declares an inout port (modifies `range` of its source's texture in place).
+    PortSet& inout(std::string port, TextureSpec spec = {}, SubresourceRange range = {}) {
+        return declare(std::move(port), PortKind::InOut, std::move(spec), false, range);
+    }
     /// Declares an input that may stay unconnected.
     PortSet& optional_input(std::string port, TextureSpec spec = {}) {
         return declare(std::move(port), PortKind::Input, std::move(spec), true);
@@ -111,18 +147,19 @@ public:
     }
 
     /// Records a buffer port declaration.
-    PortSet& declare_buffer(std::string port, PortKind kind, BufferSpec spec = {}, bool optional = false);
-    /// Declares a port reading a buffer.
-    PortSet& buffer_input(std::string port, BufferSpec spec = {}) {
-        return declare_buffer(std::move(port), PortKind::Input, std::move(spec));
+    PortSet& declare_buffer(std::string port, PortKind kind, BufferSpec spec = {}, bool optional = false,
+                            BufferRange bytes = {});
+    /// Declares a port reading (`bytes` of) a buffer.
+    PortSet& buffer_input(std::string port, BufferSpec spec = {}, BufferRange bytes = {}) {
+        return declare_buffer(std::move(port), PortKind::Input, std::move(spec), false, bytes);
     }
     /// Declares a port producing a new buffer.
-    PortSet& buffer_output(std::string port, BufferSpec spec = {}) {
-        return declare_buffer(std::move(port), PortKind::Output, std::move(spec));
+    PortSet& buffer_output(std::string port, BufferSpec spec = {}, BufferRange bytes = {}) {
+        return declare_buffer(std::move(port), PortKind::Output, std::move(spec), false, bytes);
     }
-    /// Declares a port reading a buffer and modifying it in place.
-    PortSet& buffer_inout(std::string port, BufferSpec spec = {}) {
-        return declare_buffer(std::move(port), PortKind::InOut, std::move(spec));
+    /// Declares a port reading a buffer and modifying (`bytes` of) it in place.
+    PortSet& buffer_inout(std::string port, BufferSpec spec = {}, BufferRange bytes = {}) {
+        return declare_buffer(std::move(port), PortKind::InOut, std::move(spec), false, bytes);
     }
 
     /// The port set's name.
@@ -160,13 +197,20 @@ public:
     Pass& add(const PortSet& ports);
 
     // Declarations on the pass's own port set.
-    Pass& declare(std::string port, PortKind kind, TextureSpec spec = {}, bool optional = false);
-    /// Declares an input port on the pass's own port set.
-    Pass& input(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Input, std::move(spec)); }
-    /// Declares an output port on the pass's own port set.
-    Pass& output(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::Output, std::move(spec)); }
-    /// Declares an inout port (modifies its source's texture in place).
-    Pass& inout(std::string port, TextureSpec spec = {}) { return declare(std::move(port), PortKind::InOut, std::move(spec)); }
+    Pass& declare(std::string port, PortKind kind, TextureSpec spec = {}, bool optional = false,
+                  SubresourceRange range = {});
+    /// Declares an input port on the pass's own port set, reading `range` of the texture.
+    Pass& input(std::string port, TextureSpec spec = {}, SubresourceRange range = {}) {
+        return declare(std::move(port), PortKind::Input, std::move(spec), false, range);
+    }
+    /// Declares an output port on the pass's own port set (writing `range` of the new texture).
+    Pass& output(std::string port, TextureSpec spec = {}, SubresourceRange range = {}) {
+        return declare(std::move(port), PortKind::Output, std::move(spec), false, range);
+    }
+    /// Declares an inout port (modifies `range` of its source's texture in place).
+    Pass& inout(std::string port, TextureSpec spec = {}, SubresourceRange range = {}) {
+        return declare(std::move(port), PortKind::InOut, std::move(spec), false, range);
+    }
     /// Declares an input that may stay unconnected.
     Pass& optional_input(std::string port, TextureSpec spec = {}) {
         return declare(std::move(port), PortKind::Input, std::move(spec), true);
@@ -177,18 +221,19 @@ public:
     }
 
     // Buffer ports on the pass's own port set (see BufferSpec for what a port's usage means).
-    Pass& declare_buffer(std::string port, PortKind kind, BufferSpec spec = {}, bool optional = false);
-    /// Declares a port reading a buffer.
-    Pass& buffer_input(std::string port, BufferSpec spec = {}) {
-        return declare_buffer(std::move(port), PortKind::Input, std::move(spec));
+    Pass& declare_buffer(std::string port, PortKind kind, BufferSpec spec = {}, bool optional = false,
+                         BufferRange bytes = {});
+    /// Declares a port reading (`bytes` of) a buffer.
+    Pass& buffer_input(std::string port, BufferSpec spec = {}, BufferRange bytes = {}) {
+        return declare_buffer(std::move(port), PortKind::Input, std::move(spec), false, bytes);
     }
     /// Declares a port producing a new buffer.
-    Pass& buffer_output(std::string port, BufferSpec spec = {}) {
-        return declare_buffer(std::move(port), PortKind::Output, std::move(spec));
+    Pass& buffer_output(std::string port, BufferSpec spec = {}, BufferRange bytes = {}) {
+        return declare_buffer(std::move(port), PortKind::Output, std::move(spec), false, bytes);
     }
-    /// Declares a port reading a buffer and modifying it in place.
-    Pass& buffer_inout(std::string port, BufferSpec spec = {}) {
-        return declare_buffer(std::move(port), PortKind::InOut, std::move(spec));
+    /// Declares a port reading a buffer and modifying (`bytes` of) it in place.
+    Pass& buffer_inout(std::string port, BufferSpec spec = {}, BufferRange bytes = {}) {
+        return declare_buffer(std::move(port), PortKind::InOut, std::move(spec), false, bytes);
     }
     /// Declares a buffer input that may stay unconnected.
     Pass& optional_buffer_input(std::string port, BufferSpec spec = {}) {

@@ -43,8 +43,9 @@ struct ColorPort {
     std::array<double, 4> clear{0.0, 0.0, 0.0, 0.0};
     /// The pass writes every texel: a first write need not clear (DontCare instead of Clear).
     bool writes_every_texel = false;
-    uint32_t mip = 0;
-    uint32_t layer = 0;
+    /// The mip level and layer rendered to; by default the first of the port's range.
+    std::optional<uint32_t> mip;
+    std::optional<uint32_t> layer;
 
     ColorPort(const char* name) : port(name) {}                // NOLINT(implicit): {"albedo", ...}
     ColorPort(std::string name) : port(std::move(name)) {}     // NOLINT(implicit)
@@ -58,8 +59,8 @@ struct DepthPort {
     float clear_depth = 1.0f;
     uint32_t clear_stencil = 0;
     bool writes_every_texel = false;  ///< see ColorPort
-    uint32_t mip = 0;
-    uint32_t layer = 0;
+    std::optional<uint32_t> mip;      ///< see ColorPort
+    std::optional<uint32_t> layer;
 
     DepthPort(const char* name) : port(name) {}             // NOLINT(implicit)
     DepthPort(std::string name) : port(std::move(name)) {}  // NOLINT(implicit)
@@ -105,6 +106,11 @@ public:
     [[nodiscard]] const ResolvedSpec* spec(std::string_view port);
     /// Shorthand for spec(port)->extent; {0, 0} when the port has no texture.
     [[nodiscard]] Extent2D extent(std::string_view port);
+    /// The mip levels and layers `port` uses, with concrete counts (bind it with
+    /// rhi::BindGroup::texture(binding, texture, sampler, range) to sample only those).
+    [[nodiscard]] rhi::TextureRange range(std::string_view port);
+    /// The size of the first mip level of `port`'s range ({0, 0} without a texture).
+    [[nodiscard]] Extent2D range_extent(std::string_view port);
     /// True when `port` is a buffer port of this pass with a buffer behind it.
     [[nodiscard]] bool has_buffer(std::string_view port) const;
     /// The buffer behind buffer port `port`: null for an unconnected optional port (no error);

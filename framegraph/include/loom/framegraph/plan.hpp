@@ -55,6 +55,10 @@ struct PlanPort {
     /// How this buffer port uses the buffer: one flag (Storage, Uniform, Vertex, Index,
     /// Indirect, CopySrc, CopyDst); None for texture ports.
     rhi::BufferUsage buffer_usage = rhi::BufferUsage::None;
+    /// Texture ports: the mip levels and layers it uses, with concrete counts.
+    SubresourceRange range{};
+    /// Buffer ports: the bytes it uses, with a concrete size.
+    BufferRange bytes{};
 
     friend bool operator==(const PlanPort&, const PlanPort&) = default;
 };

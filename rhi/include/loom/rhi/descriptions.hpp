@@ -91,6 +91,18 @@ struct TextureDesc {
     std::optional<TexturePlacement> placement;
 };
 
+/// Counts of kRemainingSubresources in a TextureRange mean "to the last one".
+inline constexpr uint32_t kRemainingSubresources = UINT32_MAX;
+
+/// A range of mip levels and array layers of a texture.
+struct TextureRange {
+    uint32_t base_mip = 0;
+    uint32_t mip_count = kRemainingSubresources;
+    uint32_t base_layer = 0;
+    uint32_t layer_count = kRemainingSubresources;
+    friend bool operator==(const TextureRange&, const TextureRange&) = default;
+};
+
 /// Size and alignment a texture needs inside a heap.
 struct MemoryRequirements {
     uint64_t size = 0;
