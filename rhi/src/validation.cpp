@@ -206,8 +206,30 @@ Status texture_memory_query(const TextureDesc& desc, const Capabilities& caps) {
     return texture_desc(desc, caps);
 }
 
-Status buffer_desc(const BufferDesc& desc) {
+Status buffer_desc(const BufferDesc& desc, const Capabilities& caps) {
+    if (desc.placement && !caps.placed_resources) {
+        return Error{ErrorCode::Unsupported, "buffer " + in_quotes(desc.name) + ": placement in a heap needs placed resources, which this device lacks"};
+    }
+    return buffer_memory_query(desc);
+}
+
+Status buffer_memory_query(const BufferDesc& desc) {
     if (desc.size == 0) return Error{ErrorCode::InvalidArgument, "buffer " + in_quotes(desc.name) + ": size is 0"};
+    return {};
+}
+
+Status buffer_placement(const BufferDesc& desc, const HeapDesc& heap, const MemoryRequirements& requirements) {
+    const std::string what = "buffer " + in_quotes(desc.name) + " placed in heap " + in_quotes(heap.name) + ": ";
+    const uint64_t offset = desc.placement ? desc.placement->offset : 0;
+    const uint64_t alignment = std::max<uint64_t>(1, requirements.alignment);
+    if (offset % alignment != 0) {
+        return Error{ErrorCode::InvalidArgument,
+                     what + "offset " + std::to_string(offset) + " is not a multiple of the alignment " + std::to_string(alignment)};
+    }
+    if (!checked::range_fits(offset, requirements.size, heap.size)) {
+        return Error{ErrorCode::InvalidArgument, what + "range " + std::to_string(offset) + "+" + std::to_string(requirements.size) +
+                                                     " exceeds the heap size " + std::to_string(heap.size)};
+    }
     return {};
 }
 
@@ -491,6 +513,120 @@ Result<TextureCopyRange> texture_copy(const TextureDesc& src, const TextureDesc&
     return out;
 }
 
+uint32_t range_layers(const TextureDesc& texture) {
+    return texture.dimension == TextureDimension::Tex3D ? 1 : texture.depth_or_layers;
+}
+
+namespace {
+
+// "mips 2..4", "mips 2.." (to the last), "0 mips from 2".
+std::string span_text(std::string_view plural, uint32_t base, uint32_t count) {
+    if (count == kRemainingSubresources) return std::string(plural) + " " + std::to_string(base) + "..";
+    if (count == 0) return "0 " + std::string(plural) + " from " + std::to_string(base);
+    return std::string(plural) + " " + std::to_string(base) + ".." + std::to_string(uint64_t{base} + count - 1);
+}
+
+// The count of `base`/`count` resolved against `total`, or nothing when the span is empty or
+// leaves 0..total-1.
+std::optional<uint32_t> resolved_count(uint32_t base, uint32_t count, uint32_t total) {
+    if (base >= total || count == 0) return std::nullopt;
+    if (count == kRemainingSubresources) return total - base;
+    if (count > total - base) return std::nullopt;
+    return count;
+}
+
+std::string_view texture_kind_name(TextureKind kind) {
+    switch (kind) {
+        case TextureKind::Tex2D: return "Tex2D";
+        case TextureKind::Tex2DArray: return "Tex2DArray";
+        case TextureKind::Tex3D: return "Tex3D";
+        case TextureKind::Cube: return "Cube";
+    }
+    return "?";
+}
+
+bool same_shape(TextureKind kind, TextureDimension dimension) {
+    switch (kind) {
+        case TextureKind::Tex2D: return dimension == TextureDimension::Tex2D;
+        case TextureKind::Tex2DArray: return dimension == TextureDimension::Tex2DArray;
+        case TextureKind::Tex3D: return dimension == TextureDimension::Tex3D;
+        case TextureKind::Cube: return dimension == TextureDimension::Cube;
+    }
+    return false;
+}
+
+// Whether `layers` layers of texture `t` can be seen as the shader's declaration `kind`: the
+// views both APIs can make (a 2D one of one layer, an array one of 2D, array and cube layers, a
+// cube one of six faces, a 3D one of a 3D texture).
+Status kind_fits(const std::string& site, TextureKind kind, const TextureDesc& t, uint32_t layers) {
+    bool fits = false;
+    std::string_view hint;
+    switch (kind) {
+        case TextureKind::Tex2D:
+            fits = t.dimension != TextureDimension::Tex3D && layers == 1;
+            hint = "a 2D declaration sees one layer: bind one (layer_count 1) or declare an array";
+            break;
+        case TextureKind::Tex2DArray:
+            fits = t.dimension != TextureDimension::Tex3D;
+            hint = "an array declaration sees layers of a Tex2D, Tex2DArray or Cube texture";
+            break;
+        case TextureKind::Cube:
+            fits = t.dimension == TextureDimension::Cube && layers == 6;
+            hint = "a cube declaration sees all 6 faces of a Cube texture";
+            break;
+        case TextureKind::Tex3D:
+            fits = t.dimension == TextureDimension::Tex3D;
+            hint = "a 3D declaration sees a Tex3D texture";
+            break;
+    }
+    if (fits) return {};
+    return Error{ErrorCode::InvalidArgument, site + ": texture " + in_quotes(t.name) + " (" + std::string(dimension_name(t.dimension)) + ", " +
+                                                 count_of(layers, "layer") + " bound) does not fit the shader's " +
+                                                 std::string(texture_kind_name(kind)) + " declaration; " + std::string(hint)};
+}
+
+}  // namespace
+
+Result<TextureRange> texture_range(std::string_view what, const TextureDesc& t, const TextureRange& range) {
+    TextureRange out = range;
+    const auto mips = resolved_count(range.base_mip, range.mip_count, t.mip_levels);
+    if (!mips) {
+        return Error{ErrorCode::InvalidArgument, std::string(what) + ": " + span_text("mips", range.base_mip, range.mip_count) +
+                                                     " are not inside its " + count_of(t.mip_levels, "mip level")};
+    }
+    const uint32_t total_layers = range_layers(t);
+    const auto layers = resolved_count(range.base_layer, range.layer_count, total_layers);
+    if (!layers) {
+        return Error{ErrorCode::InvalidArgument, std::string(what) + ": " + span_text("layers", range.base_layer, range.layer_count) +
+                                                     " are not inside its " + count_of(total_layers, "layer") +
+                                                     (t.dimension == TextureDimension::Tex3D ? " (the depth slices of a Tex3D texture are not layers)" : "")};
+    }
+    out.mip_count = *mips;
+    out.layer_count = *layers;
+    return out;
+}
+
+BoundRange bound_range(const PipelineSlot& slot, const TextureDesc& texture, const BindingEntry& entry) {
+    BoundRange out;
+    out.kind = slot.texture_kind;
+    TextureRange wanted;
+    bool all_mips = true;
+    if (const auto* tb = std::get_if<TextureBinding>(&entry.resource)) {
+        wanted = tb->range;
+    } else if (const auto* sb = std::get_if<StorageTextureBinding>(&entry.resource)) {
+        // A storage image is one level; "whole" is about its layers.
+        wanted = TextureRange{sb->mip, 1, sb->base_layer, sb->layer_count};
+        all_mips = false;
+    }
+    // Accepted by binding() before: the range resolves.
+    auto resolved = texture_range("", texture, wanted);
+    out.range = resolved.ok() ? *resolved : TextureRange{0, texture.mip_levels, 0, range_layers(texture)};
+    const bool mips_whole = !all_mips || (out.range.base_mip == 0 && out.range.mip_count == texture.mip_levels);
+    const bool layers_whole = out.range.base_layer == 0 && out.range.layer_count == range_layers(texture);
+    out.whole = mips_whole && layers_whole && same_shape(out.kind, texture.dimension);
+    return out;
+}
+
 Status buffer_copy(const BufferDesc& src, uint64_t src_offset, const BufferDesc& dst, uint64_t dst_offset, uint64_t size,
                    bool same_buffer) {
     const std::string command = "copy_buffer from " + in_quotes(src.name) + " to " + in_quotes(dst.name);
@@ -577,9 +713,13 @@ Result<const BindingEntry*> binding(std::string_view command, std::string_view p
             if (!texture.ok()) return handle_error(texture.take_error());
             auto sampler = lookup.sampler(tb->sampler);
             if (!sampler.ok()) return handle_error(sampler.take_error());
-            if (!has_all((*texture)->usage, TextureUsage::Sampled)) {
-                return Error{ErrorCode::InvalidArgument, site() + ": texture " + in_quotes((*texture)->name) + " lacks usage Sampled"};
+            const TextureDesc& t = **texture;
+            if (!has_all(t.usage, TextureUsage::Sampled)) {
+                return Error{ErrorCode::InvalidArgument, site() + ": texture " + in_quotes(t.name) + " lacks usage Sampled"};
             }
+            auto range = texture_range(site() + ": texture " + in_quotes(t.name), t, tb->range);
+            if (!range.ok()) return range.take_error();
+            LOOM_TRY(kind_fits(site(), slot.texture_kind, t, range->layer_count));
             return entry;
         }
         case BindingKind::StorageImage: {
@@ -595,6 +735,9 @@ Result<const BindingEntry*> binding(std::string_view command, std::string_view p
                 return Error{ErrorCode::InvalidArgument, site() + ": mip " + std::to_string(sb->mip) + " of texture " + in_quotes(t.name) +
                                                              " does not exist (" + count_of(t.mip_levels, "level") + ")"};
             }
+            auto range = texture_range(site() + ": texture " + in_quotes(t.name), t, TextureRange{sb->mip, 1, sb->base_layer, sb->layer_count});
+            if (!range.ok()) return range.take_error();
+            LOOM_TRY(kind_fits(site(), slot.texture_kind, t, range->layer_count));
             return entry;
         }
     }
@@ -662,6 +805,12 @@ Status texture_transition(const TextureDesc& texture, ResourceState state, const
                      what + " to " + target + ": " + format + " cannot be sampled on this device"};
     }
     return {};
+}
+
+Result<TextureRange> texture_range_transition(const TextureDesc& texture, ResourceState state, const TextureRange& range,
+                                              const Capabilities& caps) {
+    LOOM_TRY(texture_transition(texture, state, caps));
+    return texture_range("transition: texture " + in_quotes(texture.name), texture, range);
 }
 
 Status buffer_transition(const BufferDesc& buffer, ResourceState state) {

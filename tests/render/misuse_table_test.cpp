@@ -190,6 +190,59 @@ std::vector<Row> table() {
                                       : Expected{ErrorCode::Unsupported, "heap 'h': heaps need placed resources, which this device lacks"};
         });
 
+    add("buffer placement without placed resources",
+        [](rhi::Device& d) -> Status {
+            rhi::BufferDesc b{"b", 64, rhi::BufferUsage::Storage};
+            b.placement = rhi::BufferPlacement{};
+            auto r = d.create_buffer(b);
+            if (r.ok()) LOOM_TRY(d.destroy(*r));
+            return r.ok() ? Status{} : Status(r.take_error());
+        },
+        unsupported("buffer 'b': placement in a heap needs placed resources, which this device lacks"),
+        [](const rhi::Capabilities& c) { return !c.placed_resources; });
+    add("buffer memory requirements of size 0",
+        [](rhi::Device& d) { auto r = d.buffer_memory_requirements({"b", 0, rhi::BufferUsage::Storage}); return r.ok() ? Status{} : Status(r.take_error()); },
+        invalid("buffer 'b': size is 0"));
+    // Places 64-byte storage buffer 'b' in heap 'h' (sized from the buffer's requirements) at an
+    // offset computed from them; `noted` keeps the requirements for the expected message.
+    using FromRequirements = std::function<uint64_t(const rhi::MemoryRequirements&)>;
+    auto placed_buffer = [](std::shared_ptr<rhi::MemoryRequirements> noted, FromRequirements heap_size, FromRequirements offset) {
+        return [=](rhi::Device& d) -> Status {
+            rhi::BufferDesc b{"b", 64, rhi::BufferUsage::Storage};
+            auto req = d.buffer_memory_requirements(b);
+            if (!req.ok()) return Error{ErrorCode::Backend, "setup: " + req.error().to_string()};
+            *noted = *req;
+            auto heap = d.create_heap({"h", heap_size(*req)});
+            if (!heap.ok()) return Error{ErrorCode::Backend, "setup: " + heap.error().to_string()};
+            b.placement = rhi::BufferPlacement{*heap, offset(*req)};
+            auto made = d.create_buffer(b);
+            if (made.ok()) LOOM_TRY(d.destroy(*made));
+            LOOM_TRY(d.destroy(*heap));
+            return made.ok() ? Status{} : Status(made.take_error());
+        };
+    };
+    const auto placed_only = [](const rhi::Capabilities& c) { return c.placed_resources; };
+    {
+        auto noted = std::make_shared<rhi::MemoryRequirements>();
+        add("buffer placement offset not aligned",
+            placed_buffer(noted, [](const auto& r) { return 4 * (r.size + r.alignment); }, [](const auto& r) { return r.alignment / 2; }),
+            [noted](const rhi::Capabilities&) {
+                return Expected{ErrorCode::InvalidArgument, "buffer 'b' placed in heap 'h': offset " + std::to_string(noted->alignment / 2) +
+                                                                " is not a multiple of the alignment " + std::to_string(noted->alignment)};
+            },
+            placed_only);
+    }
+    {
+        auto noted = std::make_shared<rhi::MemoryRequirements>();
+        add("buffer placement past the heap's end",
+            placed_buffer(noted, [](const auto& r) { return r.size; }, [](const auto& r) { return r.alignment; }),
+            [noted](const rhi::Capabilities&) {
+                return Expected{ErrorCode::InvalidArgument, "buffer 'b' placed in heap 'h': range " + std::to_string(noted->alignment) + "+" +
+                                                                std::to_string(noted->size) + " exceeds the heap size " + std::to_string(noted->size)};
+            },
+            placed_only);
+    }
+
     // ---- buffer transfers
     const std::vector<std::byte> eight(8);
     add("write_buffer past the end", [eight](rhi::Device& d) { return with_buffer(d, 16, [&](rhi::BufferHandle b) { return d.write_buffer(b, 12, eight); }); },
@@ -554,6 +607,14 @@ void main() { result.value = textureLod(tex, vec2(0.5), 0.0); }
     add("sampling a texture in the wrong state", dispatch_with(TextureUsage::Sampled, rhi::BufferUsage::Storage, false, both),
         expect({ErrorCode::InvalidState, "dispatch: pipeline 'p' set 0 binding 0 ('tex'): texture 't' is in state Undefined; "
                                          "transition it to ShaderRead first"}));
+    add("sampled range past the mips",
+        dispatch_with(TextureUsage::Sampled, rhi::BufferUsage::Storage, true,
+                      [](const Resources& r) { return std::optional(rhi::BindGroup{}.texture(0, r.t, r.s, {.base_mip = 1}).buffer(1, r.b)); }),
+        invalid("dispatch: pipeline 'p' set 0 binding 0 ('tex'): texture 't': mips 1.. are not inside its 1 mip level"));
+    add("sampled range without layers",
+        dispatch_with(TextureUsage::Sampled, rhi::BufferUsage::Storage, true,
+                      [](const Resources& r) { return std::optional(rhi::BindGroup{}.texture(0, r.t, r.s, {.layer_count = 0}).buffer(1, r.b)); }),
+        invalid("dispatch: pipeline 'p' set 0 binding 0 ('tex'): texture 't': 0 layers from 0 are not inside its 1 layer"));
     add("viewport without area", frame([](rhi::Device&, rhi::CommandList& list) { list.set_viewport({0, 0, 0, 4, 0, 1}); }),
         invalid("set_viewport: 0x4 at (0,0) with depths 0..1: the size must be positive and the depths within 0..1"));
     add("viewport depth", frame([](rhi::Device&, rhi::CommandList& list) { list.set_viewport({0, 0, 4, 4, 0, 2}); }),
@@ -581,6 +642,15 @@ void main() { result.value = textureLod(tex, vec2(0.5), 0.0); }
         invalid("transition: texture 'c' to Storage needs Storage usage"));
     add("depth texture transition to RenderTarget", transition(true, rhi::ResourceState::RenderTarget),
         invalid("transition: texture 'd' (Depth32F) cannot be in state RenderTarget"));
+    auto range_transition = [with_textures, target](rhi::TextureRange range) {
+        return with_textures({target("c")}, [range](rhi::CommandList& list, const std::vector<rhi::TextureHandle>& t) {
+            list.transition(t[0], rhi::ResourceState::ShaderRead, range);
+        });
+    };
+    add("texture range transition past the mips", range_transition({.base_mip = 0, .mip_count = 2}),
+        invalid("transition: texture 'c': mips 0..1 are not inside its 1 mip level"));
+    add("texture range transition past the layers", range_transition({.base_layer = 1}),
+        invalid("transition: texture 'c': layers 1.. are not inside its 1 layer"));
     auto to_render_target = [](rhi::CommandList& list, rhi::BufferHandle b) {
         list.transition(b, rhi::ResourceState::RenderTarget);
     };

@@ -188,5 +188,53 @@ TEST(Validation, TransitionsNeedAStateOfTheResourceWithItsUsage) {
                  "transition: buffer 'b' cannot be in state Present");
 }
 
+TEST(Validation, TextureRangesResolveToTheLastOneAndStayInside) {
+    TextureDesc array = texture(Format::RGBA8Unorm, TextureUsage::Sampled);
+    array.dimension = TextureDimension::Tex2DArray;
+    array.depth_or_layers = 6;
+    array.mip_levels = 5;
+    auto whole = validation::texture_range("t", array, TextureRange{});
+    ASSERT_TRUE(whole.ok());
+    EXPECT_EQ(*whole, (TextureRange{0, 5, 0, 6}));
+    auto rest = validation::texture_range("t", array, TextureRange{.base_mip = 3, .base_layer = 2, .layer_count = 1});
+    ASSERT_TRUE(rest.ok());
+    EXPECT_EQ(*rest, (TextureRange{3, 2, 2, 1}));
+    auto no_mip = validation::texture_range("x", array, {.base_mip = 5});
+    ASSERT_FALSE(no_mip.ok());
+    EXPECT_EQ(no_mip.error().code, ErrorCode::InvalidArgument);
+    EXPECT_EQ(no_mip.error().message, "x: mips 5.. are not inside its 5 mip levels");
+    auto past = validation::texture_range("x", array, {.base_layer = 4, .layer_count = 3});
+    ASSERT_FALSE(past.ok());
+    EXPECT_EQ(past.error().message, "x: layers 4..6 are not inside its 6 layers");
+    // Counts near 2^32 do not wrap.
+    auto huge = validation::texture_range("x", array, {.base_mip = 1, .mip_count = 0xFFFFFFFEu});
+    ASSERT_FALSE(huge.ok());
+    TextureDesc volume = texture(Format::RGBA8Unorm, TextureUsage::Sampled);
+    volume.dimension = TextureDimension::Tex3D;
+    volume.depth_or_layers = 8;
+    auto slices = validation::texture_range("x", volume, {.base_layer = 0, .layer_count = 8});
+    ASSERT_FALSE(slices.ok());
+    EXPECT_EQ(slices.error().message, "x: layers 0..7 are not inside its 1 layer (the depth slices of a Tex3D texture are not layers)");
+}
+
+TEST(Validation, BufferPlacementsAreAlignedAndInsideTheHeap) {
+    BufferDesc desc{"b", 100, BufferUsage::Storage};
+    desc.placement = BufferPlacement{HeapHandle{}, 256};
+    const HeapDesc heap{"h", 1024};
+    EXPECT_TRUE(validation::buffer_placement(desc, heap, {256, 256}).ok());
+    expect_error(validation::buffer_placement(desc, heap, {256, 512}), ErrorCode::InvalidArgument,
+                 "buffer 'b' placed in heap 'h': offset 256 is not a multiple of the alignment 512");
+    expect_error(validation::buffer_placement(desc, heap, {1024, 256}), ErrorCode::InvalidArgument,
+                 "buffer 'b' placed in heap 'h': range 256+1024 exceeds the heap size 1024");
+    desc.placement->offset = std::numeric_limits<uint64_t>::max() - 255;
+    expect_error(validation::buffer_placement(desc, heap, {512, 256}), ErrorCode::InvalidArgument,
+                 "buffer 'b' placed in heap 'h': range 18446744073709551360+512 exceeds the heap size 1024");
+    Capabilities no_heaps = capable_device();
+    no_heaps.placed_resources = false;
+    expect_error(validation::buffer_desc(desc, no_heaps), ErrorCode::Unsupported,
+                 "buffer 'b': placement in a heap needs placed resources, which this device lacks");
+    EXPECT_TRUE(validation::buffer_desc(desc, capable_device()).ok());
+}
+
 }  // namespace
 }  // namespace loom::rhi

@@ -87,7 +87,16 @@ TEST(VulkanBarrierTable, BatchEmitsOnlyNeededBarriers) {
     batch.buffer(buffer, ResourceState::Storage, ResourceState::VertexBuffer);
     EXPECT_EQ(batch.buffer_barriers()[1].srcAccessMask, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     EXPECT_EQ(batch.buffer_barriers()[1].dstStageMask, VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT);
-    EXPECT_EQ(batch.size(), 5u);
+    // Storage to Storage (a second pass reads what the first wrote) is a barrier too.
+    batch.buffer(buffer, ResourceState::Storage, ResourceState::Storage);
+    ASSERT_EQ(batch.buffer_barriers().size(), 3u);
+    EXPECT_EQ(batch.buffer_barriers()[2].dstAccessMask, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    // From Undefined (a placed buffer taking over bytes an alias wrote): every earlier write.
+    batch.buffer(buffer, ResourceState::Undefined, ResourceState::Storage);
+    ASSERT_EQ(batch.buffer_barriers().size(), 4u);
+    EXPECT_EQ(batch.buffer_barriers()[3].srcStageMask, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    EXPECT_EQ(batch.buffer_barriers()[3].srcAccessMask, VK_ACCESS_2_MEMORY_WRITE_BIT);
+    EXPECT_EQ(batch.size(), 7u);
 }
 
 TEST(VulkanBarrierTable, AspectsOfFormats) {

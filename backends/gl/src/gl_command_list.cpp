@@ -116,9 +116,24 @@ void GlCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
         fail(ErrorCode::Unsupported, what + "this combination of attachments is not a complete framebuffer on this device");
         return;
     }
-    // The pass moves its attachments into the attachment states itself.
-    for (GlTexture* t : color_textures) t->state = ResourceState::RenderTarget;
-    if (depth) depth->state = ResourceState::DepthWrite;
+    // The pass moves its attachments (one mip and layer each) into the attachment states itself;
+    // storage writes to them become visible to the framebuffer first.
+    bool after_storage = false;
+    auto attach = [&](GlTexture& t, uint32_t mip, uint32_t layer, ResourceState state) {
+        ResourceState& s = t.states[t.subresource(mip, t.layers() == 1 ? 0 : layer)];
+        after_storage = after_storage || s == ResourceState::Storage;
+        s = state;
+    };
+    for (std::size_t i = 0; i < desc.colors.size(); ++i) {
+        attach(*color_textures[i], desc.colors[i].mip, desc.colors[i].layer, ResourceState::RenderTarget);
+    }
+    if (depth) attach(*depth, desc.depth->mip, desc.depth->layer, ResourceState::DepthWrite);
+    if (after_storage) {
+        record([](GlStateCache& cache) {
+            glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT);
+            cache.count_call();
+        });
+    }
 
     struct ColorClear {
         GLint index;
@@ -247,7 +262,7 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
     const rhi::validation::ResourceLookup& lookup = device_->resource_lookup();
     std::vector<const rhi::BindingEntry*> entries;
     for (const PipelineBinding& b : p.bindings) {
-        const rhi::validation::PipelineSlot slot{b.set, b.binding, b.kind, b.name};
+        const rhi::validation::PipelineSlot slot{b.set, b.binding, b.kind, b.name, b.texture_kind};
         auto entry =
             rhi::validation::binding(command, p.name, slot, state_.bind_group(b.set), device_->capabilities(), lookup);
         if (!entry.ok()) {
@@ -258,7 +273,7 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
     }
     for (std::size_t n = 0; n < p.bindings.size(); ++n) {
         const PipelineBinding& b = p.bindings[n];
-        const rhi::validation::PipelineSlot slot{b.set, b.binding, b.kind, b.name};
+        const rhi::validation::PipelineSlot slot{b.set, b.binding, b.kind, b.name, b.texture_kind};
         const rhi::BindingEntry* entry = entries[n];
         // The handles were found by the validation above.
         ResolvedBinding r;
@@ -276,32 +291,79 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
             }
             case BindingKind::SampledTexture: {
                 const auto& tb = std::get<rhi::TextureBinding>(entry->resource);
-                const GlTexture& t = **device_->textures().get(tb.texture);
+                GlTexture& t = **device_->textures().get(tb.texture);
                 const bool depth = rhi::format_info(t.desc.format).is_depth_stencil();
-                if (t.state != ResourceState::ShaderRead && !(depth && t.state == ResourceState::DepthRead)) {
-                    // Parity with Vulkan, where sampling needs the shader-read layout.
-                    Error e = rhi::validation::state_for_binding(command, p.name, slot, t.desc.name, t.state,
+                const rhi::validation::BoundRange bound = rhi::validation::bound_range(slot, t.desc, *entry);
+                // Parity with Vulkan, where sampling needs the shader-read layout: the bound
+                // subresources in ShaderRead (depth: all in DepthRead or all in ShaderRead).
+                auto all_in = [&](ResourceState wanted) {
+                    bool all = true;
+                    t.for_each_in(bound.range, [&](std::size_t i) { all = all && t.states[i] == wanted; });
+                    return all;
+                };
+                if (!all_in(ResourceState::ShaderRead) && !(depth && all_in(ResourceState::DepthRead))) {
+                    ResourceState found = ResourceState::ShaderRead;
+                    t.for_each_in(bound.range, [&](std::size_t i) {
+                        if (found == ResourceState::ShaderRead && t.states[i] != ResourceState::ShaderRead) found = t.states[i];
+                    });
+                    Error e = rhi::validation::state_for_binding(command, p.name, slot, t.desc.name, found,
                                                                  depth ? "DepthRead or ShaderRead" : "ShaderRead");
                     fail(e.code, e.message);
                     return false;
                 }
                 r.object = t.name;
+                if (!bound.whole) {
+                    // A range, or the texture seen as another dimension: a view of it.
+                    auto view = device_->texture_view(t, bound.range, bound.kind);
+                    if (!view.ok()) {
+                        Error e = view.take_error();
+                        e.message = std::string(command) + ": pipeline " + in_quotes(p.name) + " binding " + in_quotes(b.name) + ": " + e.message;
+                        fail(std::move(e));
+                        return false;
+                    }
+                    r.object = *view;
+                }
                 r.sampler = (*device_->samplers().get(tb.sampler))->name;
                 break;
             }
             case BindingKind::StorageImage: {
                 const auto& sb = std::get<rhi::StorageTextureBinding>(entry->resource);
-                const GlTexture& t = **device_->textures().get(sb.texture);
-                if (t.state != ResourceState::Storage) {
-                    Error e = rhi::validation::state_for_binding(command, p.name, slot, t.desc.name, t.state, "Storage");
+                GlTexture& t = **device_->textures().get(sb.texture);
+                const rhi::validation::BoundRange bound = rhi::validation::bound_range(slot, t.desc, *entry);
+                ResourceState found = ResourceState::Storage;
+                t.for_each_in(bound.range, [&](std::size_t i) {
+                    if (found == ResourceState::Storage && t.states[i] != ResourceState::Storage) found = t.states[i];
+                });
+                if (found != ResourceState::Storage) {
+                    Error e = rhi::validation::state_for_binding(command, p.name, slot, t.desc.name, found, "Storage");
                     fail(e.code, e.message);
                     return false;
                 }
                 r.object = t.name;
                 r.level = static_cast<GLint>(sb.mip);
-                r.layered = t.target != GL_TEXTURE_2D;
                 r.access = b.image_access;
                 r.format = t.format->internal_format;
+                if (bound.kind == rhi::TextureKind::Tex2D) {
+                    // One layer of an array or cube (or a 2D texture): bound unlayered.
+                    r.layered = false;
+                    r.layer = static_cast<GLint>(bound.range.base_layer);
+                } else if (bound.whole || t.layers() == 1) {
+                    // Every layer (or slice of a 3D texture) as the texture has them.
+                    r.layered = true;
+                } else {
+                    // Some layers, or a 2D texture or cube seen as an array: a view of the level.
+                    auto view = device_->texture_view(t, rhi::TextureRange{sb.mip, 1, bound.range.base_layer, bound.range.layer_count},
+                                                      bound.kind);
+                    if (!view.ok()) {
+                        Error e = view.take_error();
+                        e.message = std::string(command) + ": pipeline " + in_quotes(p.name) + " binding " + in_quotes(b.name) + ": " + e.message;
+                        fail(std::move(e));
+                        return false;
+                    }
+                    r.object = *view;
+                    r.level = 0;
+                    r.layered = true;
+                }
                 break;
             }
         }
@@ -348,7 +410,7 @@ void GlCommandList::apply_bindings(GlStateCache& cache, const std::vector<Resolv
                 cache.bind_sampler(b.point, b.sampler);
                 break;
             case BindingKind::StorageImage:
-                cache.bind_image(b.point, b.object, b.level, b.layered, 0, b.access, b.format);
+                cache.bind_image(b.point, b.object, b.level, b.layered, b.layer, b.access, b.format);
                 break;
         }
     }
@@ -517,15 +579,17 @@ void GlCommandList::copy_texture(const rhi::TextureCopy& copy) {
     const uint32_t sz = is3d ? so.z : range->src_layer, dz = is3d ? dso.z : range->dst_layer;
     const uint32_t w = range->extent.width, h = range->extent.height, depth = range->extent.depth;
     const uint32_t src_mip = range->src_mip, dst_mip = range->dst_mip;
-    if (st.state == ResourceState::Storage || dt.state == ResourceState::Storage) {
+    ResourceState& src_state = st.states[st.subresource(src_mip, st.layers() == 1 ? 0 : range->src_layer)];
+    ResourceState& dst_state = dt.states[dt.subresource(dst_mip, dt.layers() == 1 ? 0 : range->dst_layer)];
+    if (src_state == ResourceState::Storage || dst_state == ResourceState::Storage) {
         const GLbitfield bits = barrier_after_storage(ResourceState::CopySrc);
         record([bits](GlStateCache& cache) {
             glMemoryBarrier(bits);
             cache.count_call();
         });
     }
-    st.state = ResourceState::CopySrc;
-    dt.state = ResourceState::CopyDst;
+    src_state = ResourceState::CopySrc;
+    dst_state = ResourceState::CopyDst;
     const GLuint from = st.name, to = dt.name;
     const GLenum from_target = st.target, to_target = dt.target;
     record([=](GlStateCache& cache) {
@@ -537,14 +601,23 @@ void GlCommandList::copy_texture(const rhi::TextureCopy& copy) {
     });
 }
 
-void GlCommandList::transition(rhi::TextureHandle texture, ResourceState state) {
+void GlCommandList::transition(rhi::TextureHandle texture, ResourceState state) { transition(texture, state, rhi::TextureRange{}); }
+
+void GlCommandList::transition(rhi::TextureHandle texture, ResourceState state, const rhi::TextureRange& range) {
     if (!accepted(state_.check_outside_render_pass("transition"))) return;
     auto found = device_->textures().get(texture);
     if (!found.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + found.error().message);
     GlTexture& t = **found;
-    if (!accepted(rhi::validation::texture_transition(t.desc, state, device_->capabilities()))) return;
-    if (t.state == ResourceState::Storage) {
-        // Storage writes are the only accesses GL does not order by itself.
+    auto resolved = rhi::validation::texture_range_transition(t.desc, state, range, device_->capabilities());
+    if (!resolved.ok()) return fail(resolved.take_error());
+    // Storage writes are the only accesses GL does not order by itself: a barrier when any
+    // subresource moved was written as storage (e.g. mip k after a down-sampling dispatch).
+    bool after_storage = false;
+    t.for_each_in(*resolved, [&](std::size_t i) {
+        after_storage = after_storage || t.states[i] == ResourceState::Storage;
+        t.states[i] = state;
+    });
+    if (after_storage) {
         const GLbitfield bits = barrier_after_storage(state);
         if (bits != 0) {
             record([bits](GlStateCache& cache) {
@@ -553,7 +626,6 @@ void GlCommandList::transition(rhi::TextureHandle texture, ResourceState state) 
             });
         }
     }
-    t.state = state;
 }
 
 void GlCommandList::transition(rhi::BufferHandle buffer, ResourceState state) {

@@ -160,6 +160,8 @@ GlDevice::~GlDevice() {
     if (!free_queries_.empty()) glDeleteQueries(static_cast<GLsizei>(free_queries_.size()), free_queries_.data());
     // Whatever the user did not destroy goes with the device (imports stay the application's).
     textures_.clear([](rhi::TextureHandle, GlTexture& t) {
+        const std::vector<GLuint> views = view_names(t);
+        if (!views.empty()) glDeleteTextures(static_cast<GLsizei>(views.size()), views.data());
         if (!t.imported) glDeleteTextures(1, &t.name);
     });
     buffers_.clear([](rhi::BufferHandle, GlBuffer& b) { glDeleteBuffers(1, &b.name); });
@@ -178,6 +180,19 @@ Result<rhi::HeapHandle> GlDevice::create_heap(const rhi::HeapDesc& desc) {
 Result<rhi::MemoryRequirements> GlDevice::texture_memory_requirements(const rhi::TextureDesc& desc) {
     LOOM_TRY(rhi::validation::texture_memory_query(desc, caps_));  // refuses: no placed resources
     return Error{ErrorCode::Unsupported, "texture " + rhi::validation::in_quotes(desc.name) + ": no memory requirements"};
+}
+
+Result<rhi::MemoryRequirements> GlDevice::buffer_memory_requirements(const rhi::BufferDesc& desc) {
+    LOOM_TRY(rhi::validation::buffer_memory_query(desc));
+    // GL places nothing, but planners size transient buffers the same way on every backend:
+    // the size rounded up to 256 bytes (the largest uniform/storage offset alignment GL drivers
+    // report) at an alignment of 256.
+    constexpr uint64_t kAlignment = 256;
+    if (desc.size > UINT64_MAX - (kAlignment - 1)) {
+        return Error{ErrorCode::InvalidArgument, "buffer " + rhi::validation::in_quotes(desc.name) + ": size " + std::to_string(desc.size) +
+                                                     " cannot be rounded up to " + std::to_string(kAlignment) + " bytes"};
+    }
+    return rhi::MemoryRequirements{(desc.size + kAlignment - 1) / kAlignment * kAlignment, kAlignment};
 }
 
 Status GlDevice::destroy(rhi::HeapHandle heap) {

@@ -60,6 +60,7 @@ public:
                      uint64_t size) override;
     void copy_texture(const rhi::TextureCopy& copy) override;
     void transition(rhi::TextureHandle texture, rhi::ResourceState state) override;
+    void transition(rhi::TextureHandle texture, rhi::ResourceState state, const rhi::TextureRange& range) override;
     void transition(rhi::BufferHandle buffer, rhi::ResourceState state) override;
     void begin_timer(std::string_view label) override;
     void end_timer() override;
@@ -93,6 +94,7 @@ private:
         GLsizeiptr size = 0;
         GLint level = 0;
         bool layered = false;
+        GLint layer = 0;  ///< the layer bound when not layered
         GLenum access = GL_READ_WRITE;
         GLenum format = 0;
     };
@@ -145,6 +147,7 @@ public:
     Result<rhi::PipelineHandle> create_compute_pipeline(const rhi::ComputePipelineDesc& desc) override;
     Result<rhi::HeapHandle> create_heap(const rhi::HeapDesc& desc) override;
     Result<rhi::MemoryRequirements> texture_memory_requirements(const rhi::TextureDesc& desc) override;
+    Result<rhi::MemoryRequirements> buffer_memory_requirements(const rhi::BufferDesc& desc) override;
 
     Status destroy(rhi::TextureHandle texture) override;
     Status destroy(rhi::BufferHandle buffer) override;
@@ -194,6 +197,12 @@ public:
     rhi::HandlePool<rhi::BufferTag, GlBuffer>& buffers() { return buffers_; }
     rhi::HandlePool<rhi::SamplerTag, GlSampler>& samplers() { return samplers_; }
     rhi::HandlePool<rhi::PipelineTag, GlPipeline>& pipelines() { return pipelines_; }
+    /// The texture view of the (resolved) `range` of `texture` as a shader declares it (`kind`),
+    /// made on first use and kept until the texture goes; Unsupported for an imported texture
+    /// without immutable storage.
+    Result<GLuint> texture_view(GlTexture& texture, const rhi::TextureRange& range, rhi::TextureKind kind);
+    /// The names of a texture's views (deleted with it).
+    static std::vector<GLuint> view_names(const GlTexture& texture);
     /// The framebuffer object for this attachment set (created on first use); 0 when GL
     /// reports the set incomplete.
     GLuint framebuffer_for(const std::vector<std::pair<const GlTexture*, std::array<uint32_t, 2>>>& colors,

@@ -120,8 +120,9 @@ Result<rhi::TextureHandle> GlDevice::import_texture(GLuint name, const rhi::Text
     t.name = name;
     t.target = target;
     t.format = format;
-    t.state = state;
+    t.set_all(state);
     t.imported = true;
+    t.immutable = immutable != GL_FALSE;
     return textures_.insert(std::move(t));
 }
 

@@ -34,11 +34,13 @@ void GlDevice::ensure_backbuffer() {
     const uint32_t w = std::max(1u, size.width), h = std::max(1u, size.height);
     if (GlTexture* current = textures_.find(backbuffer_)) {
         if (current->desc.width == w && current->desc.height == h) {
-            current->state = rhi::ResourceState::Undefined;  // last frame's picture is not kept
+            current->set_all(rhi::ResourceState::Undefined);  // last frame's picture is not kept
             return;
         }
         GlTexture old = std::move(*textures_.remove(backbuffer_));
         forget_framebuffers_with(old.name);
+        const std::vector<GLuint> views = view_names(old);
+        if (!views.empty()) glDeleteTextures(static_cast<GLsizei>(views.size()), views.data());
         glDeleteTextures(1, &old.name);
         glDeleteFramebuffers(1, &backbuffer_fbo_);
         backbuffer_fbo_ = 0;
@@ -96,7 +98,7 @@ Status GlDevice::end_frame() {
         glEnable(GL_FRAMEBUFFER_SRGB);
         cache_->count_call(3);
         context_->swap_buffers();
-        if (GlTexture* t = textures_.find(backbuffer_)) t->state = rhi::ResourceState::Present;
+        if (GlTexture* t = textures_.find(backbuffer_)) t->set_all(rhi::ResourceState::Present);
     }
 
     for (auto& destroy_gl : deferred_deletes_) destroy_gl();

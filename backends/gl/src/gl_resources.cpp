@@ -185,6 +185,7 @@ Result<rhi::TextureHandle> GlDevice::create_texture_internal(const rhi::TextureD
             break;
     }
     set_label(GL_TEXTURE, t.name, desc.name);
+    t.set_all(rhi::ResourceState::Undefined);
     if (!internal) {
         ++stats_.textures;
         stats_.texture_bytes += t.bytes;
@@ -201,18 +202,54 @@ Status GlDevice::destroy(rhi::TextureHandle texture) {
     }
     GlTexture t = std::move(*textures_.remove(texture));
     const GLuint name = t.name;
+    // Views are loom's even on an imported texture.
+    std::vector<GLuint> views = view_names(t);
     if (t.imported) {
-        // The application's texture: only loom's framebuffers of it go.
-        delete_later([this, name] { forget_framebuffers_with(name); });
+        // The application's texture: only loom's framebuffers and views of it go.
+        delete_later([this, name, views] {
+            forget_framebuffers_with(name);
+            if (!views.empty()) glDeleteTextures(static_cast<GLsizei>(views.size()), views.data());
+        });
         return {};
     }
     --stats_.textures;
     stats_.texture_bytes -= t.bytes;
-    delete_later([this, name] {
+    delete_later([this, name, views] {
         forget_framebuffers_with(name);
+        if (!views.empty()) glDeleteTextures(static_cast<GLsizei>(views.size()), views.data());
         glDeleteTextures(1, &name);
     });
     return {};
+}
+
+std::vector<GLuint> GlDevice::view_names(const GlTexture& t) {
+    std::vector<GLuint> names;
+    for (const auto& [key, view] : t.views) names.push_back(view);
+    return names;
+}
+
+Result<GLuint> GlDevice::texture_view(GlTexture& t, const rhi::TextureRange& range, rhi::TextureKind kind) {
+    GLenum target = GL_TEXTURE_2D;
+    switch (kind) {
+        case rhi::TextureKind::Tex2D: target = t.desc.samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D; break;
+        case rhi::TextureKind::Tex2DArray: target = t.desc.samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE_ARRAY : GL_TEXTURE_2D_ARRAY; break;
+        case rhi::TextureKind::Tex3D: target = GL_TEXTURE_3D; break;
+        case rhi::TextureKind::Cube: target = GL_TEXTURE_CUBE_MAP; break;
+    }
+    const std::array<uint32_t, 5> key{static_cast<uint32_t>(target), range.base_mip, range.mip_count, range.base_layer, range.layer_count};
+    if (auto it = t.views.find(key); it != t.views.end()) return it->second;
+    if (!t.immutable) {
+        return Error{ErrorCode::Unsupported, "texture " + in_quotes(t.desc.name) +
+                                                 ": a subresource range needs a texture view, and views need a texture made with "
+                                                 "glTexStorage* (this imported one was not)"};
+    }
+    // glTextureView wants a name no target was ever bound to: glGenTextures, not glCreateTextures.
+    GLuint view = 0;
+    glGenTextures(1, &view);
+    glTextureView(view, target, t.name, t.format->internal_format, range.base_mip, range.mip_count, range.base_layer, range.layer_count);
+    set_label(GL_TEXTURE, view, t.desc.name + " (view)");
+    t.views.emplace(key, view);
+    return view;
 }
 
 Result<rhi::TextureDesc> GlDevice::texture_desc(rhi::TextureHandle texture) {
@@ -231,7 +268,8 @@ Result<rhi::BufferDesc> GlDevice::buffer_desc(rhi::BufferHandle buffer) {
 
 Result<rhi::BufferHandle> GlDevice::create_buffer(const rhi::BufferDesc& desc) {
     context_->make_current();
-    LOOM_TRY(rhi::validation::buffer_desc(desc));
+    // Refuses placements: GL has no placed resources.
+    LOOM_TRY(rhi::validation::buffer_desc(desc, caps_));
     GlBuffer b;
     b.desc = desc;
     glCreateBuffers(1, &b.name);
@@ -351,7 +389,7 @@ Result<GlPipeline> link_program(const std::string& pipeline_name, std::initializ
     p.name = pipeline_name;
     const std::string what = "pipeline " + in_quotes(pipeline_name);
     auto add_binding = [&](uint32_t set, uint32_t binding, BindingKind kind, const std::string& name,
-                           const GlShader& shader, GLenum access) -> Status {
+                           const GlShader& shader, GLenum access, rhi::TextureKind texture_kind = rhi::TextureKind::Tex2D) -> Status {
         if (set >= rhi::kMaxBindGroups || binding >= rhi::kMaxBindingsPerGroup) {
             return Error{ErrorCode::Unsupported, what + ": shader " + in_quotes(shader.name) + " uses set " +
                                                      std::to_string(set) + " binding " + std::to_string(binding) +
@@ -381,17 +419,19 @@ Result<GlPipeline> link_program(const std::string& pipeline_name, std::initializ
                 return {};
             }
         }
-        p.bindings.push_back({set, binding, kind, name, access});
+        p.bindings.push_back({set, binding, kind, name, access, texture_kind});
         return {};
     };
     for (const GlShader* shader : shaders) {
         const rhi::ShaderReflection& r = shader->reflection;
         for (const auto& u : r.uniform_blocks) LOOM_TRY(add_binding(u.set, u.binding, BindingKind::UniformBuffer, u.name, *shader, 0));
         for (const auto& s : r.storage_buffers) LOOM_TRY(add_binding(s.set, s.binding, BindingKind::StorageBuffer, s.name, *shader, 0));
-        for (const auto& t : r.textures) LOOM_TRY(add_binding(t.set, t.binding, BindingKind::SampledTexture, t.name, *shader, 0));
+        for (const auto& t : r.textures) {
+            LOOM_TRY(add_binding(t.set, t.binding, BindingKind::SampledTexture, t.name, *shader, 0, t.kind));
+        }
         for (const auto& i : r.storage_images) {
             const GLenum access = i.read_only ? GL_READ_ONLY : i.write_only ? GL_WRITE_ONLY : GL_READ_WRITE;
-            LOOM_TRY(add_binding(i.set, i.binding, BindingKind::StorageImage, i.name, *shader, access));
+            LOOM_TRY(add_binding(i.set, i.binding, BindingKind::StorageImage, i.name, *shader, access, i.kind));
         }
         for (const auto& pc : r.push_constants) p.push_constant_size = std::max(p.push_constant_size, pc.size);
     }

@@ -70,8 +70,9 @@ Status GlDevice::write_texture(rhi::TextureHandle texture, const rhi::TextureReg
     count_upload(data.size());
     // Uploaded textures are ready to sample, as on Vulkan, where the upload ends with a
     // transition to the shader-read layout (textures that cannot be sampled stay CopyDst).
-    t.state = rhi::has_any(t.desc.usage, rhi::TextureUsage::Sampled) ? rhi::ResourceState::ShaderRead
-                                                                       : rhi::ResourceState::CopyDst;
+    // Only the subresource written, as on Vulkan.
+    t.states[t.subresource(region.mip, t.layers() == 1 ? 0 : region.layer)] =
+        rhi::has_any(t.desc.usage, rhi::TextureUsage::Sampled) ? rhi::ResourceState::ShaderRead : rhi::ResourceState::CopyDst;
     return {};
 }
 
@@ -91,7 +92,9 @@ Result<rhi::Image> GlDevice::read_texture_gl(GlTexture& t, uint32_t mip, uint32_
     const rhi::Extent3D size = rhi::mip_extent(t.desc, mip);
     const uint32_t w = size.width, h = size.height;
     rhi::Image image(w, h, t.desc.format);
-    if (t.state == rhi::ResourceState::Storage) glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    if (t.states[t.subresource(mip, t.layers() == 1 ? 0 : layer)] == rhi::ResourceState::Storage) {
+        glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    }
     if (t.desc.samples > 1) {
         // Resolve into a single-sampled texture first; GL cannot read multisampled texels back.
         // (Only colour: the validation layer refuses multisampled depth/stencil readback.)

@@ -255,7 +255,7 @@ bool VulkanCommandList::write_set(const Pipeline& pipeline, uint32_t set, VkDesc
     // Every binding is checked before a descriptor set is allocated for them.
     std::vector<const rhi::BindingEntry*> entries;
     for (const SetBinding& b : set_layout.bindings) {
-        const rhi::validation::PipelineSlot slot{set, b.binding, binding_kind(b.type), b.name};
+        const rhi::validation::PipelineSlot slot{set, b.binding, binding_kind(b.type), b.name, b.kind};
         auto entry = rhi::validation::binding(what, pipeline.name, slot, group, device_.capabilities(), lookup);
         if (!entry.ok()) {
             fail(entry.error().code, entry.error().message);
@@ -281,7 +281,7 @@ bool VulkanCommandList::write_set(const Pipeline& pipeline, uint32_t set, VkDesc
 
     for (std::size_t n = 0; n < set_layout.bindings.size(); ++n) {
         const SetBinding& b = set_layout.bindings[n];
-        const rhi::validation::PipelineSlot slot{set, b.binding, binding_kind(b.type), b.name};
+        const rhi::validation::PipelineSlot slot{set, b.binding, binding_kind(b.type), b.name, b.kind};
         const rhi::BindingEntry* entry = entries[n];
         // Built only for an error.
         auto where = [&] {
@@ -307,14 +307,16 @@ bool VulkanCommandList::write_set(const Pipeline& pipeline, uint32_t set, VkDesc
         } else if (b.type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER) {
             const rhi::TextureBinding* binding = &std::get<rhi::TextureBinding>(entry->resource);
             // Found by the validation above.
-            const Texture* texture = *device_.textures().get(binding->texture);
+            Texture* texture = *device_.textures().get(binding->texture);
             const Sampler* sampler = *device_.samplers().get(binding->sampler);
-            // Sampling needs the texture in ShaderRead (depth textures: DepthRead or ShaderRead).
-            const bool depth_ok = texture->depth_stencil && VulkanDevice::texture_all_in(*texture, ResourceState::DepthRead);
-            if (!depth_ok && !VulkanDevice::texture_all_in(*texture, ResourceState::ShaderRead)) {
-                const Error e = rhi::validation::state_for_binding(
-                    what, pipeline.name, slot, texture->desc.name, texture->states.front(),
-                    texture->depth_stencil ? "DepthRead or ShaderRead" : "ShaderRead");
+            const rhi::validation::BoundRange bound = rhi::validation::bound_range(slot, texture->desc, *entry);
+            // Sampling needs the bound subresources in ShaderRead (depth textures: DepthRead or
+            // ShaderRead); the others may be anything, e.g. the mip a pass renders to.
+            ResourceState found = ResourceState::Undefined;
+            const bool depth_ok = texture->depth_stencil && VulkanDevice::range_all_in(*texture, bound.range, ResourceState::DepthRead);
+            if (!depth_ok && !VulkanDevice::range_all_in(*texture, bound.range, ResourceState::ShaderRead, &found)) {
+                const Error e = rhi::validation::state_for_binding(what, pipeline.name, slot, texture->desc.name, found,
+                                                                   texture->depth_stencil ? "DepthRead or ShaderRead" : "ShaderRead");
                 fail(e.code, e.message);
                 return false;
             }
@@ -322,30 +324,38 @@ bool VulkanCommandList::write_set(const Pipeline& pipeline, uint32_t set, VkDesc
                 fail(ErrorCode::Backend, where() + ": texture " + in_quotes(texture->desc.name) + " has no sampled view");
                 return false;
             }
-            if (const Texture* owner = device_.alias_owner(*texture)) {
-                fail(ErrorCode::InvalidState, where() + ": texture " + in_quotes(texture->desc.name) + " shares heap memory with texture " +
-                                                  in_quotes(owner->desc.name) + ", which was used after it: its contents are gone");
+            if (auto owner = device_.alias_owner(*texture)) {
+                fail(ErrorCode::InvalidState, where() + ": texture " + in_quotes(texture->desc.name) + " shares heap memory with " + *owner +
+                                                  ", which was used after it: its contents are gone");
                 return false;
+            }
+            VkImageView view = texture->sampled_view;
+            if (!bound.whole) {
+                auto made = device_.range_view(*texture, bound.range, bound.kind, false);
+                if (!made.ok()) {
+                    fail(made.error().code, where() + ": " + made.error().message);
+                    return false;
+                }
+                view = *made;
             }
             const VkImageLayout layout_now = depth_ok ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
                                                       : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
             w.pImageInfo = image_infos.data() + image_infos.size();
-            for (uint32_t i = 0; i < b.count; ++i) image_infos.push_back({sampler->sampler, texture->sampled_view, layout_now});
+            for (uint32_t i = 0; i < b.count; ++i) image_infos.push_back({sampler->sampler, view, layout_now});
             ++stats_.texture_binds;
         } else if (b.type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) {
             const rhi::StorageTextureBinding* binding = &std::get<rhi::StorageTextureBinding>(entry->resource);
             // Found by the validation above.
             Texture* texture = *device_.textures().get(binding->texture);
-            for (uint32_t l = 0; l < texture->array_layers; ++l) {
-                const ResourceState state = texture->states[texture->subresource(binding->mip, l)];
-                if (state != ResourceState::Storage) {
-                    const Error e = rhi::validation::state_for_binding(what, pipeline.name, slot, texture->desc.name,
-                                                                       state, "Storage");
-                    fail(e.code, e.message);
-                    return false;
-                }
+            const rhi::validation::BoundRange bound = rhi::validation::bound_range(slot, texture->desc, *entry);
+            ResourceState found = ResourceState::Undefined;
+            if (!VulkanDevice::range_all_in(*texture, bound.range, ResourceState::Storage, &found)) {
+                const Error e = rhi::validation::state_for_binding(what, pipeline.name, slot, texture->desc.name, found, "Storage");
+                fail(e.code, e.message);
+                return false;
             }
-            auto view = device_.storage_view(*texture, binding->mip);
+            // Storage views are always of one mip: never the sampled view.
+            auto view = device_.range_view(*texture, bound.range, bound.kind, true);
             if (!view.ok()) {
                 fail(view.error().code, where() + ": " + view.error().message);
                 return false;
@@ -450,6 +460,8 @@ void VulkanCommandList::copy_buffer(rhi::BufferHandle src_handle, uint64_t src_o
     Buffer& d = **dst;
     if (!accepted(rhi::validation::buffer_copy(s.desc, src_offset, d.desc, dst_offset, size, &s == &d))) return;
     if (size == 0) return;
+    device_.take_over_bytes(s);
+    if (&s != &d) device_.take_over_bytes(d);
     BarrierBatch batch;
     if (&s == &d) {
         // One buffer read and written: a global dependency covers both roles.
@@ -501,24 +513,32 @@ void VulkanCommandList::copy_texture(const rhi::TextureCopy& copy) {
 }
 
 void VulkanCommandList::transition(rhi::TextureHandle handle, ResourceState state) {
+    transition(handle, state, rhi::TextureRange{});
+}
+
+void VulkanCommandList::transition(rhi::TextureHandle handle, ResourceState state, const rhi::TextureRange& range) {
     if (!accepted(state_.check_outside_render_pass("transition"))) return;
     auto texture = device_.textures().get(handle);
     if (!texture.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + texture.error().message);
     Texture& t = **texture;
-    if (!accepted(rhi::validation::texture_transition(t.desc, state, device_.capabilities()))) return;
+    auto resolved = rhi::validation::texture_range_transition(t.desc, state, range, device_.capabilities());
+    if (!resolved.ok()) return fail(resolved.error().code, resolved.error().message);
     if ((state == ResourceState::ShaderRead || state == ResourceState::DepthRead) && !t.sampled_view) {
         // Images loom did not make (the application's, the swapchain's) may lack SAMPLED usage.
         return fail(ErrorCode::Unsupported, "transition: texture " + in_quotes(t.desc.name) + " to " +
                                                 std::string(rhi::resource_state_name(state)) +
                                                 ": the image has no SAMPLED usage");
     }
+    const rhi::TextureRange& r = *resolved;
     if (state == ResourceState::Undefined) {
         // Nothing to do on the GPU: the next transition discards the contents.
-        for (auto& s : t.states) s = ResourceState::Undefined;
+        for (uint32_t m = r.base_mip; m < r.base_mip + r.mip_count; ++m) {
+            for (uint32_t l = r.base_layer; l < r.base_layer + r.layer_count; ++l) t.states[t.subresource(m, l)] = ResourceState::Undefined;
+        }
         return;
     }
     BarrierBatch batch;
-    device_.transition_texture(batch, t, 0, t.desc.mip_levels, 0, t.array_layers, state, Stream::Frame);
+    device_.transition_texture(batch, t, r.base_mip, r.mip_count, r.base_layer, r.layer_count, state, Stream::Frame);
     stats_.api_calls += batch.flush(cmd_);
 }
 
@@ -528,6 +548,9 @@ void VulkanCommandList::transition(rhi::BufferHandle handle, ResourceState state
     if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + buffer.error().message);
     Buffer& b = **buffer;
     if (!accepted(rhi::validation::buffer_transition(b.desc, state))) return;
+    // A placed buffer whose bytes another alias used since starts over from Undefined: the
+    // barrier then orders it after everything before (the aliasing hand-over).
+    device_.take_over_bytes(b);
     BarrierBatch batch;
     batch.buffer(b.buffer, b.state, state);
     b.state = state;

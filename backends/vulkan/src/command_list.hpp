@@ -65,6 +65,7 @@ public:
                      uint64_t size) override;
     void copy_texture(const rhi::TextureCopy& copy) override;
     void transition(rhi::TextureHandle texture, rhi::ResourceState state) override;
+    void transition(rhi::TextureHandle texture, rhi::ResourceState state, const rhi::TextureRange& range) override;
     void transition(rhi::BufferHandle buffer, rhi::ResourceState state) override;
     void begin_timer(std::string_view label) override;
     void end_timer() override;

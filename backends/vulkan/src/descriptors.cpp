@@ -20,8 +20,10 @@ std::string_view descriptor_type_name(VkDescriptorType type) {
 std::string set_layout_key(const std::vector<SetBinding>& bindings) {
     std::string key;
     for (const SetBinding& b : bindings) {
+        // The declared texture kind is not part of the Vulkan layout, but the view each draw
+        // makes is picked from the cached entry's bindings: layouts differing in it stay apart.
         key += std::to_string(b.binding) + ":" + std::to_string(b.type) + ":" + std::to_string(b.count) + ":" +
-               std::to_string(b.stages) + ";";
+               std::to_string(b.stages) + ":" + std::to_string(static_cast<int>(b.kind)) + ";";
     }
     return key;
 }
@@ -67,7 +69,7 @@ loom::Result<const PipelineLayout*> LayoutCache::get(std::span<const StageReflec
     VkShaderStageFlags push_stages = 0;
 
     auto add = [&](const StageReflection& stage, uint32_t set, uint32_t binding, VkDescriptorType type, uint32_t count,
-                   const std::string& name) -> loom::Status {
+                   const std::string& name, rhi::TextureKind kind = rhi::TextureKind::Tex2D) -> loom::Status {
         if (set >= rhi::kMaxBindGroups || binding >= rhi::kMaxBindingsPerGroup) {
             return Error{ErrorCode::Unsupported, "pipeline '" + pipeline_name + "': shader '" + stage.module->name + "' declares '" +
                                                      name + "' at set " + std::to_string(set) + " binding " +
@@ -87,7 +89,7 @@ loom::Result<const PipelineLayout*> LayoutCache::get(std::span<const StageReflec
             existing.stages |= stage.stage;
             return {};
         }
-        sets[set].push_back({binding, type, count, static_cast<VkShaderStageFlags>(stage.stage), name});
+        sets[set].push_back({binding, type, count, static_cast<VkShaderStageFlags>(stage.stage), name, kind});
         return {};
     };
 
@@ -96,9 +98,11 @@ loom::Result<const PipelineLayout*> LayoutCache::get(std::span<const StageReflec
         for (const auto& u : r.uniform_blocks) LOOM_TRY(add(stage, u.set, u.binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, u.name));
         for (const auto& s : r.storage_buffers) LOOM_TRY(add(stage, s.set, s.binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, s.name));
         for (const auto& t : r.textures) {
-            LOOM_TRY(add(stage, t.set, t.binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, std::max(1u, t.array_size), t.name));
+            LOOM_TRY(add(stage, t.set, t.binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, std::max(1u, t.array_size), t.name, t.kind));
         }
-        for (const auto& i : r.storage_images) LOOM_TRY(add(stage, i.set, i.binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, i.name));
+        for (const auto& i : r.storage_images) {
+            LOOM_TRY(add(stage, i.set, i.binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, i.name, i.kind));
+        }
         for (const auto& p : r.push_constants) {
             push_size = std::max(push_size, p.size);
             push_stages |= stage.stage;

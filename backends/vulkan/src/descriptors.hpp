@@ -25,6 +25,9 @@ struct SetBinding {
     uint32_t count = 1;
     VkShaderStageFlags stages = 0;
     std::string name;  ///< the variable or block name, for error messages
+    /// Textures and storage images: the declared dimension, which picks the image view type
+    /// (not part of the layout: a sampler2D and a sampler2DArray are the same descriptor).
+    rhi::TextureKind kind = rhi::TextureKind::Tex2D;
 };
 
 struct SetLayout {

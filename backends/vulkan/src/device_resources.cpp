@@ -183,6 +183,7 @@ void VulkanDevice::release_texture(Texture& t) {
     std::vector<VkImageView> views;
     if (t.sampled_view) views.push_back(t.sampled_view);
     for (auto& [key, view] : t.views) views.push_back(view);
+    for (auto& [key, view] : t.range_views) views.push_back(view);
     VkImage image = t.swapchain || t.imported ? VK_NULL_HANDLE : t.image;
     MemoryAllocation memory = t.memory;
     VkDevice device = context_->device();
@@ -194,6 +195,7 @@ void VulkanDevice::release_texture(Texture& t) {
     });
     t.sampled_view = VK_NULL_HANDLE;
     t.views.clear();
+    t.range_views.clear();
     t.image = VK_NULL_HANDLE;
     t.memory = {};
 }
@@ -214,39 +216,74 @@ loom::Result<VkImageView> VulkanDevice::attachment_view(Texture& t, uint32_t mip
     return view;
 }
 
-loom::Result<VkImageView> VulkanDevice::storage_view(Texture& t, uint32_t mip) {
-    const uint64_t key = view_key(2, mip, 0);
-    if (auto it = t.views.find(key); it != t.views.end()) return it->second;
+loom::Result<VkImageView> VulkanDevice::range_view(Texture& t, const rhi::TextureRange& range, rhi::TextureKind kind, bool storage) {
+    VkImageViewType type = VK_IMAGE_VIEW_TYPE_2D;
+    switch (kind) {
+        case rhi::TextureKind::Tex2D: type = VK_IMAGE_VIEW_TYPE_2D; break;
+        case rhi::TextureKind::Tex2DArray: type = VK_IMAGE_VIEW_TYPE_2D_ARRAY; break;
+        case rhi::TextureKind::Tex3D: type = VK_IMAGE_VIEW_TYPE_3D; break;
+        case rhi::TextureKind::Cube: type = VK_IMAGE_VIEW_TYPE_CUBE; break;
+    }
+    const std::array<uint32_t, 6> key{storage ? 1u : 0u, static_cast<uint32_t>(type), range.base_mip, range.mip_count, range.base_layer,
+                                      range.layer_count};
+    if (auto it = t.range_views.find(key); it != t.range_views.end()) return it->second;
     auto vi = vk_init<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
     vi.image = t.image;
-    switch (t.desc.dimension) {
-        case rhi::TextureDimension::Tex2D: vi.viewType = VK_IMAGE_VIEW_TYPE_2D; break;
-        case rhi::TextureDimension::Tex3D: vi.viewType = VK_IMAGE_VIEW_TYPE_3D; break;
-        case rhi::TextureDimension::Tex2DArray:
-        case rhi::TextureDimension::Cube: vi.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY; break;
-    }
+    vi.viewType = type;
     vi.format = t.format;
-    vi.subresourceRange = {t.aspect, mip, 1, 0, t.array_layers};
+    // A sampler reads one aspect: depth for depth(/stencil) formats.
+    VkImageAspectFlags aspect = t.aspect;
+    if (aspect & VK_IMAGE_ASPECT_DEPTH_BIT) aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+    vi.subresourceRange = {aspect, range.base_mip, range.mip_count, range.base_layer, range.layer_count};
     VkImageView view = VK_NULL_HANDLE;
     if (VkResult r = vkCreateImageView(context_->device(), &vi, nullptr, &view); r != VK_SUCCESS) {
-        return vk_error(r, "vkCreateImageView (storage view of texture " + in_quotes(t.desc.name) + ")");
+        return vk_error(r, std::string("vkCreateImageView (") + (storage ? "storage" : "sampled") + " view of texture " + in_quotes(t.desc.name) +
+                               ", mips " + std::to_string(range.base_mip) + "+" + std::to_string(range.mip_count) + ", layers " +
+                               std::to_string(range.base_layer) + "+" + std::to_string(range.layer_count) + ")");
     }
-    t.views.emplace(key, view);
+    t.range_views.emplace(key, view);
     return view;
 }
 
-const Texture* VulkanDevice::alias_owner(const Texture& t) {
-    if (!t.desc.placement) return nullptr;
-    Heap* heap = heaps_.find(t.desc.placement->heap);
-    if (!heap) return nullptr;
-    const Texture* owner = nullptr;
+std::optional<std::string> VulkanDevice::alias_owner_of(rhi::HeapHandle handle, uint64_t offset, uint64_t size, uint64_t stamp,
+                                                       const void* self) {
+    Heap* heap = heaps_.find(handle);
+    if (!heap) return std::nullopt;
+    // Textures and buffers of a heap hand its bytes to each other alike: the latest user of
+    // overlapping bytes, if it came after `stamp`, owns them.
+    uint64_t best = stamp;
+    std::optional<std::string> owner;
+    auto consider = [&](const void* other, uint64_t other_offset, uint64_t other_size, uint64_t other_stamp, const char* kind,
+                        const std::string& name) {
+        if (other == self || other_stamp <= best) return;
+        if (other_offset < offset + size && offset < other_offset + other_size) {
+            best = other_stamp;
+            owner = std::string(kind) + " " + in_quotes(name);
+        }
+    };
     for (rhi::TextureHandle h : heap->placed) {
-        const Texture* other = textures_.find(h);
-        if (!other || other == &t || other->alias_stamp <= t.alias_stamp) continue;
-        const bool overlap = other->heap_offset < t.heap_offset + t.heap_size && t.heap_offset < other->heap_offset + other->heap_size;
-        if (overlap && (!owner || other->alias_stamp > owner->alias_stamp)) owner = other;
+        if (const Texture* other = textures_.find(h)) consider(other, other->heap_offset, other->heap_size, other->alias_stamp, "texture", other->desc.name);
+    }
+    for (rhi::BufferHandle h : heap->placed_buffers) {
+        if (const Buffer* other = buffers_.find(h)) consider(other, other->heap_offset, other->heap_size, other->alias_stamp, "buffer", other->desc.name);
     }
     return owner;
+}
+
+std::optional<std::string> VulkanDevice::alias_owner(const Texture& t) {
+    if (!t.desc.placement) return std::nullopt;
+    return alias_owner_of(t.desc.placement->heap, t.heap_offset, t.heap_size, t.alias_stamp, &t);
+}
+
+std::optional<std::string> VulkanDevice::alias_owner(const Buffer& b) {
+    if (!b.desc.placement) return std::nullopt;
+    return alias_owner_of(b.desc.placement->heap, b.heap_offset, b.heap_size, b.alias_stamp, &b);
+}
+
+void VulkanDevice::take_over_bytes(Buffer& b) {
+    if (!b.desc.placement) return;
+    if (alias_owner(b)) b.state = ResourceState::Undefined;
+    if (Heap* heap = heaps_.find(b.desc.placement->heap)) b.alias_stamp = ++heap->stamp;
 }
 
 void VulkanDevice::transition_texture(BarrierBatch& batch, Texture& t, uint32_t mip, uint32_t mips, uint32_t layer,
@@ -294,6 +331,19 @@ bool VulkanDevice::texture_all_in(const Texture& t, ResourceState state) {
     return std::all_of(t.states.begin(), t.states.end(), [&](ResourceState s) { return s == state; });
 }
 
+bool VulkanDevice::range_all_in(const Texture& t, const rhi::TextureRange& range, ResourceState state, ResourceState* first_other) {
+    for (uint32_t m = range.base_mip; m < range.base_mip + range.mip_count; ++m) {
+        for (uint32_t l = range.base_layer; l < range.base_layer + range.layer_count; ++l) {
+            const ResourceState s = t.states[t.subresource(m, l)];
+            if (s != state) {
+                if (first_other) *first_other = s;
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
 loom::Result<rhi::TextureDesc> VulkanDevice::texture_desc(rhi::TextureHandle handle) {
     auto t = textures_.get(handle);
     if (!t.ok()) return t.take_error();
@@ -324,12 +374,43 @@ loom::Status VulkanDevice::destroy(rhi::TextureHandle handle) {
 
 // ---- heaps -------------------------------------------------------------------------------------
 
-loom::Result<rhi::HeapHandle> VulkanDevice::create_heap(const rhi::HeapDesc& desc) {
-    LOOM_TRY(rhi::validation::heap_desc(desc, caps_));
+VkBufferCreateInfo VulkanDevice::buffer_create_info(const rhi::BufferDesc& desc) const {
+    auto info = vk_init<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
+    info.size = desc.size;
+    info.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    if (rhi::has_all(desc.usage, rhi::BufferUsage::Vertex)) info.usage |= VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
+    if (rhi::has_all(desc.usage, rhi::BufferUsage::Index)) info.usage |= VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
+    if (rhi::has_all(desc.usage, rhi::BufferUsage::Uniform)) info.usage |= VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+    if (rhi::has_all(desc.usage, rhi::BufferUsage::Storage)) info.usage |= VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    if (rhi::has_all(desc.usage, rhi::BufferUsage::Indirect)) info.usage |= VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    return info;
+}
+
+rhi::MemoryRequirements VulkanDevice::placed_buffer_requirements(const VkMemoryRequirements& mr) const {
+    // Linear and optimal resources closer than bufferImageGranularity alias each other in the
+    // eyes of the spec; aligning start and size to it keeps neighbours that do not overlap apart.
+    const uint64_t granularity = std::max<uint64_t>(1, context_->properties().limits.bufferImageGranularity);
+    const uint64_t alignment = std::max<uint64_t>(mr.alignment, granularity);
+    const uint64_t size = (mr.size + granularity - 1) / granularity * granularity;
+    return rhi::MemoryRequirements{size, alignment};
+}
+
+loom::Result<rhi::MemoryRequirements> VulkanDevice::buffer_memory_requirements(const rhi::BufferDesc& desc) {
+    LOOM_TRY(rhi::validation::buffer_memory_query(desc));
+    const VkBufferCreateInfo info = buffer_create_info(desc);
+    auto query = vk_init<VkDeviceBufferMemoryRequirements>(VK_STRUCTURE_TYPE_DEVICE_BUFFER_MEMORY_REQUIREMENTS);
+    query.pCreateInfo = &info;
+    auto req = vk_init<VkMemoryRequirements2>(VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2);
+    vkGetDeviceBufferMemoryRequirements(context_->device(), &query, &req);
+    return placed_buffer_requirements(req.memoryRequirements);
+}
+
+void VulkanDevice::heap_requirements(uint32_t& type_bits, VkDeviceSize& alignment) const {
     // A memory type every attachment and sampled image can live in: the intersection over
-    // representative colour and depth images.
-    uint32_t type_bits = ~0u;
-    VkDeviceSize alignment = 1;
+    // representative colour and depth images ...
+    type_bits = ~0u;
+    alignment = 1;
     const rhi::Format formats[] = {rhi::Format::RGBA8Unorm, rhi::Format::RGBA16Float, rhi::Format::Depth32F,
                                    rhi::Format::Depth24Stencil8};
     for (rhi::Format f : formats) {
@@ -347,7 +428,33 @@ loom::Result<rhi::HeapHandle> VulkanDevice::create_heap(const rhi::HeapDesc& des
         type_bits &= req.memoryRequirements.memoryTypeBits;
         alignment = std::max(alignment, req.memoryRequirements.alignment);
     }
-    if (type_bits == 0) return Error{ErrorCode::Unsupported, "heap " + in_quotes(desc.name) + ": no memory type fits colour and depth images"};
+    // ... and buffers of every usage (each usage alone too: a driver may restrict one).
+    const rhi::BufferUsage usages[] = {rhi::BufferUsage::Vertex | rhi::BufferUsage::Index | rhi::BufferUsage::Uniform |
+                                           rhi::BufferUsage::Storage | rhi::BufferUsage::Indirect,
+                                       rhi::BufferUsage::Vertex, rhi::BufferUsage::Index, rhi::BufferUsage::Uniform,
+                                       rhi::BufferUsage::Storage, rhi::BufferUsage::Indirect, rhi::BufferUsage::None};
+    for (rhi::BufferUsage usage : usages) {
+        rhi::BufferDesc probe;
+        probe.size = 64 * 1024;
+        probe.usage = usage;
+        const VkBufferCreateInfo info = buffer_create_info(probe);
+        auto query = vk_init<VkDeviceBufferMemoryRequirements>(VK_STRUCTURE_TYPE_DEVICE_BUFFER_MEMORY_REQUIREMENTS);
+        query.pCreateInfo = &info;
+        auto req = vk_init<VkMemoryRequirements2>(VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2);
+        vkGetDeviceBufferMemoryRequirements(context_->device(), &query, &req);
+        type_bits &= req.memoryRequirements.memoryTypeBits;
+        alignment = std::max(alignment, placed_buffer_requirements(req.memoryRequirements).alignment);
+    }
+}
+
+loom::Result<rhi::HeapHandle> VulkanDevice::create_heap(const rhi::HeapDesc& desc) {
+    LOOM_TRY(rhi::validation::heap_desc(desc, caps_));
+    uint32_t type_bits = 0;
+    VkDeviceSize alignment = 1;
+    heap_requirements(type_bits, alignment);
+    if (type_bits == 0) {
+        return Error{ErrorCode::Unsupported, "heap " + in_quotes(desc.name) + ": no memory type fits colour and depth images and buffers"};
+    }
     AllocationRequest request;
     request.requirements = {desc.size, alignment, type_bits};
     request.preferred = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
@@ -369,9 +476,14 @@ loom::Result<rhi::HeapHandle> VulkanDevice::create_heap(const rhi::HeapDesc& des
 loom::Status VulkanDevice::destroy(rhi::HeapHandle handle) {
     auto h = heaps_.get(handle);
     if (!h.ok()) return h.take_error();
-    if ((*h)->placed_textures > 0) {
-        return Error{ErrorCode::InvalidState, "heap " + in_quotes((*h)->desc.name) + " still holds " +
-                                                  std::to_string((*h)->placed_textures) + " placed texture(s); destroy them first"};
+    const Heap& live = **h;
+    if (live.placed_textures > 0 || !live.placed_buffers.empty()) {
+        std::string held;
+        if (live.placed_textures > 0) held = std::to_string(live.placed_textures) + " placed texture(s)";
+        if (!live.placed_buffers.empty()) {
+            held += (held.empty() ? "" : " and ") + std::to_string(live.placed_buffers.size()) + " placed buffer(s)";
+        }
+        return Error{ErrorCode::InvalidState, "heap " + in_quotes(live.desc.name) + " still holds " + held + "; destroy them first"};
     }
     auto heap = heaps_.remove(handle);
     MemoryAllocation memory = heap->memory;
@@ -385,17 +497,15 @@ loom::Status VulkanDevice::destroy(rhi::HeapHandle handle) {
 loom::Result<rhi::BufferHandle> VulkanDevice::create_buffer(const rhi::BufferDesc& desc) { return create_buffer_internal(desc, false); }
 
 loom::Result<rhi::BufferHandle> VulkanDevice::create_buffer_internal(const rhi::BufferDesc& desc, bool internal) {
-    LOOM_TRY(rhi::validation::buffer_desc(desc));
+    LOOM_TRY(rhi::validation::buffer_desc(desc, caps_));
     const std::string buf = "buffer " + in_quotes(desc.name);
-    auto info = vk_init<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
-    info.size = desc.size;
-    info.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    if (rhi::has_all(desc.usage, rhi::BufferUsage::Vertex)) info.usage |= VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
-    if (rhi::has_all(desc.usage, rhi::BufferUsage::Index)) info.usage |= VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
-    if (rhi::has_all(desc.usage, rhi::BufferUsage::Uniform)) info.usage |= VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
-    if (rhi::has_all(desc.usage, rhi::BufferUsage::Storage)) info.usage |= VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    if (rhi::has_all(desc.usage, rhi::BufferUsage::Indirect)) info.usage |= VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
-    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    Heap* heap = nullptr;
+    if (desc.placement) {
+        auto h = heaps_.get(desc.placement->heap);
+        if (!h.ok()) return Error{ErrorCode::InvalidArgument, buf + ": placement heap: " + h.error().message};
+        heap = *h;
+    }
+    const VkBufferCreateInfo info = buffer_create_info(desc);
     Buffer b;
     b.desc = desc;
     b.internal = internal;
@@ -408,6 +518,35 @@ loom::Result<rhi::BufferHandle> VulkanDevice::create_buffer_internal(const rhi::
     auto req = vk_init<VkMemoryRequirements2>(VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2);
     req.pNext = &dedicated;
     vkGetBufferMemoryRequirements2(device, &req_info, &req);
+
+    if (heap) {
+        const VkMemoryRequirements& mr = req.memoryRequirements;
+        const rhi::MemoryRequirements placed = placed_buffer_requirements(mr);
+        auto fail = [&](Error e) -> Error {
+            vkDestroyBuffer(device, b.buffer, nullptr);
+            return e;
+        };
+        if (Status where = rhi::validation::buffer_placement(desc, heap->desc, placed); !where.ok()) return fail(where.take_error());
+        const std::string placed_in = buf + " placed in heap " + in_quotes(heap->desc.name) + ": ";
+        if (!(mr.memoryTypeBits & (1u << heap->memory.memory_type))) {
+            return fail(Error{ErrorCode::Unsupported,
+                              placed_in + "the buffer cannot live in the heap's memory type " + std::to_string(heap->memory.memory_type)});
+        }
+        if (dedicated.requiresDedicatedAllocation) {
+            return fail(Error{ErrorCode::Unsupported, placed_in + "the driver requires a dedicated allocation for this buffer"});
+        }
+        const uint64_t offset = desc.placement->offset;
+        if (VkResult r = vkBindBufferMemory(device, b.buffer, heap->memory.memory, heap->memory.offset + offset); r != VK_SUCCESS) {
+            vkDestroyBuffer(device, b.buffer, nullptr);
+            return vk_error(r, "vkBindBufferMemory for " + buf);
+        }
+        b.heap_offset = offset;
+        b.heap_size = placed.size;
+        const rhi::BufferHandle handle = buffers_.insert(std::move(b));
+        heap->placed_buffers.push_back(handle);
+        return handle;
+    }
+
     AllocationRequest request;
     request.requirements = req.memoryRequirements;
     // Transient uniform rings are written by the CPU directly; other buffers go through staging.
@@ -450,6 +589,9 @@ loom::Status VulkanDevice::destroy(rhi::BufferHandle handle) {
     if (!b.ok()) return b.take_error();
     if ((*b)->internal) return Error{ErrorCode::InvalidArgument, "buffer " + in_quotes((*b)->desc.name) + " belongs to the backend"};
     auto removed = buffers_.remove(handle);
+    if (removed->desc.placement) {
+        if (Heap* heap = heaps_.find(removed->desc.placement->heap)) std::erase(heap->placed_buffers, handle);
+    }
     release_buffer(*removed);
     return {};
 }

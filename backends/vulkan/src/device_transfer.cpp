@@ -207,6 +207,8 @@ loom::Status VulkanDevice::write_buffer(rhi::BufferHandle handle, uint64_t offse
     Buffer& buffer = **b;
     LOOM_TRY(rhi::validation::buffer_write(buffer.desc, offset, data.size()));
     if (data.empty()) return {};
+    // A placed buffer written takes its bytes over from any alias that used them.
+    take_over_bytes(buffer);
     auto span = staging(data.size());
     if (!span.ok()) return span.take_error();
     std::memcpy(span->data, data.data(), data.size());

@@ -1,7 +1,9 @@
 #pragma once
 // The Vulkan objects behind loom's handles.
 
+#include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -27,7 +29,10 @@ struct Texture {
     bool swapchain = false;          ///< wraps a swapchain image (not counted, not destroyed)
     bool imported = false;           ///< wraps an application image (not counted, not destroyed)
     VkImageView sampled_view = VK_NULL_HANDLE;  ///< all mips and layers; depth aspect for depth/stencil
-    std::unordered_map<uint64_t, VkImageView> views;  ///< attachment and storage views by key
+    std::unordered_map<uint64_t, VkImageView> views;  ///< attachment views by key
+    /// Sampled and storage views of subresource ranges, made on first use (VulkanDevice::range_view):
+    /// by {storage?, view type, base mip, mips, base layer, layers}.
+    std::map<std::array<uint32_t, 6>, VkImageView> range_views;
 
     /// Tracked state of every subresource (index mip * array_layers + layer), as of the end
     /// of everything recorded so far.
@@ -38,7 +43,7 @@ struct Texture {
     uint64_t touched_epoch = 0;
 
     // Placed textures: where they live, and when they last took their bytes over (see
-    // VulkanDevice::alias_owner).
+    // VulkanDevice::alias_owner; buffers placed in the same heap take part too).
     uint64_t heap_offset = 0;
     uint64_t heap_size = 0;
     uint64_t alias_stamp = 0;
@@ -49,17 +54,23 @@ struct Texture {
 struct Buffer {
     rhi::BufferDesc desc;
     VkBuffer buffer = VK_NULL_HANDLE;
-    MemoryAllocation memory;
+    MemoryAllocation memory;  ///< empty for placed buffers
     rhi::ResourceState state = rhi::ResourceState::Undefined;
     bool internal = false;  ///< backend-owned (transient uniform rings): not in ResourceStats
+
+    // Placed buffers, as for textures: where they live and when they last took their bytes over.
+    uint64_t heap_offset = 0;
+    uint64_t heap_size = 0;
+    uint64_t alias_stamp = 0;
 };
 
 struct Heap {
     rhi::HeapDesc desc;
     MemoryAllocation memory;
     uint32_t placed_textures = 0;
-    std::vector<rhi::TextureHandle> placed;  ///< the textures placed in it
-    uint64_t stamp = 0;                      ///< counts hand-overs between aliases
+    std::vector<rhi::TextureHandle> placed;          ///< the textures placed in it
+    std::vector<rhi::BufferHandle> placed_buffers;   ///< the buffers placed in it
+    uint64_t stamp = 0;                              ///< counts hand-overs between aliases
 };
 
 struct Sampler {

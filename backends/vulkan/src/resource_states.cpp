@@ -126,9 +126,11 @@ void BarrierBatch::buffer(VkBuffer buffer, ResourceState from, ResourceState to)
     const StateAccess dst = buffer_state_access(to);
     if (from == to && !dst.writes) return;
     auto b = vk_init<VkBufferMemoryBarrier2>(VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2);
-    // A read-only source state needs only an execution dependency (write-after-read).
+    // A read-only source state needs only an execution dependency (write-after-read). Undefined
+    // is "whatever happened to these bytes before", as for images: writes of an alias that used
+    // them (placed buffers) included, so it makes every earlier write available.
     b.srcStageMask = src.stages;
-    b.srcAccessMask = src.writes ? src.access : VK_ACCESS_2_NONE;
+    b.srcAccessMask = from == ResourceState::Undefined ? VK_ACCESS_2_MEMORY_WRITE_BIT : src.writes ? src.access : VK_ACCESS_2_NONE;
     b.dstStageMask = dst.stages;
     b.dstAccessMask = dst.access;
     b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;

@@ -64,6 +64,7 @@ public:
     loom::Result<rhi::PipelineHandle> create_compute_pipeline(const rhi::ComputePipelineDesc& desc) override;
     loom::Result<rhi::HeapHandle> create_heap(const rhi::HeapDesc& desc) override;
     loom::Result<rhi::MemoryRequirements> texture_memory_requirements(const rhi::TextureDesc& desc) override;
+    loom::Result<rhi::MemoryRequirements> buffer_memory_requirements(const rhi::BufferDesc& desc) override;
 
     loom::Status destroy(rhi::TextureHandle texture) override;
     loom::Status destroy(rhi::BufferHandle buffer) override;
@@ -121,15 +122,27 @@ public:
                             uint32_t layers, rhi::ResourceState to, Stream stream, bool discard = false);
     /// The tracked state of every subresource is `state` (in the frame stream).
     static bool texture_all_in(const Texture& texture, rhi::ResourceState state);
-    /// For a placed texture: another texture overlapping its bytes that was used after it
-    /// (so its contents are gone), or nullptr.
-    const Texture* alias_owner(const Texture& texture);
+    /// The tracked state of every subresource in the (resolved) `range` is `state`; `first_other`
+    /// gets the state of the first one that is not.
+    static bool range_all_in(const Texture& texture, const rhi::TextureRange& range, rhi::ResourceState state,
+                             rhi::ResourceState* first_other = nullptr);
+    /// For a placed texture or buffer: the placed resource overlapping its bytes that was used
+    /// after it, the latest ("texture 'x'", "buffer 'y'"; so its contents are gone), or nothing.
+    std::optional<std::string> alias_owner(const Texture& texture);
+    std::optional<std::string> alias_owner(const Buffer& buffer);
+    /// A placed buffer is about to be used: when another alias used its bytes since it did, its
+    /// contents are gone and its tracked state restarts from Undefined (the next barrier orders
+    /// it after everything before); then it owns the bytes. Nothing for other buffers.
+    void take_over_bytes(Buffer& buffer);
     /// The tracked state of one subresource as seen by `stream`.
     rhi::ResourceState tracked_state(const Texture& texture, uint32_t subresource, Stream stream) const;
 
-    /// Image view of one mip/layer for an attachment, or of one mip (all layers) for storage.
+    /// Image view of one mip/layer for an attachment.
     loom::Result<VkImageView> attachment_view(Texture& texture, uint32_t mip, uint32_t layer);
-    loom::Result<VkImageView> storage_view(Texture& texture, uint32_t mip);
+    /// Image view of a (resolved) subresource range as the shader declares it (`kind`), for
+    /// sampling or, with `storage`, as a storage image (one mip); made on first use and kept
+    /// until the texture goes. The whole texture seen as its own dimension is its sampled view.
+    loom::Result<VkImageView> range_view(Texture& texture, const rhi::TextureRange& range, rhi::TextureKind kind, bool storage);
 
     /// Copies `data` into this frame's uniform ring (growing it if needed).
     loom::Result<rhi::BufferBinding> allocate_transient_uniforms(std::span<const std::byte> data);
@@ -159,6 +172,14 @@ private:
                                                           uint32_t index);
     void release_texture(Texture& texture);
     void release_buffer(Buffer& buffer);
+    /// The memory type bits and alignment a heap needs so that every texture and buffer loom
+    /// places can live in it (probes of colour/depth images and of a buffer of every usage).
+    void heap_requirements(uint32_t& type_bits, VkDeviceSize& alignment) const;
+    /// The requirements of a buffer of `desc` inside a heap, rounded to bufferImageGranularity
+    /// so that a buffer never shares a granularity page with a neighbouring image by accident.
+    rhi::MemoryRequirements placed_buffer_requirements(const VkMemoryRequirements& requirements) const;
+    VkBufferCreateInfo buffer_create_info(const rhi::BufferDesc& desc) const;
+    std::optional<std::string> alias_owner_of(rhi::HeapHandle heap, uint64_t offset, uint64_t size, uint64_t stamp, const void* self);
     loom::Result<rhi::BufferHandle> create_buffer_internal(const rhi::BufferDesc& desc, bool internal);
 
     // transfers (device_transfer.cpp)

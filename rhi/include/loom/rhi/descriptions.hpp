@@ -91,25 +91,13 @@ struct TextureDesc {
     std::optional<TexturePlacement> placement;
 };
 
-/// Counts of kRemainingSubresources in a TextureRange mean "to the last one".
-inline constexpr uint32_t kRemainingSubresources = UINT32_MAX;
-
-/// A range of mip levels and array layers of a texture.
-struct TextureRange {
-    uint32_t base_mip = 0;
-    uint32_t mip_count = kRemainingSubresources;
-    uint32_t base_layer = 0;
-    uint32_t layer_count = kRemainingSubresources;
-    friend bool operator==(const TextureRange&, const TextureRange&) = default;
-};
-
-/// Size and alignment a texture needs inside a heap.
+/// Size and alignment a texture or buffer needs inside a heap.
 struct MemoryRequirements {
     uint64_t size = 0;
     uint64_t alignment = 1;
 };
 
-/// A block of memory for placed textures (Device::create_heap).
+/// A block of memory for placed textures and buffers (Device::create_heap).
 struct HeapDesc {
     std::string name;
     uint64_t size = 0;
@@ -132,12 +120,24 @@ enum class BufferUsage : uint32_t {
 template <>
 struct EnableBitFlags<BufferUsage> : std::true_type {};
 
+/// Where a buffer lives inside a heap (memory aliasing). Offsets respect the alignment of
+/// Device::buffer_memory_requirements.
+struct BufferPlacement {
+    HeapHandle heap;
+    uint64_t offset = 0;
+};
+
 /// Everything a buffer is created with (Device::create_buffer).
 struct BufferDesc {
     std::string name;
     uint64_t size = 0;
     /// Uploads (Device::write_buffer) and readback are always allowed.
     BufferUsage usage = BufferUsage::Vertex;
+    /// Set to place the buffer inside a heap (only where Capabilities::placed_resources). A
+    /// placed buffer that overlaps another placed resource shares its bytes: whoever used them
+    /// last owns them, and the buffer's contents are undefined until it is written again.
+    /// (Braced so that `{name, size, usage}` initialisers need not mention it.)
+    std::optional<BufferPlacement> placement{};
 };
 
 /// The type of the indices in an index buffer.
@@ -354,16 +354,38 @@ struct BufferBinding {
     uint64_t size = 0;
 };
 
-/// A combined texture + sampler (`uniform sampler2D` in GLSL).
+/// A count of TextureRange (and StorageTextureBinding::layer_count) meaning "to the last one".
+inline constexpr uint32_t kRemainingSubresources = UINT32_MAX;
+
+/// A range of mip levels and array layers of a texture. Counts of kRemainingSubresources mean
+/// "to the last one"; the default is the whole texture. Layers are those of arrays and cubes
+/// (a 2D or 3D texture has one).
+struct TextureRange {
+    uint32_t base_mip = 0;
+    uint32_t mip_count = kRemainingSubresources;
+    uint32_t base_layer = 0;
+    uint32_t layer_count = kRemainingSubresources;
+    friend bool operator==(const TextureRange&, const TextureRange&) = default;
+};
+
+/// A combined texture + sampler (`uniform sampler2D` in GLSL). `range` limits what the shader
+/// sees to some mip levels and layers: its base_mip is the shader's level 0, its base_layer the
+/// shader's layer 0. A range of one layer of an array texture can be bound to a `sampler2D`;
+/// only the range's subresources need to be in ShaderRead (DepthRead).
 struct TextureBinding {
     TextureHandle texture;
     SamplerHandle sampler;
+    TextureRange range{};
 };
 
-/// A storage image (`uniform image2D` in GLSL), one mip level.
+/// A storage image (`uniform image2D` in GLSL): one mip level, and the layers base_layer ..
+/// base_layer + layer_count - 1 of an array or cube (kRemainingSubresources: to the last). One
+/// layer can be bound to an `image2D`, several to an `image2DArray`.
 struct StorageTextureBinding {
     TextureHandle texture;
     uint32_t mip = 0;
+    uint32_t base_layer = 0;
+    uint32_t layer_count = kRemainingSubresources;
 };
 
 /// One entry of a bind group: what goes at `binding` of the set. Whether a buffer is bound as
@@ -388,14 +410,16 @@ struct BindGroup {
         entries.push_back({binding, range});
         return *this;
     }
-    /// Binds a texture with a sampler (`sampler2D`) at `binding`.
-    BindGroup& texture(uint32_t binding, TextureHandle tex, SamplerHandle sampler) {
-        entries.push_back({binding, TextureBinding{tex, sampler}});
+    /// Binds a texture (the subresources in `range`; all by default) with a sampler
+    /// (`sampler2D`, `sampler2DArray`, ...) at `binding`.
+    BindGroup& texture(uint32_t binding, TextureHandle tex, SamplerHandle sampler, TextureRange range = {}) {
+        entries.push_back({binding, TextureBinding{tex, sampler, range}});
         return *this;
     }
-    /// Binds one mip level of a texture as a storage image at `binding`.
-    BindGroup& storage_texture(uint32_t binding, TextureHandle tex, uint32_t mip = 0) {
-        entries.push_back({binding, StorageTextureBinding{tex, mip}});
+    /// Binds one mip level (and a range of layers) of a texture as a storage image at `binding`.
+    BindGroup& storage_texture(uint32_t binding, TextureHandle tex, uint32_t mip = 0, uint32_t base_layer = 0,
+                               uint32_t layer_count = kRemainingSubresources) {
+        entries.push_back({binding, StorageTextureBinding{tex, mip, base_layer, layer_count}});
         return *this;
     }
 };

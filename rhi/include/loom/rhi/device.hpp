@@ -73,7 +73,7 @@ struct Capabilities {
     std::string device_name;   ///< e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
     std::string api_version;   ///< e.g. "4.5 (Core Profile) Mesa 22.3.6"
     std::array<FormatCapabilities, kFormatCount> formats{};
-    /// Textures can be placed at offsets inside heaps (memory aliasing); Vulkan yes, GL no.
+    /// Textures and buffers can be placed at offsets inside heaps (memory aliasing); Vulkan yes, GL no.
     bool placed_resources = false;
     bool timestamps = false;
     /// RasterState::polygon = PolygonMode::Line (GL always; Vulkan with fillModeNonSolid).
@@ -102,7 +102,8 @@ struct Capabilities {
 };
 
 /// Objects alive on a device and the GPU memory they hold (textures and buffers; heaps count
-/// as memory, the textures placed in them count as textures but not again as memory).
+/// as memory, the textures and buffers placed in them count as textures and buffers but not
+/// again as memory).
 struct ResourceStats {
     uint64_t textures = 0;
     uint64_t buffers = 0;
@@ -196,6 +197,15 @@ public:
     /// Moves a resource into `state` (from the state the backend tracked for it). Needed before
     /// sampling a texture that was rendered to, before storage access, and after it.
     virtual void transition(TextureHandle texture, ResourceState state) = 0;
+    /// Moves the subresources in `range` of `texture` to `state` (the rest keep theirs): e.g.
+    /// mip k-1 to ShaderRead while mip k goes to Storage or RenderTarget. A range outside the
+    /// texture is an InvalidArgument error naming it.
+    ///
+    /// Both built-in backends implement it. The default, for command lists that forward to
+    /// another (wrappers) and have not been taught ranges yet, forwards the whole range to
+    /// transition(texture, state) and logs an error for any other range, so that a wrapper that
+    /// lacks it is noticed rather than transitioning too much or too little.
+    virtual void transition(TextureHandle texture, ResourceState state, const TextureRange& range);
     /// Moves a buffer into `state` (e.g. after storage writes, before it is read as a uniform or vertex buffer).
     virtual void transition(BufferHandle buffer, ResourceState state) = 0;
 
@@ -234,7 +244,8 @@ public:
 
     // -- resources ------------------------------------------------------------------------
     virtual Result<TextureHandle> create_texture(const TextureDesc& desc) = 0;
-    /// Creates a buffer; InvalidArgument for a size of 0.
+    /// Creates a buffer; InvalidArgument for a size of 0, or for a placement outside its heap
+    /// or not aligned as buffer_memory_requirements says (Unsupported without placed resources).
     virtual Result<BufferHandle> create_buffer(const BufferDesc& desc) = 0;
     /// Creates a sampler; InvalidArgument for inconsistent LODs or anisotropy.
     virtual Result<SamplerHandle> create_sampler(const SamplerDesc& desc) = 0;
@@ -244,10 +255,15 @@ public:
     virtual Result<PipelineHandle> create_graphics_pipeline(const GraphicsPipelineDesc& desc) = 0;
     /// Creates a compute pipeline from one compute shader.
     virtual Result<PipelineHandle> create_compute_pipeline(const ComputePipelineDesc& desc) = 0;
-    /// A block of memory for placed textures (Capabilities::placed_resources only).
+    /// A block of memory for placed textures and buffers (Capabilities::placed_resources only).
     virtual Result<HeapHandle> create_heap(const HeapDesc& desc) = 0;
     /// Size and alignment `desc` needs inside a heap (Capabilities::placed_resources only).
     virtual Result<MemoryRequirements> texture_memory_requirements(const TextureDesc& desc) = 0;
+    /// Size and alignment a buffer described by `desc` needs inside a heap (its placement is
+    /// ignored). On devices without placed resources (GL) it is the size rounded up to 256
+    /// bytes and an alignment of 256, so that a planner can size things the same way on every
+    /// backend; placing the buffer is still refused there.
+    virtual Result<MemoryRequirements> buffer_memory_requirements(const BufferDesc& desc) = 0;
 
     /// Destroying is deferred until the GPU no longer uses the object. Stale or foreign
     /// handles give an InvalidHandle error.
@@ -260,7 +276,7 @@ public:
     virtual Status destroy(ShaderHandle shader) = 0;
     /// Destroys a pipeline once the GPU no longer uses it.
     virtual Status destroy(PipelineHandle pipeline) = 0;
-    /// Textures placed in the heap must have been destroyed first.
+    /// Textures and buffers placed in the heap must have been destroyed first.
     virtual Status destroy(HeapHandle heap) = 0;
 
     /// The description a texture was created with.

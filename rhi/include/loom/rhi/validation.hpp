@@ -32,8 +32,16 @@ std::string in_quotes(std::string_view name);
 Status texture_desc(const TextureDesc& desc, const Capabilities& caps);
 /// Device::texture_memory_requirements: a device with placed resources and a valid `desc`.
 Status texture_memory_query(const TextureDesc& desc, const Capabilities& caps);
-/// A buffer has at least one byte.
-Status buffer_desc(const BufferDesc& desc);
+/// A buffer has at least one byte; a placement only on a device with placed resources
+/// (Unsupported otherwise). Where it lands in its heap is buffer_placement's to check.
+Status buffer_desc(const BufferDesc& desc, const Capabilities& caps);
+/// Device::buffer_memory_requirements: a buffer of at least one byte (the placement is ignored;
+/// devices without placed resources answer too).
+Status buffer_memory_query(const BufferDesc& desc);
+/// A placed buffer (`desc.placement` set) that needs `requirements` (Device::
+/// buffer_memory_requirements) inside heap `heap`: its offset a multiple of the alignment and
+/// its bytes inside the heap.
+Status buffer_placement(const BufferDesc& desc, const HeapDesc& heap, const MemoryRequirements& requirements);
 /// LOD range and anisotropy.
 Status sampler_desc(const SamplerDesc& desc);
 /// A heap has at least one byte, on a device with placed resources.
@@ -125,6 +133,15 @@ struct TextureCopyRange {
 /// fits both, and not one subresource copied onto itself.
 Result<TextureCopyRange> texture_copy(const TextureDesc& src, const TextureDesc& dst, bool same_texture, const TextureCopy& copy);
 
+/// A TextureRange of `texture`, checked and resolved: counts of kRemainingSubresources become
+/// "to the last one"; a range that is empty or leaves the texture's mip levels or layers (a
+/// Tex3D texture has one layer, its depth slices are not layers) is an InvalidArgument error
+/// starting with `what` ("transition: texture 'x'").
+Result<TextureRange> texture_range(std::string_view what, const TextureDesc& texture, const TextureRange& range);
+
+/// The layers a TextureRange addresses in `texture`: its array layers, 6 for a cube, 1 for 2D and 3D.
+uint32_t range_layers(const TextureDesc& texture);
+
 /// CommandList::copy_buffer: both ranges inside their buffers, and not overlapping when the
 /// buffers are one (`same_buffer`).
 Status buffer_copy(const BufferDesc& src, uint64_t src_offset, const BufferDesc& dst, uint64_t dst_offset, uint64_t size,
@@ -139,7 +156,22 @@ struct PipelineSlot {
     uint32_t binding = 0;
     BindingKind kind = BindingKind::UniformBuffer;
     std::string_view name;  ///< the GLSL name
+    /// Textures and storage images: what the shader declares (sampler2D, image2DArray, ...).
+    TextureKind texture_kind = TextureKind::Tex2D;
 };
+
+/// The subresources a texture or storage-image binding reads, resolved (counts concrete), and
+/// what the shader sees them as. Backends make their views from it.
+struct BoundRange {
+    TextureRange range;
+    TextureKind kind = TextureKind::Tex2D;
+    /// The texture's whole range, seen as its own dimension: bind the texture itself, no view.
+    bool whole = true;
+};
+
+/// The BoundRange of a texture binding's entry (after rhi::validation::binding accepted it):
+/// TextureBinding::range, or a StorageTextureBinding's mip and layers, for `slot`'s declaration.
+BoundRange bound_range(const PipelineSlot& slot, const TextureDesc& texture, const BindingEntry& entry);
 
 /// Buffers, textures and samplers by handle on the device being validated; InvalidHandle
 /// errors (HandlePool's messages) for null, stale or foreign handles.
@@ -175,7 +207,10 @@ ResourceLookup lookup_in(BufferPool& buffers, TexturePool& textures, SamplerPool
 /// A draw or dispatch (`command`) with pipeline `pipeline`: the entry `group` (null when no
 /// group is set for slot.set) has at slot.binding must be there, of the slot's kind, refer to
 /// live resources with the usage the kind needs, a buffer range inside the buffer with its
-/// offset aligned as `caps` says, a storage image's mip must exist. Returns the entry. The
+/// offset aligned as `caps` says, a texture's range (a storage image's mip and layers) inside
+/// the texture and of a shape the shader's declaration can see (one layer for a sampler2D or
+/// image2D of an array, all six faces of a cube for a samplerCube, a Tex3D texture for a
+/// sampler3D). Returns the entry. The
 /// resource states sampling and storage access need are the command lists' to check
 /// (state_for_binding gives their message).
 Result<const BindingEntry*> binding(std::string_view command, std::string_view pipeline, const PipelineSlot& slot, const BindGroup* group,
@@ -191,6 +226,10 @@ Error state_for_binding(std::string_view command, std::string_view pipeline, con
 /// DepthStencilAttachment, Storage: Storage); ShaderRead and DepthRead where this device samples
 /// the format (Unsupported otherwise).
 Status texture_transition(const TextureDesc& texture, ResourceState state, const Capabilities& caps);
+/// CommandList::transition of the subresources `range` of a texture to `state`: texture_transition,
+/// and the range inside the texture (texture_range). Returns the range resolved.
+Result<TextureRange> texture_range_transition(const TextureDesc& texture, ResourceState state, const TextureRange& range,
+                                              const Capabilities& caps);
 /// CommandList::transition of a buffer to `state`: a state buffers have (not RenderTarget,
 /// DepthWrite, DepthRead or Present).
 Status buffer_transition(const BufferDesc& buffer, ResourceState state);
