@@ -210,6 +210,22 @@ Status Executor::Impl::create_plan_buffers() {
             label += (i ? ", " : "") + p.resources[planned.resources[i]].name;
         }
         rhi::BufferDesc desc = to_buffer_desc(planned.spec, label + "]");
+        if (!heaps.empty() && planned.placement) {
+            // As for textures: the plan's offsets must hold on this device.
+            auto needs = device.buffer_memory_requirements(desc);
+            if (!needs) return make_error(needs.error().code, "executor: buffer " + in_quotes(desc.name) + ": " + needs.error().message);
+            const HeapRange& range = *planned.placement;
+            if (range.offset % std::max<uint64_t>(needs->alignment, 1) != 0 || needs->size > planned.bytes ||
+                !checked::range_fits(range.offset, needs->size, p.heaps[range.heap])) {
+                return make_error(ErrorCode::InvalidArgument,
+                                  "executor: buffer " + in_quotes(desc.name) + " needs " + std::to_string(needs->size) +
+                                      " bytes aligned to " + std::to_string(needs->alignment) + " on this device, but the plan gives it " +
+                                      std::to_string(planned.bytes) + " bytes at offset " + std::to_string(range.offset) +
+                                      " of heap " + std::to_string(range.heap) +
+                                      "; plan with the executor's memory model (Executor::effective_options)");
+            }
+            desc.placement = rhi::BufferPlacement{heaps[range.heap], range.offset};
+        }
         auto buffer = device.create_buffer(desc);
         if (!buffer) return make_error(buffer.error().code, "executor: buffer " + in_quotes(desc.name) + ": " + buffer.error().message);
         buffers[b] = *buffer;
@@ -404,7 +420,7 @@ Status Executor::Impl::run_passes(FrameGraph& graph, rhi::CommandList& commands,
         frame.position = p;
         if (timed) commands.begin_timer(planned.name);
         commands.push_debug_group(planned.name);
-        for (const Transition& t : around.before) commands.transition(frame.resolve(t.texture), state_for(t));
+        for (const Transition& t : around.before) commands.transition(frame.resolve(t.texture), state_for(t), t.range);
         for (const BufferTransition& t : around.buffers_before) commands.transition(frame.resolve(t.buffer), t.state);
 
         frame.pass_commands.begin_pass(commands);
@@ -416,7 +432,7 @@ Status Executor::Impl::run_passes(FrameGraph& graph, rhi::CommandList& commands,
         if (!status && !frame.pass_error) frame.fail(status.take_error());
 
         if (!frame.pass_error) {
-            for (const Transition& t : around.after) commands.transition(frame.resolve(t.texture), t.state);
+            for (const Transition& t : around.after) commands.transition(frame.resolve(t.texture), t.state, t.range);
             for (const BufferTransition& t : around.buffers_after) commands.transition(frame.resolve(t.buffer), t.state);
             for (const HistoryCopy& copy : around.copies) {
                 History& history = histories[copy.history];

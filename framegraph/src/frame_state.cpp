@@ -99,6 +99,15 @@ void PassCommandList::transition(rhi::TextureHandle texture, rhi::ResourceState 
     inner_->transition(texture, state);
 }
 
+void PassCommandList::transition(rhi::TextureHandle texture, rhi::ResourceState state, const rhi::TextureRange& range) {
+    if (!require_render_pass("transition", false)) return;
+    if (texture.is_null()) {
+        frame_.fail(make_error(ErrorCode::InvalidHandle, "transition: null texture"));
+        return;
+    }
+    inner_->transition(texture, state, range);
+}
+
 void PassCommandList::begin_timer(std::string_view label) {
     frame_.fail(make_error(ErrorCode::InvalidState, "begin_timer '" + std::string(label) +
                                                         "': the executor times every pass itself and RHI timers do not nest"));

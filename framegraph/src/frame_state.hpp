@@ -66,6 +66,7 @@ public:
         if (require_render_pass("copy_texture", false)) inner_->copy_texture(copy);
     }
     void transition(rhi::TextureHandle texture, rhi::ResourceState state) override;
+    void transition(rhi::TextureHandle texture, rhi::ResourceState state, const rhi::TextureRange& range) override;
     void transition(rhi::BufferHandle buffer, rhi::ResourceState state) override {
         if (require_render_pass("transition", false)) inner_->transition(buffer, state);
     }

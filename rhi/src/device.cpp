@@ -28,16 +28,6 @@ void CommandList::draw_indexed_indirect(BufferHandle, uint64_t, uint32_t draw_co
                          " draws: this backend does not implement indirect draws (Capabilities::draw_indirect is false)");
 }
 
-void CommandList::transition(TextureHandle texture, ResourceState state, const TextureRange& range) {
-    if (range == TextureRange{}) return transition(texture, state);
-    // A wrapper that forwards commands but not this one: moving the whole texture would break
-    // the subresources that must stay where they are, moving nothing the ones that must move.
-    log_error("rhi", "transition of a subresource range (mips " + std::to_string(range.base_mip) + "+" +
-                         std::to_string(range.mip_count) + ", layers " + std::to_string(range.base_layer) + "+" +
-                         std::to_string(range.layer_count) + ") to " + std::string(resource_state_name(state)) +
-                         ": this command list does not implement subresource transitions");
-}
-
 uint16_t next_device_id() {
     static std::atomic<uint16_t> counter{0};
     uint16_t id = ++counter;

@@ -490,7 +490,9 @@ TEST(Subresources, DisjointByteRangesOfOneBufferInOnePass) {
 // ---- imports -----------------------------------------------------------------------------------
 
 TEST(BufferImports, ImportsReplaceThePlanBufferAndReachTheirFinalState) {
-    const Plan plan = must_plan(light_list_graph(), PlanOptions{{64, 48}});
+    PlanOptions options;
+    options.frame = {64, 48};
+    const Plan plan = must_plan(light_list_graph(), options);
     const std::vector<ImportBinding> buffers{{port("cull", "lights"), ResourceState::ShaderRead}};
     auto schedule = build_execution_schedule(plan, {}, {}, buffers);
     ASSERT_TRUE(schedule.ok()) << schedule.error().to_string();

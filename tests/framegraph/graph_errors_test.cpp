@@ -231,7 +231,8 @@ TEST(GraphErrors, PassReadingWhatItModifiesInPlace) {
     ASSERT_TRUE(graph.connect(port("scene", "color"), port("smear", "color")).ok());
     ASSERT_TRUE(graph.mark_output(port("smear", "color")).ok());
     EXPECT_EQ(plan_error(graph).message,
-              "pass 'smear' reads scene.color through smear.original while modifying it in place through smear.color");
+              "pass 'smear' reads scene.color through smear.original while modifying it in place through smear.color "
+              "(one pass may read and modify one resource only in disjoint ranges)");
 }
 
 TEST(GraphErrors, PassNamesAreUniqueAndNonEmpty) {

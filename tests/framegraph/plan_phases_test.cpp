@@ -234,22 +234,28 @@ TEST(PlanPhases, ResolveMakesTheResourcesOfRunningPassesWithUsagesLifetimesAndBy
     // Each running pass with the resource and the usage of each port's role.
     const std::vector<PlanPass> passes = plan_passes(graph, schedule, *resolved);
     ASSERT_EQ(passes.size(), 4u);
+    // A texture port with a resource uses its one mip and layer.
+    auto planned = [](std::string name, PortKind kind, bool optional, std::optional<uint32_t> resource, TextureUsage usage) {
+        PlanPort port{std::move(name), kind, optional, resource, usage};
+        if (resource) port.range = {0, 1, 0, 1};
+        return port;
+    };
     EXPECT_EQ(passes[0], (PlanPass{"gbuffer",
                                    1,
                                    false,
-                                   {{"albedo", PortKind::Output, false, 0u, TextureUsage::ColorAttachment},
-                                    {"depth", PortKind::Output, false, 1u, TextureUsage::DepthStencilAttachment},
-                                    {"debug", PortKind::Output, true, std::nullopt, TextureUsage::None}}}));
+                                   {planned("albedo", PortKind::Output, false, 0u, TextureUsage::ColorAttachment),
+                                    planned("depth", PortKind::Output, false, 1u, TextureUsage::DepthStencilAttachment),
+                                    planned("debug", PortKind::Output, true, std::nullopt, TextureUsage::None)}}));
     EXPECT_EQ(passes[1], (PlanPass{"light",
                                    3,
                                    false,
-                                   {{"albedo", PortKind::Input, false, 0u, TextureUsage::Sampled},
-                                    {"depth", PortKind::Input, false, 1u, TextureUsage::Sampled},
-                                    {"hdr", PortKind::Output, false, 2u, TextureUsage::ColorAttachment}}}));
+                                   {planned("albedo", PortKind::Input, false, 0u, TextureUsage::Sampled),
+                                    planned("depth", PortKind::Input, false, 1u, TextureUsage::Sampled),
+                                    planned("hdr", PortKind::Output, false, 2u, TextureUsage::ColorAttachment)}}));
     EXPECT_EQ(passes[2].name, "present");
     EXPECT_EQ(
         passes[3],
-        (PlanPass{"stats", 4, true, {{"histogram", PortKind::Output, false, 4u, TextureUsage::ColorAttachment}}}));
+        (PlanPass{"stats", 4, true, {planned("histogram", PortKind::Output, false, 4u, TextureUsage::ColorAttachment)}}));
 
     // Connections between running passes, by position; the one into debug_view is left out.
     EXPECT_EQ(plan_edges(graph, schedule, resolved->resource_of_port),

@@ -58,6 +58,8 @@ public:
     explicit DeviceMemoryModel(rhi::Device& device) : device_(&device) {}
     /// The device's size and alignment for `desc` (Device::texture_memory_requirements).
     Result<rhi::MemoryRequirements> requirements(const rhi::TextureDesc& desc) override;
+    /// The device's size and alignment for `desc` (Device::buffer_memory_requirements).
+    Result<rhi::MemoryRequirements> buffer_requirements(const rhi::BufferDesc& desc) override;
 
 private:
     rhi::Device* device_;

@@ -200,12 +200,7 @@ public:
     /// Moves the subresources in `range` of `texture` to `state` (the rest keep theirs): e.g.
     /// mip k-1 to ShaderRead while mip k goes to Storage or RenderTarget. A range outside the
     /// texture is an InvalidArgument error naming it.
-    ///
-    /// Both built-in backends implement it. The default, for command lists that forward to
-    /// another (wrappers) and have not been taught ranges yet, forwards the whole range to
-    /// transition(texture, state) and logs an error for any other range, so that a wrapper that
-    /// lacks it is noticed rather than transitioning too much or too little.
-    virtual void transition(TextureHandle texture, ResourceState state, const TextureRange& range);
+    virtual void transition(TextureHandle texture, ResourceState state, const TextureRange& range) = 0;
     /// Moves a buffer into `state` (e.g. after storage writes, before it is read as a uniform or vertex buffer).
     virtual void transition(BufferHandle buffer, ResourceState state) = 0;
 
