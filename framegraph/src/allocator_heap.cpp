@@ -2,7 +2,8 @@
 // placed at an aligned offset in a heap so that no two resources alive at the same position
 // overlap in bytes. Finding the smallest heap is NP-hard (dynamic storage allocation), so this
 // runs a few greedy strategies and keeps the smallest result:
-//   orders:     largest first; longest-lived first; by first use; largest area (bytes × life)
+//   orders:     largest first; longest-lived first; by first use; largest area (bytes × life);
+//               with mixed alignments also strictest alignment first
 //   placements: lowest offset that fits; the tightest gap that fits (best fit)
 // The lower bound is the peak of live bytes over the order; the plan reports both.
 
@@ -326,8 +327,20 @@ public:
             Less([&](uint32_t a, uint32_t b) { return area(b) < area(a); }),
         };
 
+        // Mixed alignments (buffers aligned to bytes beside textures aligned to pages): small-
+        // aligned resources placed first push page-aligned ones past padding, so also try
+        // placing the strictest alignments first and filling the gaps with the rest.
+        std::vector<Less> tried(orders.begin(), orders.end());
+        const bool mixed_alignments =
+            std::any_of(res.begin(), res.end(), [&](const AllocationResource& r) { return r.alignment != res.front().alignment; });
+        if (mixed_alignments) {
+            tried.emplace_back([&](uint32_t a, uint32_t b) {
+                return std::tuple(res[b].alignment, res[b].bytes, length(b)) < std::tuple(res[a].alignment, res[a].bytes, length(a));
+            });
+        }
+
         std::optional<Placement> best;
-        for (const Less& less : orders) {
+        for (const Less& less : tried) {
             std::vector<uint32_t> order(count);
             std::iota(order.begin(), order.end(), 0u);
             std::stable_sort(order.begin(), order.end(), less);

@@ -8,9 +8,14 @@ namespace loom::fg {
 
 std::string describe_stats(const ExecutionStats& stats) {
     auto plural = [](uint64_t n, const char* word) { return std::to_string(n) + " " + word + (n == 1 ? "" : "s"); };
-    std::string out = "plan: " + plural(stats.plan_textures, "texture") + ", " + plural(stats.plan_heaps, "heap") + " (" +
-                      std::to_string(stats.plan_heap_bytes) + " bytes), " + std::to_string(stats.plan_bytes) + " bytes\n";
+    // Buffers are named only where there are some, so texture-only reports read as before.
+    const bool buffers = stats.plan_buffers != 0 || stats.buffers != 0;
+    std::string out = "plan: " + plural(stats.plan_textures, "texture") + ", " +
+                      (buffers ? plural(stats.plan_buffers, "buffer") + ", " : std::string()) +
+                      plural(stats.plan_heaps, "heap") + " (" + std::to_string(stats.plan_heap_bytes) + " bytes), " +
+                      std::to_string(stats.plan_bytes) + " bytes\n";
     out += "created: " + plural(stats.textures, "texture") + " (" + std::to_string(stats.placed_textures) + " placed), " +
+           (buffers ? plural(stats.buffers, "buffer") + " (" + std::to_string(stats.placed_buffers) + " placed), " : std::string()) +
            plural(stats.history_textures, "history texture") + ", " + plural(stats.heaps, "heap") + " (" +
            std::to_string(stats.heap_bytes) + " bytes); device now: " + plural(stats.device.textures, "texture") + ", " +
            plural(stats.device.heaps, "heap") + ", " + std::to_string(stats.device.texture_bytes) + " texture bytes, " +

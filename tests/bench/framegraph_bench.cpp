@@ -81,6 +81,33 @@ void BM_Plan(benchmark::State& state, const char* allocator) {
         }
         benchmark::DoNotOptimize(plan->summary);
     }
+    state.counters["per_pass"] = benchmark::Counter(passes, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.SetComplexityN(passes);
+}
+
+// Planning graphs of the same shape with buffers and subresource ranges: a quarter of the
+// outputs after each pass's first are buffers (absolute, per-pixel and per-tile sizes) and a
+// fifth of the textures are mip chains or layer arrays whose ports use one subresource at a
+// time. Compare its per_pass time with BM_Plan's (texture-only graphs) in the same run.
+void BM_PlanMixed(benchmark::State& state, const char* allocator) {
+    const auto passes = static_cast<uint32_t>(state.range(0));
+    testing::RandomGraphOptions graph_options = big_graph_options(passes);
+    graph_options.buffer_percent = 25;
+    graph_options.subresource_percent = 20;
+    const FrameGraph graph = testing::random_graph(7, graph_options);
+    const PlanOptions options = options_for(allocator);
+    uint64_t buffers = 0;
+    for (auto _ : state) {
+        auto plan = build_plan(graph, options);
+        if (!plan) {
+            state.SkipWithError(plan.error().message.c_str());
+            return;
+        }
+        buffers = plan->summary.naive_buffers;
+        benchmark::DoNotOptimize(plan->summary);
+    }
+    state.counters["buffers"] = static_cast<double>(buffers);
+    state.counters["per_pass"] = benchmark::Counter(passes, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
     state.SetComplexityN(passes);
 }
 
@@ -302,6 +329,8 @@ BENCHMARK_CAPTURE(BM_BuildAndPlan, heap, "heap")->RangeMultiplier(10)->Range(100
 BENCHMARK_CAPTURE(BM_Plan, paper, "paper")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK_CAPTURE(BM_Plan, interval, "interval")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK_CAPTURE(BM_Plan, heap, "heap")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_PlanMixed, interval, "interval")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_PlanMixed, heap, "heap")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK(BM_Build)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK(BM_Replan)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BytesOverLowerBoundCorpus)->Iterations(1)->Unit(benchmark::kMillisecond);

@@ -82,13 +82,14 @@ private:
 std::vector<FrameGraph>* RandomGraphs::graphs_ = nullptr;
 std::map<std::pair<std::string, SpecSharing>, Plans>* RandomGraphs::plans_ = nullptr;
 
-// No two resources alive at the same position share a texture.
+// No two resources alive at the same position share a texture (or a buffer).
 void expect_no_shared_live_texture(const Plan& plan, uint64_t seed) {
     for (std::size_t a = 0; a < plan.resources.size(); ++a) {
         for (std::size_t b = a + 1; b < plan.resources.size(); ++b) {
             const PlanResource& ra = plan.resources[a];
             const PlanResource& rb = plan.resources[b];
-            if (ra.texture == rb.texture) {
+            if (ra.type != rb.type) continue;
+            if (ra.type == ResourceType::Buffer ? ra.buffer == rb.buffer : ra.texture == rb.texture) {
                 ASSERT_FALSE(ra.lifetime.overlaps(rb.lifetime))
                     << "seed " << seed << " " << plan.allocator << ": " << ra.name << " and " << rb.name << " share t"
                     << ra.texture;
@@ -100,6 +101,16 @@ void expect_no_shared_live_texture(const Plan& plan, uint64_t seed) {
 // Each texture holds its resources: one shape in Equal sharing, and the union of their usage.
 void expect_textures_fit_resources(const Plan& plan, uint64_t seed) {
     for (const PlanResource& r : plan.resources) {
+        if (r.type == ResourceType::Buffer) {
+            ASSERT_EQ(r.texture, kNoPhysical);
+            const PlanBuffer& b = plan.buffers[r.buffer];
+            ASSERT_NE(std::find(b.resources.begin(), b.resources.end(), &r - plan.resources.data()), b.resources.end());
+            EXPECT_TRUE(rhi::has_all(b.spec.usage, r.buffer_spec.usage)) << "seed " << seed << " " << r.name;
+            EXPECT_EQ(b.spec.size, r.buffer_spec.size) << "seed " << seed << " " << r.name;
+            EXPECT_GE(b.bytes, r.bytes) << "seed " << seed << " " << r.name;
+            continue;
+        }
+        ASSERT_EQ(r.buffer, kNoPhysical);
         const PlanTexture& t = plan.textures[r.texture];
         ASSERT_NE(std::find(t.resources.begin(), t.resources.end(), &r - plan.resources.data()), t.resources.end());
         EXPECT_TRUE(rhi::has_all(t.spec.usage, r.spec.usage)) << "seed " << seed << " " << r.name;
@@ -107,6 +118,35 @@ void expect_textures_fit_resources(const Plan& plan, uint64_t seed) {
         EXPECT_GE(t.bytes, r.bytes) << "seed " << seed << " " << r.name;
         if (plan.sharing == SpecSharing::Equal) {
             EXPECT_TRUE(same_texture_shape(t.spec, r.spec)) << "seed " << seed << " " << r.name;
+        }
+    }
+}
+
+// Every texture and buffer is placed inside its heap, aligned, and no two resources alive at
+// the same position overlap in heap bytes, whatever their types.
+void expect_placements_disjoint(const Plan& plan, uint64_t seed) {
+    ASSERT_EQ(plan.textures.size() + plan.buffers.size(), plan.resources.size()) << "seed " << seed;
+    auto check = [&](const std::optional<HeapRange>& placement, uint64_t bytes, uint64_t alignment) {
+        ASSERT_TRUE(placement.has_value()) << "seed " << seed;
+        ASSERT_LT(placement->heap, plan.heaps.size());
+        EXPECT_EQ(placement->offset % alignment, 0u) << "seed " << seed;
+        EXPECT_LE(placement->offset + bytes, plan.heaps[placement->heap]) << "seed " << seed;
+    };
+    for (const PlanTexture& t : plan.textures) check(t.placement, t.bytes, t.alignment);
+    for (const PlanBuffer& b : plan.buffers) check(b.placement, b.bytes, b.alignment);
+    auto placement_of = [&](const PlanResource& r) {
+        return r.type == ResourceType::Buffer ? *plan.buffers[r.buffer].placement : *plan.textures[r.texture].placement;
+    };
+    for (std::size_t a = 0; a < plan.resources.size(); ++a) {
+        for (std::size_t b = a + 1; b < plan.resources.size(); ++b) {
+            const PlanResource& ra = plan.resources[a];
+            const PlanResource& rb = plan.resources[b];
+            if (!ra.lifetime.overlaps(rb.lifetime)) continue;
+            const HeapRange pa = placement_of(ra);
+            const HeapRange pb = placement_of(rb);
+            if (pa.heap != pb.heap) continue;
+            const bool disjoint = pa.offset + ra.bytes <= pb.offset || pb.offset + rb.bytes <= pa.offset;
+            ASSERT_TRUE(disjoint) << "seed " << seed << ": " << ra.name << " and " << rb.name;
         }
     }
 }
@@ -142,27 +182,7 @@ TEST_F(RandomGraphs, NoTwoLiveResourcesShareATexture) {
 TEST_F(RandomGraphs, NoTwoLiveResourcesOverlapInHeapBytes) {
     const Plans& all = plans("heap");
     for (std::size_t i = 0; i < all.size(); ++i) {
-        const Plan& plan = all[i];
-        const uint64_t seed = seed_of(i);
-        ASSERT_EQ(plan.textures.size(), plan.resources.size());
-        for (const PlanTexture& t : plan.textures) {
-            ASSERT_TRUE(t.placement.has_value());
-            ASSERT_LT(t.placement->heap, plan.heaps.size());
-            EXPECT_EQ(t.placement->offset % t.alignment, 0u) << "seed " << seed;
-            EXPECT_LE(t.placement->offset + t.bytes, plan.heaps[t.placement->heap]) << "seed " << seed;
-        }
-        for (std::size_t a = 0; a < plan.resources.size(); ++a) {
-            for (std::size_t b = a + 1; b < plan.resources.size(); ++b) {
-                const PlanResource& ra = plan.resources[a];
-                const PlanResource& rb = plan.resources[b];
-                if (!ra.lifetime.overlaps(rb.lifetime)) continue;
-                const HeapRange& pa = *plan.textures[ra.texture].placement;
-                const HeapRange& pb = *plan.textures[rb.texture].placement;
-                if (pa.heap != pb.heap) continue;
-                const bool disjoint = pa.offset + ra.bytes <= pb.offset || pb.offset + rb.bytes <= pa.offset;
-                ASSERT_TRUE(disjoint) << "seed " << seed << ": " << ra.name << " and " << rb.name;
-            }
-        }
+        expect_placements_disjoint(all[i], seed_of(i));
     }
 }
 
@@ -251,6 +271,130 @@ TEST(RandomGraph, GeneratorIsSeeded) {
         EXPECT_EQ(a.pass(PassId{p}).ports(), b.pass(PassId{p}).ports());
     }
     EXPECT_NE(a.connections(), c.connections());
+}
+
+
+// ---- the same properties with buffers and subresource ranges --------------------------------
+
+// A corpus where a quarter of the outputs after the first are buffers and a fifth of the
+// textures are mip chains or layer arrays used one subresource at a time (a pass may read one
+// mip and write another of the same texture).
+testing::RandomGraphOptions mixed_options_for(uint64_t seed) {
+    testing::RandomGraphOptions options = options_for(seed);
+    options.buffer_percent = 25;
+    options.subresource_percent = 20;
+    return options;
+}
+
+class MixedRandomGraphs : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        graphs_ = new std::vector<FrameGraph>();
+        for (uint64_t seed = 1; seed <= kGraphs / 2; ++seed) graphs_->push_back(testing::random_graph(seed, mixed_options_for(seed)));
+    }
+    static void TearDownTestSuite() {
+        delete graphs_;
+        graphs_ = nullptr;
+    }
+    static Plans plan_all(const std::string& allocator, SpecSharing sharing = SpecSharing::Equal) {
+        Plans out;
+        for (std::size_t i = 0; i < graphs_->size(); ++i) {
+            auto plan = build_plan((*graphs_)[i], plan_options(allocator, sharing));
+            if (!plan) {
+                ADD_FAILURE() << "seed " << i + 1 << " " << allocator << ": " << plan.error().to_string();
+                out.emplace_back();
+            } else {
+                out.push_back(std::move(*plan));
+            }
+        }
+        return out;
+    }
+    static std::vector<FrameGraph>* graphs_;
+};
+
+std::vector<FrameGraph>* MixedRandomGraphs::graphs_ = nullptr;
+
+TEST_F(MixedRandomGraphs, CorpusHasBuffersAndSubresourceAccess) {
+    uint32_t buffers = 0;
+    uint32_t ranged_ports = 0;
+    uint32_t read_and_modified = 0;  // a pass reading one subresource and writing another of one texture
+    for (const Plan& plan : plan_all("interval")) {
+        buffers += plan.summary.naive_buffers;
+        for (const PlanPass& pass : plan.order) {
+            for (const PlanPort& port : pass.ports) {
+                if (!port.resource || port.type != ResourceType::Texture) continue;
+                const PlanResource& r = plan.resources[*port.resource];
+                if (port.range.mip_count < r.spec.mips || port.range.layer_count < r.spec.layers) ++ranged_ports;
+                if (port.kind != PortKind::InOut) continue;
+                for (const PlanPort& other : pass.ports) {
+                    if (&other != &port && other.kind == PortKind::Input && other.resource == port.resource) ++read_and_modified;
+                }
+            }
+        }
+    }
+    EXPECT_GT(buffers, kGraphs);
+    EXPECT_GT(ranged_ports, kGraphs);
+    EXPECT_GT(read_and_modified, kGraphs / 20);
+}
+
+TEST_F(MixedRandomGraphs, NoTwoLiveResourcesShareAnObjectAndIntervalMeetsBothBounds) {
+    for (SpecSharing sharing : {SpecSharing::Equal, SpecSharing::Joinable}) {
+        const Plans interval = plan_all("interval", sharing);
+        const Plans paper = plan_all("paper", sharing);
+        for (std::size_t i = 0; i < interval.size(); ++i) {
+            for (const Plan* plan : {&interval[i], &paper[i]}) {
+                expect_no_shared_live_texture(*plan, i + 1);
+                expect_textures_fit_resources(*plan, i + 1);
+                EXPECT_EQ(plan->summary.textures, plan->summary.lower_bound_textures) << "seed " << i + 1 << " " << plan->allocator;
+                EXPECT_EQ(plan->summary.buffers, plan->summary.lower_bound_buffers) << "seed " << i + 1 << " " << plan->allocator;
+                EXPECT_EQ(plan->summary.naive_textures + plan->summary.naive_buffers, plan->resources.size());
+                EXPECT_GE(plan->summary.bytes, plan->summary.lower_bound_bytes) << "seed " << i + 1;
+            }
+        }
+    }
+}
+
+TEST_F(MixedRandomGraphs, HeapsPlaceBuffersAndTexturesWithoutOverlap) {
+    const Plans heap = plan_all("heap");
+    for (std::size_t i = 0; i < heap.size(); ++i) {
+        expect_placements_disjoint(heap[i], i + 1);
+        EXPECT_GE(heap[i].summary.bytes, heap[i].summary.lower_bound_bytes) << "seed " << i + 1;
+        EXPECT_LE(heap[i].summary.bytes, heap[i].summary.naive_bytes) << "seed " << i + 1;
+    }
+}
+
+TEST_F(MixedRandomGraphs, EveryPortRangeIsInsideItsResourceAndSchedulesBuild) {
+    const Plans plans = plan_all("interval");
+    for (std::size_t i = 0; i < plans.size(); ++i) {
+        const Plan& plan = plans[i];
+        for (const PlanPass& pass : plan.order) {
+            for (const PlanPort& port : pass.ports) {
+                if (!port.resource) continue;
+                const PlanResource& r = plan.resources[*port.resource];
+                if (port.type == ResourceType::Buffer) {
+                    EXPECT_LE(port.bytes.offset + port.bytes.size, r.buffer_spec.size) << "seed " << i + 1;
+                    EXPECT_GT(port.bytes.size, 0u) << "seed " << i + 1;
+                } else {
+                    EXPECT_LE(port.range.base_mip + port.range.mip_count, r.spec.mips) << "seed " << i + 1;
+                    EXPECT_LE(port.range.base_layer + port.range.layer_count, r.spec.layers) << "seed " << i + 1;
+                }
+            }
+        }
+        auto schedule = build_execution_schedule(plan, {}, {});
+        ASSERT_TRUE(schedule.ok()) << "seed " << i + 1 << ": " << schedule.error().to_string();
+        EXPECT_EQ(schedule->buffer_needed, std::vector<bool>(plan.buffers.size(), true));
+    }
+}
+
+TEST_F(MixedRandomGraphs, PlansAreDeterministic) {
+    const Plans first = plan_all("heap");
+    for (std::size_t i = 0; i < first.size(); i += 8) {
+        const FrameGraph graph = testing::random_graph(i + 1, mixed_options_for(i + 1));
+        auto again = build_plan(graph, plan_options("heap"));
+        ASSERT_TRUE(again.ok());
+        EXPECT_EQ(*again, first[i]) << "seed " << i + 1;
+        EXPECT_EQ(plan_hash(*again), plan_hash(first[i])) << "seed " << i + 1;
+    }
 }
 
 }  // namespace

@@ -25,6 +25,32 @@ TextureSpec palette(uint32_t index) {
 }
 constexpr uint32_t kPaletteSize = 7;
 
+BufferSpec buffer_palette(uint32_t index) {
+    switch (index) {
+        case 0: return BufferSpec::of_size(64 * 1024);
+        case 1: return BufferSpec::sized(BufferSize::per_pixel(4));
+        case 2: return BufferSpec::sized(BufferSize::per_tile(16, 16, 1024));
+        default: return BufferSpec::of_size(20).with_usage(rhi::BufferUsage::Indirect);
+    }
+}
+constexpr uint32_t kBufferPaletteSize = 4;
+
+// Textures whose subresources ports use one at a time: a mip chain, a layer array.
+TextureSpec subresource_palette(uint32_t index) {
+    return index == 0 ? TextureSpec::of(Format::RGBA16Float).with_size(256, 256).with_mips(5)
+                      : TextureSpec::of(Format::Depth32F).with_size(512, 512).with_layers(4);
+}
+constexpr uint32_t kSubresourcePaletteSize = 2;
+// Producer::spec values past the texture palettes name buffer and subresource specs.
+constexpr uint32_t kBufferSpecBase = 100;
+constexpr uint32_t kSubresourceSpecBase = 200;
+
+// The single subresource number `k` of a subresource-palette texture: a mip of the chain, a
+// layer of the array.
+SubresourceRange single(uint32_t spec, uint32_t k) {
+    return spec == kSubresourceSpecBase ? mip(k % 5) : layer(k % 4);
+}
+
 // prefix + number by appending (GCC 12 -O3 warns falsely about "literal" + std::to_string).
 std::string numbered(std::string_view prefix, uint32_t number) {
     std::string out(prefix);
@@ -79,7 +105,13 @@ FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options) {
             const uint32_t chosen = candidates[rng.below(static_cast<uint32_t>(candidates.size()))];
             const Producer& source = producers[chosen];
             const std::string name = numbered("i", k);
-            pass.input(name, rng.percent(30) ? palette(source.spec) : TextureSpec{});
+            if (source.spec >= kSubresourceSpecBase) {
+                pass.input(name, {}, single(source.spec, rng.below(5)));
+            } else if (source.spec >= kBufferSpecBase) {
+                pass.buffer_input(name, rng.percent(30) ? buffer_palette(source.spec - kBufferSpecBase) : BufferSpec{});
+            } else {
+                pass.input(name, rng.percent(30) ? palette(source.spec) : TextureSpec{});
+            }
             connections.push_back({numbered("p", source.pass) + "." + source.port, pass.name() + "." + name});
             read.push_back(chosen);
         }
@@ -90,10 +122,35 @@ FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options) {
             for (uint32_t p : candidates) {
                 if (std::find(read.begin(), read.end(), p) == read.end()) modifiable.push_back(p);
             }
-            if (!modifiable.empty()) {
+            // A mip chain or array this pass reads one subresource of may be modified in another.
+            std::vector<std::pair<uint32_t, uint32_t>> read_subresource;  // producer, input number
+            for (uint32_t k = 0; k < read.size(); ++k) {
+                // Read through one input only: the range after it is then disjoint from every read.
+                const bool read_once = std::count(read.begin(), read.end(), read[k]) == 1;
+                if (producers[read[k]].spec >= kSubresourceSpecBase && !producers[read[k]].modified_in_place && read_once) {
+                    read_subresource.emplace_back(read[k], k);
+                }
+            }
+            if (!read_subresource.empty() && rng.percent(50)) {
+                const auto [chosen, input] = read_subresource[rng.below(static_cast<uint32_t>(read_subresource.size()))];
+                Producer& source = producers[chosen];
+                source.modified_in_place = true;
+                const SubresourceRange read_range = pass.find_port(numbered("i", input))->range;
+                // The next mip (or layer) after the one read, so the two never overlap.
+                const uint32_t read_index = source.spec == kSubresourceSpecBase ? read_range.base_mip : read_range.base_layer;
+                pass.inout("io", {}, single(source.spec, read_index + 1));
+                connections.push_back({numbered("p", source.pass) + "." + source.port, pass.name() + ".io"});
+                in_place = Producer{i, "io", source.spec, false};
+            } else if (!modifiable.empty()) {
                 Producer& source = producers[modifiable[rng.below(static_cast<uint32_t>(modifiable.size()))]];
                 source.modified_in_place = true;
-                pass.inout("io");
+                if (source.spec >= kSubresourceSpecBase) {
+                    pass.inout("io", {}, single(source.spec, rng.below(5)));
+                } else if (source.spec >= kBufferSpecBase) {
+                    pass.buffer_inout("io");
+                } else {
+                    pass.inout("io");
+                }
                 connections.push_back({numbered("p", source.pass) + "." + source.port, pass.name() + ".io"});
                 in_place = Producer{i, "io", source.spec, false};
             }
@@ -102,9 +159,23 @@ FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options) {
         const uint32_t output_count = 1 + rng.below(options.max_outputs);
         for (uint32_t k = 0; k < output_count; ++k) {
             const std::string name = numbered("o", k);
-            const uint32_t spec = rng.below(kPaletteSize);
-            pass.declare(name, PortKind::Output, palette(spec), rng.percent(options.optional_output_percent));
-            producers.push_back({i, name, spec, false});
+            // Draws only what the options ask for, so texture-only graphs stay the ones the
+            // benchmarks have always measured. The first output stays a texture: it may be the
+            // graph output.
+            if (options.buffer_percent != 0 && k > 0 && rng.percent(options.buffer_percent)) {
+                const uint32_t spec = rng.below(kBufferPaletteSize);
+                pass.declare_buffer(name, PortKind::Output, buffer_palette(spec), rng.percent(options.optional_output_percent));
+                producers.push_back({i, name, kBufferSpecBase + spec, false});
+            } else if (options.subresource_percent != 0 && rng.percent(options.subresource_percent)) {
+                const uint32_t spec = rng.below(kSubresourcePaletteSize);
+                pass.declare(name, PortKind::Output, subresource_palette(spec), rng.percent(options.optional_output_percent),
+                             single(kSubresourceSpecBase + spec, 0));
+                producers.push_back({i, name, kSubresourceSpecBase + spec, false});
+            } else {
+                const uint32_t spec = rng.below(kPaletteSize);
+                pass.declare(name, PortKind::Output, palette(spec), rng.percent(options.optional_output_percent));
+                producers.push_back({i, name, spec, false});
+            }
         }
         if (in_place) producers.push_back(*in_place);
         if (rng.percent(options.side_effect_percent)) pass.set_side_effect();

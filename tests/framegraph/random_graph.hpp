@@ -19,12 +19,20 @@ struct RandomGraphOptions {
     uint32_t graph_output_percent = 5;     ///< chance that a pass's first output is a graph output
     uint32_t optional_output_percent = 10;
     bool shuffle_declarations = true;      ///< declare passes in random order, not topological
+    /// Chance that an output is a buffer (0: texture-only graphs, as the benchmarks use).
+    uint32_t buffer_percent = 0;
+    /// Chance that a texture output is a mip chain or a layer array whose readers and in-place
+    /// writers use single mips or layers (a pass may then read one mip and write another).
+    uint32_t subresource_percent = 0;
 };
 
 /// A random DAG: passes named p0, p1, ... in generation (topological) order, each with inputs
 /// (i0, ...), outputs (o0, ...) and at most one inout (io); the last pass's first output is a
 /// graph output. Output specs come from a small palette of colour and depth formats at full,
-/// half and quarter size; inputs are unconstrained or repeat their source's spec.
+/// half and quarter size; inputs are unconstrained or repeat their source's spec. With
+/// buffer_percent, some outputs are buffers (absolute, per-pixel and per-tile sizes) read by
+/// buffer inputs; with subresource_percent, some textures have mips or layers that ports use
+/// one at a time.
 FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options = {});
 
 /// SplitMix64: a tiny, portable, seeded generator.

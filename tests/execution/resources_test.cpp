@@ -1,0 +1,470 @@
+// Buffers, compute and copy passes, and subresource ranges executed through the frame graph on
+// every backend: a compute pass builds geometry, indices and indirect arguments that a render
+// pass draws; a mip pyramid is down-sampled (by compute and by a render pass into one mip) and
+// up-sampled in place, compared with a CPU reference; shadow cascades are rendered layer by
+// layer into one array and sampled as an array. The executor's transitions are the only
+// synchronisation (Vulkan runs with synchronization validation: a missing barrier fails).
+#include <cmath>
+#include <cstring>
+
+#include "execution_helpers.hpp"
+#include "loom/shader_compiler/shader_compiler.hpp"
+#include "loom_test/render_fixture.hpp"
+
+namespace loom::test {
+namespace {
+
+using rhi::BufferUsage;
+using rhi::Format;
+
+const char* const kFillGeometryComp = R"(#version 450
+layout(local_size_x = 1) in;
+layout(std430, set = 0, binding = 0) writeonly buffer Vertices { vec2 v[]; } vertices;
+layout(std430, set = 0, binding = 1) writeonly buffer Indices { uint i[]; } indices;
+layout(std430, set = 0, binding = 2) writeonly buffer Arguments { uint a[]; } arguments;
+void main() {
+    // A rectangle over the left half of the frame, as two triangles, indexed backwards.
+    vec2 corners[6] = vec2[6](vec2(-1.0, -1.0), vec2(0.0, -1.0), vec2(0.0, 1.0),
+                              vec2(-1.0, -1.0), vec2(0.0, 1.0), vec2(-1.0, 1.0));
+    for (int k = 0; k < 6; ++k) {
+        vertices.v[k] = corners[k];
+        indices.i[k] = uint(5 - k);
+    }
+    // DrawIndexedIndirectCommand: 6 indices, 1 instance, first index 0, base vertex 0, first instance 0.
+    arguments.a[0] = 6u;
+    arguments.a[1] = 1u;
+    arguments.a[2] = 0u;
+    arguments.a[3] = 0u;
+    arguments.a[4] = 0u;
+}
+)";
+
+const char* const kShiftComp = R"(#version 450
+layout(local_size_x = 1) in;
+layout(std430, set = 0, binding = 0) buffer Vertices { vec2 v[]; } vertices;
+void main() {
+    for (int k = 0; k < 6; ++k) vertices.v[k].x += 1.0;  // to the right half
+}
+)";
+
+const char* const kPositionVert = R"(#version 450
+layout(location = 0) in vec2 position;
+void main() { gl_Position = vec4(position, 0.0, 1.0); }
+)";
+
+const char* const kColorFrag = R"(#version 450
+layout(location = 0) out vec4 out_color;
+void main() { out_color = vec4(0.25, 0.5, 0.75, 1.0); }
+)";
+
+// dst = the 2x2 box average of src (src's level 0 is the range's first mip).
+const char* const kDownComp = R"(#version 450
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0) uniform sampler2D src;
+layout(set = 0, binding = 1, rgba32f) uniform writeonly image2D dst;
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(dst);
+    if (p.x >= size.x || p.y >= size.y) return;
+    vec4 sum = texelFetch(src, 2 * p, 0) + texelFetch(src, 2 * p + ivec2(1, 0), 0) +
+               texelFetch(src, 2 * p + ivec2(0, 1), 0) + texelFetch(src, 2 * p + ivec2(1, 1), 0);
+    imageStore(dst, p, sum * 0.25);
+}
+)";
+
+const char* const kDownFrag = R"(#version 450
+layout(set = 0, binding = 0) uniform sampler2D src;
+layout(location = 0) out vec4 out_color;
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec4 sum = texelFetch(src, 2 * p, 0) + texelFetch(src, 2 * p + ivec2(1, 0), 0) +
+               texelFetch(src, 2 * p + ivec2(0, 1), 0) + texelFetch(src, 2 * p + ivec2(1, 1), 0);
+    out_color = sum * 0.25;
+}
+)";
+
+// dst = (dst + the coarser level's texel) / 2, in place.
+const char* const kUpComp = R"(#version 450
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0) uniform sampler2D src;
+layout(set = 0, binding = 1, rgba32f) uniform image2D dst;
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(dst);
+    if (p.x >= size.x || p.y >= size.y) return;
+    imageStore(dst, p, (imageLoad(dst, p) + texelFetch(src, p / 2, 0)) * 0.5);
+}
+)";
+
+const char* const kCascadesFrag = R"(#version 450
+layout(set = 0, binding = 0) uniform sampler2DArray shadow;
+layout(location = 0) out vec4 out_color;
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    out_color = vec4(texelFetch(shadow, ivec3(p, 0), 0).r, texelFetch(shadow, ivec3(p, 1), 0).r,
+                     texelFetch(shadow, ivec3(p, 2), 0).r, texelFetch(shadow, ivec3(p, 3), 0).r);
+}
+)";
+
+class ResourceExecution : public RenderTest {
+protected:
+    Result<rhi::ShaderHandle> shader(rhi::ShaderStage stage, const std::string& name, const char* code) {
+        shader_compiler::ShaderCompiler compiler;
+        auto module = compiler.compile(shader_compiler::ShaderSource{name, stage, code, {}});
+        if (!module) return module.take_error();
+        auto made = device().create_shader(*module);
+        if (made) shaders_.push_back(*made);
+        return made;
+    }
+    Result<rhi::PipelineHandle> compute(const std::string& name, const char* code) {
+        auto s = shader(rhi::ShaderStage::Compute, name, code);
+        if (!s) return s.take_error();
+        auto pipeline = device().create_compute_pipeline(rhi::ComputePipelineDesc{name, *s});
+        if (pipeline) pipelines_.push_back(*pipeline);
+        return pipeline;
+    }
+    void TearDown() override {
+        for (auto p : pipelines_) (void)device().destroy(p);
+        for (auto s : shaders_) (void)device().destroy(s);
+        RenderTest::TearDown();
+    }
+    std::vector<rhi::PipelineHandle> pipelines_;
+    std::vector<rhi::ShaderHandle> shaders_;
+};
+
+TEST_P(ResourceExecution, ComputeBuiltGeometryIsDrawnIndirectly) {
+    LOOM_ASSIGN_OR_FAIL(auto fill, compute("fill_geometry.comp", kFillGeometryComp));
+    LOOM_ASSIGN_OR_FAIL(auto shift, compute("shift.comp", kShiftComp));
+    LOOM_ASSIGN_OR_FAIL(auto vs, shader(rhi::ShaderStage::Vertex, "position.vert", kPositionVert));
+    LOOM_ASSIGN_OR_FAIL(auto fs, shader(rhi::ShaderStage::Fragment, "color.frag", kColorFrag));
+    rhi::GraphicsPipelineDesc pd;
+    pd.name = "draw geometry";
+    pd.vertex = vs;
+    pd.fragment = fs;
+    pd.vertex_buffers = {rhi::VertexBufferLayout{8, rhi::VertexStepMode::PerVertex, {{0, rhi::VertexFormat::Float2, 0}}}};
+    pd.color_formats = {Format::RGBA32Float};
+    LOOM_ASSIGN_OR_FAIL(auto draw_pipeline, device().create_graphics_pipeline(pd));
+    pipelines_.push_back(draw_pipeline);
+
+    fg::FrameGraph graph;
+    auto fill_pass = fg::Pass("fill")
+                         .set_kind(fg::PassKind::Compute)
+                         .buffer_output("vertices", fg::BufferSpec::of_size(6 * 8))
+                         .buffer_output("indices", fg::BufferSpec::of_size(6 * 4))
+                         .buffer_output("arguments", fg::BufferSpec::of_size(sizeof(rhi::DrawIndexedIndirectCommand)))
+                         .on_execute([fill](fg::PassContext& ctx) {
+                             ctx.commands().set_pipeline(fill);
+                             ctx.commands().set_bind_group(0, rhi::BindGroup{}
+                                                                  .buffer(0, ctx.buffer("vertices"))
+                                                                  .buffer(1, ctx.buffer("indices"))
+                                                                  .buffer(2, ctx.buffer("arguments")));
+                             ctx.commands().dispatch(1);
+                             return Status{};
+                         });
+    ASSERT_TRUE(graph.add_pass(std::move(fill_pass)).ok());
+    // Read-modify-write of what the previous compute pass wrote: a storage-to-storage barrier.
+    auto shift_pass = fg::Pass("shift").set_kind(fg::PassKind::Compute).buffer_inout("vertices").on_execute([shift](fg::PassContext& ctx) {
+        ctx.commands().set_pipeline(shift);
+        ctx.commands().set_bind_group(0, rhi::BindGroup{}.buffer(0, ctx.buffer("vertices")));
+        ctx.commands().dispatch(1);
+        return Status{};
+    });
+    ASSERT_TRUE(graph.add_pass(std::move(shift_pass)).ok());
+    auto draw_pass = fg::Pass("draw")
+                         .buffer_input("vertices", fg::BufferSpec{}.with_usage(BufferUsage::Vertex))
+                         .buffer_input("indices", fg::BufferSpec{}.with_usage(BufferUsage::Index))
+                         .buffer_input("arguments", fg::BufferSpec{}.with_usage(BufferUsage::Indirect))
+                         .output("color", fg::TextureSpec::of(Format::RGBA32Float))
+                         .on_execute([draw_pipeline](fg::PassContext& ctx) {
+                             ctx.begin_render_pass({{"color", {0.0, 0.0, 0.0, 0.0}}});
+                             ctx.commands().set_pipeline(draw_pipeline);
+                             ctx.commands().set_vertex_buffer(0, ctx.buffer("vertices"));
+                             ctx.commands().set_index_buffer(ctx.buffer("indices"), rhi::IndexType::Uint32);
+                             ctx.commands().draw_indexed_indirect(ctx.buffer("arguments"), 0, 1);
+                             ctx.end_render_pass();
+                             return Status{};
+                         });
+    ASSERT_TRUE(graph.add_pass(std::move(draw_pass)).ok());
+    ASSERT_TRUE(graph.connect(fg::port("fill", "vertices"), fg::port("shift", "vertices")).ok());
+    ASSERT_TRUE(graph.connect(fg::port("shift", "vertices"), fg::port("draw", "vertices")).ok());
+    ASSERT_TRUE(graph.connect(fg::port("fill", "indices"), fg::port("draw", "indices")).ok());
+    ASSERT_TRUE(graph.connect(fg::port("fill", "arguments"), fg::port("draw", "arguments")).ok());
+    ASSERT_TRUE(graph.mark_output(fg::port("draw", "color")).ok());
+
+    fg::Executor executor(device());
+    fg::PlanOptions options;
+    options.frame = {32, 16};
+    for (int frame = 0; frame < 2; ++frame) {
+        LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(executor.texture("draw", "color")));
+        for (uint32_t y = 1; y < 16; y += 4) {
+            EXPECT_EQ(image.load(7, y), (std::array<double, 4>{0, 0, 0, 0})) << "left half, row " << y << " frame " << frame;
+            EXPECT_EQ(image.load(24, y), (std::array<double, 4>{0.25, 0.5, 0.75, 1})) << "right half, row " << y;
+        }
+    }
+    // What the compute pass wrote, read back from the graph's buffer.
+    LOOM_ASSIGN_OR_FAIL(auto bytes, device().read_buffer(executor.buffer("draw", "arguments"), 0, 20));
+    uint32_t words[5];
+    std::memcpy(words, bytes.data(), sizeof words);
+    EXPECT_EQ(std::vector<uint32_t>(words, words + 5), (std::vector<uint32_t>{6, 1, 0, 0, 0}));
+
+    const fg::Plan& plan = *executor.plan();
+    EXPECT_EQ(plan.buffers.size(), 3u);
+    EXPECT_EQ(plan.resources[0].buffer_spec.usage, BufferUsage::Storage | BufferUsage::Vertex);
+    const fg::ExecutionStats stats = executor.stats();
+    EXPECT_EQ(stats.plan_buffers, 3u);
+    EXPECT_EQ(stats.buffers, 3u) << describe(stats);
+}
+
+// What the executor creates is what the plan says: every buffer with the plan's size and usage
+// and, where the device places resources, at the plan's heap offset, beside the textures.
+TEST_P(ResourceExecution, CreatedBuffersAndTexturesAreThePlans) {
+    fg::FrameGraph graph;
+    // The passes record nothing: the plan's realisation and transitions are what is checked.
+    ASSERT_TRUE(graph.add_pass(fg::Pass("depth").output("depth", fg::TextureSpec::of(Format::Depth32F))).ok());
+    ASSERT_TRUE(graph.add_pass(fg::Pass("cull")
+                                   .set_kind(fg::PassKind::Compute)
+                                   .input("depth")
+                                   .buffer_output("lights", fg::BufferSpec::sized(fg::BufferSize::per_tile(16, 16, 1024)))
+                                   .buffer_output("counts", fg::BufferSpec::sized(fg::BufferSize::per_pixel(4))))
+                    .ok());
+    ASSERT_TRUE(graph.add_pass(fg::Pass("args")
+                                   .set_kind(fg::PassKind::Compute)
+                                   .buffer_input("counts")
+                                   .buffer_output("arguments", fg::BufferSpec::of_size(20).with_usage(BufferUsage::Indirect)))
+                    .ok());
+    ASSERT_TRUE(graph.add_pass(fg::Pass("shade")
+                                   .input("depth")
+                                   .buffer_input("lights", fg::BufferSpec{}.with_usage(BufferUsage::Uniform))
+                                   .buffer_input("arguments", fg::BufferSpec{}.with_usage(BufferUsage::Indirect))
+                                   .output("color", fg::TextureSpec::of(Format::RGBA16Float)))
+                    .ok());
+    ASSERT_TRUE(graph.connect(fg::port("depth", "depth"), fg::port("cull", "depth")).ok());
+    ASSERT_TRUE(graph.connect(fg::port("depth", "depth"), fg::port("shade", "depth")).ok());
+    ASSERT_TRUE(graph.connect(fg::port("cull", "lights"), fg::port("shade", "lights")).ok());
+    ASSERT_TRUE(graph.connect(fg::port("cull", "counts"), fg::port("args", "counts")).ok());
+    ASSERT_TRUE(graph.connect(fg::port("args", "arguments"), fg::port("shade", "arguments")).ok());
+    ASSERT_TRUE(graph.mark_output(fg::port("shade", "color")).ok());
+
+    for (const char* allocator : {"interval", "heap"}) {
+        SCOPED_TRACE(allocator);
+        fg::Executor executor(device());
+        fg::PlanOptions options;
+        options.frame = {96, 64};
+        options.allocator = allocator;
+        LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        const fg::Plan& plan = *executor.plan();
+        ASSERT_EQ(plan.buffers.size(), 3u);
+        const bool placed = plan.allocator == "heap" && device().capabilities().placed_resources;
+        for (uint32_t b = 0; b < plan.buffers.size(); ++b) {
+            LOOM_ASSIGN_OR_FAIL(rhi::BufferDesc desc, device().buffer_desc(executor.plan_buffer(b)));
+            EXPECT_EQ(desc.size, plan.buffers[b].spec.size) << plan.buffers[b].name;
+            EXPECT_EQ(desc.usage, plan.buffers[b].spec.usage) << plan.buffers[b].name;
+            ASSERT_EQ(desc.placement.has_value(), placed) << plan.buffers[b].name;
+            if (placed) {
+                EXPECT_EQ(desc.placement->offset, plan.buffers[b].placement->offset) << plan.buffers[b].name;
+            }
+        }
+        for (uint32_t t = 0; t < plan.textures.size(); ++t) {
+            LOOM_ASSIGN_OR_FAIL(rhi::TextureDesc desc, device().texture_desc(executor.plan_texture(t)));
+            ASSERT_EQ(desc.placement.has_value(), placed) << plan.textures[t].name;
+            if (placed) {
+                EXPECT_EQ(desc.placement->offset, plan.textures[t].placement->offset) << plan.textures[t].name;
+            }
+        }
+        // 6 x 4 tiles of 1 KiB, 96 x 64 pixels of 4 bytes, 20 bytes.
+        EXPECT_EQ(plan.resources[1].buffer_spec.size, 6u * 4u * 1024u);
+        EXPECT_EQ(plan.resources[1].buffer_spec.usage, BufferUsage::Storage | BufferUsage::Uniform);
+        EXPECT_EQ(plan.resources[2].buffer_spec.size, 96u * 64u * 4u);
+        const fg::ExecutionStats stats = executor.stats();
+        EXPECT_EQ(stats.buffers, 3u) << describe(stats);
+        EXPECT_EQ(stats.placed_buffers, placed ? 3u : 0u) << describe(stats);
+        if (placed) {
+            uint64_t heap_bytes = 0;
+            for (uint64_t h : plan.heaps) heap_bytes += h;
+            EXPECT_EQ(stats.heap_bytes, heap_bytes);
+            EXPECT_EQ(plan.summary.bytes, heap_bytes);
+        }
+    }
+}
+
+TEST_P(ResourceExecution, ComputePassesCannotOpenRenderPasses) {
+    fg::FrameGraph graph;
+    auto bad = fg::Pass("bad").set_kind(fg::PassKind::Compute).output("color").on_execute([](fg::PassContext& ctx) {
+        ctx.commands().begin_render_pass(rhi::RenderPassDesc{});
+        return Status{};
+    });
+    ASSERT_TRUE(graph.add_pass(std::move(bad)).ok());
+    ASSERT_TRUE(graph.mark_output(fg::port("bad", "color")).ok());
+    fg::Executor executor(device());
+    fg::PlanOptions options;
+    options.frame = {8, 8};
+    Status status = executor.run_frame(graph, options);
+    ASSERT_FALSE(status.ok());
+    EXPECT_EQ(status.error().message,
+              "pass 'bad': begin_render_pass '' in a compute pass; only graphics passes open render passes");
+}
+
+// The CPU reference of the pyramid test: a 16-texel-wide pattern (columns < 5 red, the rest
+// half green), down-sampled by 2x2 averages to 8 and 4 texels, then up-sampled in place.
+using Row = std::vector<std::array<double, 4>>;
+
+Row down(const Row& fine) {
+    Row coarse(fine.size() / 2);
+    for (std::size_t x = 0; x < coarse.size(); ++x) {
+        for (int c = 0; c < 4; ++c) coarse[x][c] = (fine[2 * x][c] + fine[2 * x + 1][c]) * 0.5;  // rows are equal
+    }
+    return coarse;
+}
+
+void up(Row& fine, const Row& coarse) {
+    for (std::size_t x = 0; x < fine.size(); ++x) {
+        for (int c = 0; c < 4; ++c) fine[x][c] = (fine[x][c] + coarse[x / 2][c]) * 0.5;
+    }
+}
+
+TEST_P(ResourceExecution, MipPyramidIsBuiltAndUpsampledInPlace) {
+    LOOM_ASSIGN_OR_FAIL(auto down_compute, compute("down.comp", kDownComp));
+    LOOM_ASSIGN_OR_FAIL(auto up_compute, compute("up.comp", kUpComp));
+    TestPrograms programs(device());
+    LOOM_ASSIGN_OR_FAIL(auto fill, programs.fill(Format::RGBA32Float));
+    LOOM_ASSIGN_OR_FAIL(auto down_render, programs.make("down", kDownFrag, {Format::RGBA32Float}));
+    LOOM_ASSIGN_OR_FAIL(auto sampler, programs.sampler());
+
+    const fg::TextureSpec spec = fg::TextureSpec::of(Format::RGBA32Float).with_size(16, 16).with_mips(3);
+    fg::FrameGraph graph;
+    const FillConstants pattern{{1, 0, 0, 1}, {0, 0.5f, 0, 1}, 5.0f};
+    auto base = fg::Pass("base").output("pyramid", spec, fg::mip(0)).on_execute([fill, pattern](fg::PassContext& ctx) {
+        ctx.begin_render_pass({"pyramid"});
+        ctx.commands().set_pipeline(fill);
+        ctx.commands().push_constants_of(pattern);
+        ctx.commands().draw(3);
+        ctx.end_render_pass();
+        return Status{};
+    });
+    ASSERT_TRUE(graph.add_pass(std::move(base)).ok());
+    // A compute pass reading `from` and writing (or blending into) mip `to`.
+    auto compute_step = [&](const std::string& name, uint32_t from, uint32_t to, rhi::PipelineHandle pipeline) {
+        return fg::Pass(name)
+            .set_kind(fg::PassKind::Compute)
+            .input("src", {}, fg::mip(from))
+            .inout("pyramid", {}, fg::mip(to))
+            .on_execute([pipeline, sampler](fg::PassContext& ctx) {
+                const fg::Extent2D size = ctx.range_extent("pyramid");
+                ctx.commands().set_pipeline(pipeline);
+                ctx.commands().set_bind_group(0, rhi::BindGroup{}
+                                                     .texture(0, ctx.texture("src"), sampler, ctx.range("src"))
+                                                     .storage_texture(1, ctx.texture("pyramid"), ctx.range("pyramid").base_mip));
+                ctx.commands().dispatch((size.width + 7) / 8, (size.height + 7) / 8);
+                return Status{};
+            });
+    };
+    ASSERT_TRUE(graph.add_pass(compute_step("down1", 0, 1, down_compute)).ok());
+    // Mip 2 by a render pass into that mip (the attachment defaults to the port's range).
+    auto down2 = fg::Pass("down2").input("src", {}, fg::mip(1)).inout("pyramid", {}, fg::mip(2)).on_execute([down_render, sampler](fg::PassContext& ctx) {
+        ctx.begin_render_pass({"pyramid"});
+        ctx.commands().set_pipeline(down_render);
+        ctx.commands().set_bind_group(0, rhi::BindGroup{}.texture(0, ctx.texture("src"), sampler, ctx.range("src")));
+        ctx.commands().draw(3);
+        ctx.end_render_pass();
+        return Status{};
+    });
+    ASSERT_TRUE(graph.add_pass(std::move(down2)).ok());
+    ASSERT_TRUE(graph.add_pass(compute_step("up1", 2, 1, up_compute)).ok());
+    ASSERT_TRUE(graph.add_pass(compute_step("up0", 1, 0, up_compute)).ok());
+    const char* chain[] = {"base", "down1", "down2", "up1", "up0"};
+    for (int i = 1; i < 5; ++i) {
+        ASSERT_TRUE(graph.connect(fg::port(chain[i - 1], "pyramid"), fg::port(chain[i], "src")).ok());
+        ASSERT_TRUE(graph.connect(fg::port(chain[i - 1], "pyramid"), fg::port(chain[i], "pyramid")).ok());
+    }
+    ASSERT_TRUE(graph.mark_output(fg::port("up0", "pyramid")).ok());
+
+    Row mip0(16);
+    for (uint32_t x = 0; x < 16; ++x) mip0[x] = x < 5 ? std::array<double, 4>{1, 0, 0, 1} : std::array<double, 4>{0, 0.5, 0, 1};
+    Row mip1 = down(mip0);
+    const Row mip2 = down(mip1);
+    up(mip1, mip2);
+    up(mip0, mip1);
+    const Row expected[] = {mip0, mip1, mip2};
+
+    fg::Executor executor(device());
+    fg::PlanOptions options;
+    options.frame = {16, 16};
+    for (int frame = 0; frame < 2; ++frame) {
+        LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        const rhi::TextureHandle pyramid = executor.texture("up0", "pyramid");
+        for (uint32_t level = 0; level < 3; ++level) {
+            LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(pyramid, level));
+            ASSERT_EQ(image.width, 16u >> level);
+            for (uint32_t y = 0; y < image.height; ++y) {
+                for (uint32_t x = 0; x < image.width; ++x) {
+                    ASSERT_EQ(image.load(x, y), expected[level][x]) << "mip " << level << " at " << x << "," << y << " frame " << frame;
+                }
+            }
+        }
+    }
+    EXPECT_EQ(executor.plan()->textures.size(), 1u);
+}
+
+TEST_P(ResourceExecution, CascadesRenderedLayerByLayerAreSampledAsAnArray) {
+    TestPrograms programs(device());
+    LOOM_ASSIGN_OR_FAIL(auto depth, programs.depth_only(Format::Depth32F));
+    LOOM_ASSIGN_OR_FAIL(auto show, programs.make("cascades", kCascadesFrag, {Format::RGBA32Float}));
+    LOOM_ASSIGN_OR_FAIL(auto sampler, programs.sampler());
+    const fg::TextureSpec spec = fg::TextureSpec::of(Format::Depth32F).with_size(16, 16).with_layers(4);
+
+    fg::FrameGraph graph;
+    for (uint32_t i = 0; i < 4; ++i) {
+        const std::string name = "cascade" + std::to_string(i);
+        // Layer i: depth (i + 1) / 8 left of column 8, 1/2 + i/8 right of it.
+        const FillConstants depths{{(i + 1) / 8.0f, 0, 0, 0}, {0.5f + i / 8.0f, 0, 0, 0}, 8.0f};
+        fg::Pass pass(name);
+        if (i == 0) {
+            pass.output("shadow", spec, fg::layer(0));
+        } else {
+            pass.inout("shadow", {}, fg::layer(i));
+        }
+        pass.on_execute([depth, depths](fg::PassContext& ctx) {
+            ctx.begin_depth_pass("shadow");
+            ctx.commands().set_pipeline(depth);
+            ctx.commands().push_constants_of(depths);
+            ctx.commands().draw(3);
+            ctx.end_render_pass();
+            return Status{};
+        });
+        ASSERT_TRUE(graph.add_pass(std::move(pass)).ok());
+        if (i > 0) {
+            ASSERT_TRUE(graph.connect(fg::port("cascade" + std::to_string(i - 1), "shadow"), fg::port(name, "shadow")).ok());
+        }
+    }
+    auto light = fg::Pass("light")
+                     .input("shadow")
+                     .output("color", fg::TextureSpec::of(Format::RGBA32Float))
+                     .on_execute([show, sampler](fg::PassContext& ctx) {
+                         ctx.begin_render_pass({"color"});
+                         ctx.commands().set_pipeline(show);
+                         ctx.commands().set_bind_group(0, rhi::BindGroup{}.texture(0, ctx.texture("shadow"), sampler));
+                         ctx.commands().draw(3);
+                         ctx.end_render_pass();
+                         return Status{};
+                     });
+    ASSERT_TRUE(graph.add_pass(std::move(light)).ok());
+    ASSERT_TRUE(graph.connect(fg::port("cascade3", "shadow"), fg::port("light", "shadow")).ok());
+    ASSERT_TRUE(graph.mark_output(fg::port("light", "color")).ok());
+
+    fg::Executor executor(device());
+    fg::PlanOptions options;
+    options.frame = {16, 16};
+    for (int frame = 0; frame < 2; ++frame) {
+        LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(executor.texture("light", "color")));
+        EXPECT_EQ(image.load(3, 5), (std::array<double, 4>{0.125, 0.25, 0.375, 0.5})) << "frame " << frame;
+        EXPECT_EQ(image.load(12, 9), (std::array<double, 4>{0.5, 0.625, 0.75, 0.875})) << "frame " << frame;
+    }
+}
+
+}  // namespace
+
+LOOM_INSTANTIATE_RENDER_TEST(ResourceExecution);
+
+}  // namespace loom::test
