@@ -3,6 +3,7 @@
 // the snippet files is compiled only).
 
 #include <cstdint>
+#include <string>
 
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/image.hpp"
@@ -17,6 +18,11 @@ Result<rhi::Image> render_first_graph(rhi::Device& device);
 Status plan_framegraph_examples();
 /// framegraph_guide.cpp: the "Executing a plan" example (a blur pass) on `device`.
 Result<rhi::Image> execute_framegraph_example(rhi::Device& device);
+
+/// framegraph_buffers.cpp: plans the bloom pyramid, HZB chain and light list of
+/// docs/framegraph.md built in C++ and checks each against its JSON twin in `graphs_dir`
+/// (samples/plan/graphs) with every allocator, and the figures the guide quotes.
+Status plan_buffer_examples(const std::string& graphs_dir);
 
 /// backends_guide.cpp: what docs/backends.md shows about a device, as text.
 Result<std::string> describe_device(rhi::Device& device);

@@ -43,6 +43,12 @@ TEST_P(DocsSnippets, FrameGraphGuideExamples) {
     EXPECT_NEAR(image->load(3, 100)[0], 0.0, 1e-3);
 }
 
+// Planning only: no device.
+TEST(DocsSnippetsPlans, BuffersPassKindsAndRangesPlanAsTheirJsonTwins) {
+    const Status planned = docs::plan_buffer_examples(LOOM_PLAN_GRAPHS_DIR);
+    EXPECT_TRUE(planned.ok()) << planned.error().to_string();
+}
+
 TEST_P(DocsSnippets, BackendsGuideDescribesTheDevice) {
     auto text = docs::describe_device(device());
     ASSERT_TRUE(text.ok()) << text.error().to_string();

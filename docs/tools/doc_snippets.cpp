@@ -2,7 +2,8 @@
 //
 //   loom-doc-snippets --root <repository> [--update] docs/a.md docs/b.md ...
 //
-// Every ```cpp and ```cmake block of a guide must follow (on the line before it) one of:
+// Every ```cpp and ```cmake block of a guide, and every ```json block that has a marker, must
+// follow (on the line before it) one of:
 //
 //   <!-- snippet: docs/snippets/getting_started.cpp#first-pass -->
 //       the block is the region `first-pass` of that file: the lines between
@@ -137,10 +138,13 @@ int process(const Options& options, const fs::path& guide) {
         }
         std::vector<std::string> block(lines->begin() + static_cast<std::ptrdiff_t>(i) + 1,
                                        lines->begin() + static_cast<std::ptrdiff_t>(close));
-        const bool checked = language == "cpp" || language == "cmake";
         std::size_t marker_line = i;
         while (marker_line > 0 && trim((*lines)[marker_line - 1]).empty()) --marker_line;
         const std::string marker = marker_line > 0 ? trim((*lines)[marker_line - 1]) : "";
+        // A ```json block is checked when it names its file (a sample graph the tests plan);
+        // without a marker it is an illustration, like a shell transcript.
+        const bool marked = starts_with(marker, "<!-- snippet: ") || starts_with(marker, "<!-- excerpt: ");
+        const bool checked = language == "cpp" || language == "cmake" || (language == "json" && marked);
         std::vector<std::string> replacement = block;
         if (checked) {
             if (starts_with(marker, "<!-- snippet: ") && marker.size() > 18 && marker.substr(marker.size() - 4) == " -->") {

@@ -40,6 +40,41 @@ std::string numbered(std::string_view prefix, uint64_t number) { return detail::
 
 std::string pass_node(uint32_t position) { return numbered("p", position); }
 
+// "t3" or "b1": the physical texture or buffer behind a resource.
+std::string physical_name(const PlanResource& resource) {
+    return resource.type == ResourceType::Buffer ? numbered("b", resource.buffer) : numbered("t", resource.texture);
+}
+
+// Textures take the palette from its start, buffers from its end, so that in a small plan t0
+// and b0 differ in colour too (buffer edges are also dashed).
+std::string colour_of(const PlanResource& resource) {
+    if (resource.type == ResourceType::Buffer) {
+        return std::string(kPalette[kPalette.size() - 1 - resource.buffer % kPalette.size()]);
+    }
+    return std::string(kPalette[resource.texture % kPalette.size()]);
+}
+
+// The part of its resource a port uses, "" when it is all of it: "mip 2", "layers 1..3",
+// "mips 1..3 layer 0", "bytes 512+512" (offset+size), as describe_range() writes them.
+std::string range_of(const PlanResource& resource, const PlanPort& port) {
+    if (resource.type == ResourceType::Buffer) {
+        if (port.bytes.offset == 0 && port.bytes.size == resource.buffer_spec.size) return {};
+        return detail::concat("bytes ", port.bytes.offset, "+", port.bytes.size);
+    }
+    // The plan's counts are concrete: a part is left out when it covers every level (layer).
+    auto part = [](std::string_view one, std::string_view many, uint32_t base, uint32_t count,
+                   uint32_t total) -> std::string {
+        if (base == 0 && count == total) return {};
+        if (count == 1) return detail::concat(one, " ", base);
+        return detail::concat(many, " ", base, "..", uint64_t{base} + count - 1);
+    };
+    const std::string mips = part("mip", "mips", port.range.base_mip, port.range.mip_count, resource.spec.mips);
+    const std::string layers =
+        part("layer", "layers", port.range.base_layer, port.range.layer_count, resource.spec.layers);
+    if (mips.empty() || layers.empty()) return mips + layers;
+    return mips + " " + layers;
+}
+
 }  // namespace
 
 void write_plan_dot(std::ostream& out, const Plan& plan) {
@@ -47,10 +82,15 @@ void write_plan_dot(std::ostream& out, const Plan& plan) {
     out << "  rankdir=LR;\n";
     out << "  node [shape=record, fontname=\"Helvetica\", fontsize=10];\n";
     out << "  edge [fontname=\"Helvetica\", fontsize=9];\n";
-    out << "  label=" << quoted(plan.allocator + " allocator: " + std::to_string(plan.summary.textures) +
-                              " textures, " + format_bytes(plan.summary.bytes) + " (naive " +
-                              std::to_string(plan.summary.naive_textures) + ", " +
-                              format_bytes(plan.summary.naive_bytes) + ")") << ";\n";
+    // Buffers are counted only in plans that have them, so a texture-only plan's picture is
+    // what it was before buffers existed.
+    const PlanSummary& s = plan.summary;
+    std::string title = detail::concat(plan.allocator, " allocator: ", s.textures, " textures, ");
+    if (s.naive_buffers > 0) detail::append(title, s.buffers, " buffers, ");
+    detail::append(title, format_bytes(s.bytes), " (naive ", s.naive_textures);
+    if (s.naive_buffers > 0) detail::append(title, " + ", s.naive_buffers, " buffers");
+    detail::append(title, ", ", format_bytes(s.naive_bytes), ")");
+    out << "  label=" << quoted(title) << ";\n";
 
     for (uint32_t at = 0; at < plan.order.size(); ++at) {
         const PlanPass& pass = plan.order[at];
@@ -59,7 +99,11 @@ void write_plan_dot(std::ostream& out, const Plan& plan) {
         for (uint32_t i = 0; i < pass.ports.size(); ++i) {
             const PlanPort& port = pass.ports[i];
             std::string field = numbered("<f", i) + "> " + record_escape(port.name);
-            if (port.resource) field += numbered(" (t", plan.resources[*port.resource].texture) + ")";
+            if (port.resource) {
+                const PlanResource& resource = plan.resources[*port.resource];
+                const std::string range = range_of(resource, port);
+                field += " (" + physical_name(resource) + (range.empty() ? "" : " " + range) + ")";
+            }
             std::string& side = port.kind == PortKind::Input ? inputs : outputs;
             if (!side.empty()) side += '|';
             side += field;
@@ -67,6 +111,7 @@ void write_plan_dot(std::ostream& out, const Plan& plan) {
         std::string label = "{";
         if (!inputs.empty()) label += "{" + inputs + "}|";
         label += std::to_string(at) + ": " + record_escape(pass.name);
+        if (pass.kind != PassKind::Graphics) label += " [" + std::string(pass_kind_name(pass.kind)) + "]";
         if (pass.side_effect) label += " (side effect)";
         if (!outputs.empty()) label += "|{" + outputs + "}";
         label += "}";
@@ -78,10 +123,13 @@ void write_plan_dot(std::ostream& out, const Plan& plan) {
     }
     for (const PlanEdge& e : plan.edges) {
         const PlanResource& resource = plan.resources[e.resource];
-        const std::string colour(kPalette[resource.texture % kPalette.size()]);
+        const std::string colour = colour_of(resource);
+        // The edge says what its reader uses: the resource, and the part of it when not all.
+        const std::string range = range_of(resource, plan.order[e.to_pass].ports[e.to_port]);
         out << "  " << pass_node(e.from_pass) << numbered(":f", e.from_port) << ":e -> " << pass_node(e.to_pass)
             << numbered(":f", e.to_port) << ":w [color=" << quoted(colour) << ", fontcolor=" << quoted(colour)
-            << ", label=" << quoted(numbered("t", resource.texture)) << "];\n";
+            << (resource.type == ResourceType::Buffer ? ", style=dashed" : "")
+            << ", label=" << quoted(physical_name(resource) + (range.empty() ? "" : " " + range)) << "];\n";
     }
     if (!plan.graph_outputs.empty()) {
         out << "  output [shape=doublecircle, label=\"output\"];\n";
@@ -91,10 +139,10 @@ void write_plan_dot(std::ostream& out, const Plan& plan) {
             for (uint32_t i = 0; i < pass.ports.size(); ++i) {
                 const std::string name = pass.name + "." + pass.ports[i].name;
                 if (!marked_outputs.contains(name) || !pass.ports[i].resource) continue;
-                const uint32_t texture = plan.resources[*pass.ports[i].resource].texture;
-                const std::string colour(kPalette[texture % kPalette.size()]);
-                out << "  " << pass_node(at) << numbered(":f", i) << ":e -> output [color=" << quoted(colour)
-                    << ", label=" << quoted(numbered("t", texture)) << "];\n";
+                const PlanResource& resource = plan.resources[*pass.ports[i].resource];
+                out << "  " << pass_node(at) << numbered(":f", i) << ":e -> output [color=" << quoted(colour_of(resource))
+                    << (resource.type == ResourceType::Buffer ? ", style=dashed" : "")
+                    << ", label=" << quoted(physical_name(resource)) << "];\n";
             }
         }
     }

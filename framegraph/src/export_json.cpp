@@ -154,6 +154,16 @@ void write_usage(JsonWriter& out, rhi::TextureUsage usage) {
     out.end_array();
 }
 
+void write_buffer_usage(JsonWriter& out, rhi::BufferUsage usage) {
+    out.begin_array();
+    for (auto flag : {rhi::BufferUsage::Vertex, rhi::BufferUsage::Index, rhi::BufferUsage::Uniform,
+                      rhi::BufferUsage::Storage, rhi::BufferUsage::Indirect, rhi::BufferUsage::CopySrc,
+                      rhi::BufferUsage::CopyDst}) {
+        if (rhi::has_all(usage, flag)) out.value(describe_buffer_usage(flag));
+    }
+    out.end_array();
+}
+
 // The members of a resolved spec, each written by the caller at its place in key order.
 void write_format(JsonWriter& out, const ResolvedSpec& spec) {
     out.member("format", rhi::format_name(spec.format));
@@ -161,18 +171,45 @@ void write_format(JsonWriter& out, const ResolvedSpec& spec) {
 }
 
 void write_port(JsonWriter& out, const Plan& plan, const PlanPort& port) {
+    const bool buffer = port.type == ResourceType::Buffer;
     out.begin_object();
+    if (buffer) {
+        if (port.resource) {
+            out.member("buffer", plan.resources[*port.resource].buffer);
+        } else {
+            out.member("buffer", nullptr);
+        }
+    }
     out.member("kind", port_kind_name(port.kind));
     out.member("name", port.name);
     out.member("optional", port.optional);
     if (port.resource) {
+        // The range is concrete only for a port with a resource (counts resolved against it).
+        out.key("range");
+        out.begin_object();
+        if (buffer) {
+            out.member("offset", port.bytes.offset);
+            out.member("size", port.bytes.size);
+        } else {
+            out.member("base_layer", port.range.base_layer);
+            out.member("base_mip", port.range.base_mip);
+            out.member("layer_count", port.range.layer_count);
+            out.member("mip_count", port.range.mip_count);
+        }
+        out.end_object();
         out.member("resource", *port.resource);
-        out.member("texture", plan.resources[*port.resource].texture);
+        if (!buffer) out.member("texture", plan.resources[*port.resource].texture);
+        out.member("type", resource_type_name(port.type));
         out.key("usage");
-        write_usage(out, port.usage);
+        if (buffer) {
+            write_buffer_usage(out, port.buffer_usage);
+        } else {
+            write_usage(out, port.usage);
+        }
     } else {
         out.member("resource", nullptr);
-        out.member("texture", nullptr);
+        if (!buffer) out.member("texture", nullptr);
+        out.member("type", resource_type_name(port.type));
     }
     out.end_object();
 }
@@ -180,6 +217,7 @@ void write_port(JsonWriter& out, const Plan& plan, const PlanPort& port) {
 void write_pass(JsonWriter& out, const Plan& plan, const PlanPass& pass) {
     out.begin_object();
     out.member("declaration_index", pass.declaration_index);
+    out.member("kind", pass_kind_name(pass.kind));
     out.member("name", pass.name);
     out.key("ports");
     out.begin_array();
@@ -189,18 +227,52 @@ void write_pass(JsonWriter& out, const Plan& plan, const PlanPass& pass) {
     out.end_object();
 }
 
+// A texture edge names its texture, a buffer edge its buffer.
 void write_edge(JsonWriter& out, const Plan& plan, const PlanEdge& e) {
     const PlanPass& from = plan.order[e.from_pass];
     const PlanPass& to = plan.order[e.to_pass];
+    const PlanResource& resource = plan.resources[e.resource];
     out.begin_object();
+    if (resource.type == ResourceType::Buffer) out.member("buffer", resource.buffer);
     out.member("from", from.name + "." + from.ports[e.from_port].name);
     out.member("resource", e.resource);
-    out.member("texture", plan.resources[e.resource].texture);
+    if (resource.type == ResourceType::Texture) out.member("texture", resource.texture);
     out.member("to", to.name + "." + to.ports[e.to_port].name);
     out.end_object();
 }
 
+void write_lifetime(JsonWriter& out, const Lifetime& lifetime) {
+    out.key("lifetime");
+    out.begin_array();
+    out.value(lifetime.first);
+    out.value(lifetime.last);
+    out.end_array();
+}
+
+// A buffer resource has no format, extent, samples, mips or layers: its own members.
+void write_buffer_resource(JsonWriter& out, const PlanResource& r) {
+    out.begin_object();
+    out.member("alignment", r.alignment);
+    out.member("buffer", r.buffer);
+    out.member("bytes", r.bytes);
+    out.member("graph_output", r.graph_output);
+    write_lifetime(out, r.lifetime);
+    out.member("name", r.name);
+    out.array_member("ports", r.ports);
+    out.member("size", r.buffer_spec.size);
+    out.member("spec_alignment", r.buffer_spec.alignment);
+    out.member("spec_class", r.spec_class);
+    out.member("type", resource_type_name(r.type));
+    out.key("usage");
+    write_buffer_usage(out, r.buffer_spec.usage);
+    out.end_object();
+}
+
 void write_resource(JsonWriter& out, const PlanResource& r) {
+    if (r.type == ResourceType::Buffer) {
+        write_buffer_resource(out, r);
+        return;
+    }
     out.begin_object();
     out.member("alignment", r.alignment);
     out.member("bytes", r.bytes);
@@ -208,11 +280,7 @@ void write_resource(JsonWriter& out, const PlanResource& r) {
     out.member("graph_output", r.graph_output);
     out.member("height", r.spec.extent.height);
     out.member("layers", r.spec.layers);
-    out.key("lifetime");
-    out.begin_array();
-    out.value(r.lifetime.first);
-    out.value(r.lifetime.last);
-    out.end_array();
+    write_lifetime(out, r.lifetime);
     out.member("mips", r.spec.mips);
     out.member("name", r.name);
     out.array_member("ports", r.ports);
@@ -224,6 +292,7 @@ void write_resource(JsonWriter& out, const PlanResource& r) {
     out.member("samples", r.spec.samples);
     out.member("spec_class", r.spec_class);
     out.member("texture", r.texture);
+    out.member("type", resource_type_name(r.type));
     out.key("usage");
     write_usage(out, r.spec.usage);
     out.member("width", r.spec.extent.width);
@@ -232,6 +301,17 @@ void write_resource(JsonWriter& out, const PlanResource& r) {
 
 void write_spec_class(JsonWriter& out, const SpecClass& c) {
     out.begin_object();
+    if (c.type == ResourceType::Buffer) {
+        out.member("peak_live", c.peak_live);
+        out.array_member("resources", c.resources);
+        out.member("size", c.buffer_spec.size);
+        out.member("spec_alignment", c.buffer_spec.alignment);
+        out.member("type", resource_type_name(c.type));
+        out.key("usage");
+        write_buffer_usage(out, c.buffer_spec.usage);
+        out.end_object();
+        return;
+    }
     write_format(out, c.spec);
     out.member("height", c.spec.extent.height);
     out.member("layers", c.spec.layers);
@@ -239,9 +319,25 @@ void write_spec_class(JsonWriter& out, const SpecClass& c) {
     out.member("peak_live", c.peak_live);
     out.array_member("resources", c.resources);
     out.member("samples", c.spec.samples);
+    out.member("type", resource_type_name(c.type));
     out.key("usage");
     write_usage(out, c.spec.usage);
     out.member("width", c.spec.extent.width);
+    out.end_object();
+}
+
+void write_buffer(JsonWriter& out, const PlanBuffer& b) {
+    out.begin_object();
+    out.member("alignment", b.alignment);
+    out.member("bytes", b.bytes);
+    if (b.placement) out.member("heap", b.placement->heap);
+    out.member("name", b.name);
+    if (b.placement) out.member("offset", b.placement->offset);
+    out.array_member("resources", b.resources);
+    out.member("size", b.spec.size);
+    out.member("spec_alignment", b.spec.alignment);
+    out.key("usage");
+    write_buffer_usage(out, b.spec.usage);
     out.end_object();
 }
 
@@ -274,6 +370,10 @@ void write_plan_json(std::ostream& stream, const Plan& plan, int indent) {
     JsonWriter out(stream, indent);
     out.begin_object();
     out.member("allocator", plan.allocator);
+    out.key("buffers");
+    out.begin_array();
+    for (const PlanBuffer& b : plan.buffers) write_buffer(out, b);
+    out.end_array();
     out.array_member("culled", plan.culled);
     out.key("edges");
     out.begin_array();
@@ -306,9 +406,13 @@ void write_plan_json(std::ostream& stream, const Plan& plan, int indent) {
     out.end_array();
     out.key("summary");
     out.begin_object();
+    out.member("buffer_bytes", s.buffer_bytes);
+    out.member("buffers", s.buffers);
     out.member("bytes", s.bytes);
+    out.member("lower_bound_buffers", s.lower_bound_buffers);
     out.member("lower_bound_bytes", s.lower_bound_bytes);
     out.member("lower_bound_textures", s.lower_bound_textures);
+    out.member("naive_buffers", s.naive_buffers);
     out.member("naive_bytes", s.naive_bytes);
     out.member("naive_textures", s.naive_textures);
     out.member("textures", s.textures);

@@ -46,6 +46,32 @@ std::string ratio(uint64_t value, uint64_t bound) {
     return buffer;
 }
 
+// "t3" or "b1": the physical texture or buffer behind a resource.
+std::string physical_name(const PlanResource& resource) {
+    return resource.type == ResourceType::Buffer ? numbered("b", resource.buffer) : numbered("t", resource.texture);
+}
+
+// The part of its resource a port uses, in parentheses, or "" when it is all of it: "(mip 2)",
+// "(mips 1..3 layer 0)", "(bytes 512+512)" (offset+size). The plan's counts are concrete.
+std::string range_suffix(const PlanResource& resource, const PlanPort& port) {
+    if (resource.type == ResourceType::Buffer) {
+        if (port.bytes.offset == 0 && port.bytes.size == resource.buffer_spec.size) return {};
+        return detail::concat("(bytes ", port.bytes.offset, "+", port.bytes.size, ")");
+    }
+    auto part = [](std::string_view one, std::string_view many, uint32_t base, uint32_t count,
+                   uint32_t total) -> std::string {
+        if (base == 0 && count == total) return {};
+        if (count == 1) return detail::concat(one, " ", base);
+        return detail::concat(many, " ", base, "..", uint64_t{base} + count - 1);
+    };
+    const std::string mips = part("mip", "mips", port.range.base_mip, port.range.mip_count, resource.spec.mips);
+    const std::string layers =
+        part("layer", "layers", port.range.base_layer, port.range.layer_count, resource.spec.layers);
+    if (mips.empty() && layers.empty()) return {};
+    if (mips.empty() || layers.empty()) return "(" + mips + layers + ")";
+    return "(" + mips + " " + layers + ")";
+}
+
 }  // namespace
 
 std::string format_bytes(uint64_t bytes) {
@@ -78,9 +104,18 @@ void write_plan_table(std::ostream& out, const Plan& plan) {
             if (!ports.empty()) ports += "  ";
             ports += std::string(port.kind == PortKind::Input ? "<" : port.kind == PortKind::Output ? ">" : "<>") +
                      port.name + "=";
-            ports += port.resource ? numbered("t", plan.resources[*port.resource].texture) : "-";
+            if (port.resource) {
+                const PlanResource& resource = plan.resources[*port.resource];
+                ports += physical_name(resource) + range_suffix(resource, port);
+            } else {
+                ports += "-";
+            }
         }
-        order.add({std::to_string(at), pass.name + (pass.side_effect ? " (side effect)" : ""), ports});
+        // Graphics is the default kind and goes unsaid.
+        std::string name = pass.name;
+        if (pass.kind != PassKind::Graphics) name += " [" + std::string(pass_kind_name(pass.kind)) + "]";
+        if (pass.side_effect) name += " (side effect)";
+        order.add({std::to_string(at), name, ports});
     }
     order.render(out, "  ");
     out << "\n";
@@ -88,6 +123,7 @@ void write_plan_table(std::ostream& out, const Plan& plan) {
     out << "resources\n";
     Table resources({"resource", "format", "size", "life", "texture", "bytes"});
     for (const PlanResource& r : plan.resources) {
+        if (r.type != ResourceType::Texture) continue;  // in the buffer table below
         std::string format(rhi::format_name(r.spec.format));
         if (r.spec.format_match == FormatMatch::Covering && r.requested_format) {
             format += " (covers " + describe_features(*r.requested_format) + ")";
@@ -122,14 +158,62 @@ void write_plan_table(std::ostream& out, const Plan& plan) {
     textures.render(out, "  ");
     out << "\n";
 
+    // Buffer tables and columns appear only in plans with buffers: a texture-only plan prints
+    // what it printed before buffers existed.
     const PlanSummary& s = plan.summary;
+    const bool buffers = s.naive_buffers > 0;
+    if (buffers) {
+        out << "buffer resources\n";
+        Table buffer_resources({"resource", "size", "usage", "life", "buffer", "bytes"});
+        for (const PlanResource& r : plan.resources) {
+            if (r.type != ResourceType::Buffer) continue;
+            std::string size = std::to_string(r.buffer_spec.size) + " B";
+            if (r.buffer_spec.alignment > 1) size += numbered(" aligned ", r.buffer_spec.alignment);
+            buffer_resources.add({r.name + (r.graph_output ? " (output)" : ""), size,
+                                  describe_buffer_usage(r.buffer_spec.usage),
+                                  std::to_string(r.lifetime.first) + "-" + std::to_string(r.lifetime.last),
+                                  physical_name(r), format_bytes(r.bytes)});
+        }
+        buffer_resources.render(out, "  ");
+        out << "\n";
+
+        out << "buffers\n";
+        Table physical({"buffer", "spec", "holds", "bytes", "placement"});
+        for (const PlanBuffer& b : plan.buffers) {
+            std::string holds;
+            for (uint32_t r : b.resources) {
+                if (!holds.empty()) holds += ", ";
+                holds += plan.resources[r].name;
+            }
+            std::string placement = "-";
+            if (b.placement) placement = numbered("heap ", b.placement->heap) + numbered(" @ ", b.placement->offset);
+            physical.add({b.name, describe_resolved_buffer(b.spec), holds, format_bytes(b.bytes), placement});
+        }
+        physical.render(out, "  ");
+        out << "\n";
+    }
+
     out << "summary\n";
-    Table summary({"", "textures", "bytes", "bytes / lower bound"});
-    summary.add({"plan", std::to_string(s.textures), format_bytes(s.bytes), ratio(s.bytes, s.lower_bound_bytes)});
-    summary.add({"naive", std::to_string(s.naive_textures), format_bytes(s.naive_bytes),
-                 ratio(s.naive_bytes, s.lower_bound_bytes)});
-    summary.add({"lower bound", std::to_string(s.lower_bound_textures), format_bytes(s.lower_bound_bytes), "1.000"});
+    std::vector<std::string> header{"", "textures", "bytes", "bytes / lower bound"};
+    std::vector<std::string> plan_row{"plan", std::to_string(s.textures), format_bytes(s.bytes),
+                                      ratio(s.bytes, s.lower_bound_bytes)};
+    std::vector<std::string> naive_row{"naive", std::to_string(s.naive_textures), format_bytes(s.naive_bytes),
+                                       ratio(s.naive_bytes, s.lower_bound_bytes)};
+    std::vector<std::string> bound_row{"lower bound", std::to_string(s.lower_bound_textures),
+                                       format_bytes(s.lower_bound_bytes), "1.000"};
+    if (buffers) {
+        header.insert(header.begin() + 2, "buffers");
+        plan_row.insert(plan_row.begin() + 2, std::to_string(s.buffers));
+        naive_row.insert(naive_row.begin() + 2, std::to_string(s.naive_buffers));
+        bound_row.insert(bound_row.begin() + 2, std::to_string(s.lower_bound_buffers));
+    }
+    Table summary(std::move(header));
+    summary.add(std::move(plan_row));
+    summary.add(std::move(naive_row));
+    summary.add(std::move(bound_row));
     summary.render(out, "  ");
+    // The physical buffers' bytes, counted in the plan's bytes (placed ones within the heaps).
+    if (buffers) out << "  buffer bytes: " << format_bytes(s.buffer_bytes) << "\n";
     if (!plan.heaps.empty()) {
         out << "  heaps:";
         for (uint64_t size : plan.heaps) {

@@ -151,7 +151,7 @@ private:
 
     Result<Pass> read_pass(const json& object, const std::string& path) {
         if (!object.is_object()) return fail(path, "a pass must be an object");
-        LOOM_TRY(only_keys(object, path, {"name", "inputs", "outputs", "inouts", "parts", "side_effect"}));
+        LOOM_TRY(only_keys(object, path, {"name", "kind", "inputs", "outputs", "inouts", "parts", "side_effect"}));
         if (!object.contains("name") || !object["name"].is_string() || object["name"].get<std::string>().empty()) {
             return fail(path + "/name", "a pass needs a non-empty string name");
         }
@@ -161,6 +161,17 @@ private:
         auto side_effect = boolean(object, path, "side_effect");
         if (!side_effect) return side_effect.take_error();
         pass.set_side_effect(*side_effect);
+        if (object.contains("kind")) {
+            const json& kind = object["kind"];
+            static constexpr std::array<PassKind, 3> kKinds{PassKind::Graphics, PassKind::Compute, PassKind::Copy};
+            const auto found = std::find_if(kKinds.begin(), kKinds.end(), [&](PassKind k) {
+                return kind.is_string() && kind.get<std::string>() == pass_kind_name(k);
+            });
+            if (found == kKinds.end()) {
+                return fail(path + "/kind", "must be one of graphics, compute, copy, not " + excerpt(kind));
+            }
+            pass.set_kind(*found);
+        }
 
         // The pass's own ports first, then each port set of "parts", as Pass::add composes them.
         auto own = read_port_set(object, path, pass.name());
@@ -199,7 +210,11 @@ private:
                 const std::string port_path = list_path + "/" + std::to_string(i);
                 auto port = read_port(list[i], port_path);
                 if (!port) return port.take_error();
-                ports.declare(port->name, kind, port->spec, port->optional);
+                if (port->type == ResourceType::Buffer) {
+                    ports.declare_buffer(port->name, kind, port->buffer, port->optional, port->bytes);
+                } else {
+                    ports.declare(port->name, kind, port->spec, port->optional, port->range);
+                }
                 // A port declared by the pass and its port sets is located where it is first
                 // declared.
                 pointers_.try_emplace(pass_name_ + "." + port->name, port_path);
@@ -210,14 +225,22 @@ private:
 
     Result<Port> read_port(const json& object, const std::string& path) const {
         if (!object.is_object()) return fail(path, "a port must be an object with a \"name\"");
-        LOOM_TRY(only_keys(object, path,
-                           {"name", "format", "channels", "bits", "kind", "srgb", "depth", "stencil", "size", "scale",
-                            "samples", "mips", "layers", "optional", "usage"}));
-        if (!object.contains("name") || !object["name"].is_string() || object["name"].get<std::string>().empty()) {
-            return fail(path + "/name", "a port needs a non-empty string name");
+        auto type = read_type(object, path);
+        if (!type) return type.take_error();
+        if (*type == ResourceType::Buffer) return read_buffer_port(object, path);
+        // A buffer property on a texture port most likely means a forgotten "type": say so
+        // rather than list the texture keys.
+        if (object.contains("alignment")) {
+            return fail(path + "/alignment", "\"alignment\" is a property of buffer ports; a texture port takes none "
+                                             "(add \"type\": \"buffer\" for a buffer port)");
         }
+        LOOM_TRY(only_keys(object, path,
+                           {"name", "type", "format", "channels", "bits", "kind", "srgb", "depth", "stencil", "size",
+                            "scale", "samples", "mips", "layers", "range", "optional", "usage"}));
+        auto name = port_name(object, path);
+        if (!name) return name.take_error();
         Port port;
-        port.name = object["name"].get<std::string>();
+        port.name = std::move(*name);
         TextureSpec& spec = port.spec;
 
         auto format = read_format(object, path);
@@ -229,7 +252,13 @@ private:
             const json& size = object["size"];
             const bool pair = size.is_array() && size.size() == 2 &&
                               std::all_of(size.begin(), size.end(), [](const json& v) { return v.is_number_integer(); });
-            if (!pair) return fail(path + "/size", "must be [width, height] in texels, not " + excerpt(size));
+            if (!pair) {
+                // A byte count or a per-pixel/per-tile object is a buffer's size.
+                const std::string hint = size.is_number_integer() || size.is_object()
+                                             ? " (a buffer's size needs \"type\": \"buffer\")"
+                                             : "";
+                return fail(path + "/size", "must be [width, height] in texels, not " + excerpt(size) + hint);
+            }
             const bool in_range = std::all_of(size.begin(), size.end(), [](const json& v) {
                 if (v.is_number_unsigned()) return v.get<uint64_t>() >= 1 && v.get<uint64_t>() <= kMaxTextureExtent;
                 return v.get<int64_t>() >= 1 && v.get<int64_t>() <= int64_t{kMaxTextureExtent};
@@ -253,8 +282,6 @@ private:
         }
         // The limits of texture_spec.hpp, refused here with a JSON pointer rather than later by
         // resolve(); mips also depend on the resolved size, which resolve() checks.
-        constexpr uint32_t kMaxMips = 17;  // a full chain of kMaxTextureExtent texels per side
-        static_assert(kMaxTextureExtent == 1u << (kMaxMips - 1));
         auto samples = positive(object, path, "samples", false, kMaxTextureSamples);
         if (!samples) return samples.take_error();
         if (*samples) {
@@ -269,6 +296,11 @@ private:
         auto layers = positive(object, path, "layers", false, kMaxTextureLayers);
         if (!layers) return layers.take_error();
         if (*layers) spec.layers = **layers;
+        if (object.contains("range")) {
+            auto range = read_texture_range(object["range"], path + "/range");
+            if (!range) return range.take_error();
+            port.range = *range;
+        }
         auto optional = boolean(object, path, "optional");
         if (!optional) return optional.take_error();
         port.optional = *optional;
@@ -289,6 +321,194 @@ private:
             }
         }
         return port;
+    }
+
+    Result<std::string> port_name(const json& object, const std::string& path) const {
+        if (!object.contains("name") || !object["name"].is_string() || object["name"].get<std::string>().empty()) {
+            return fail(path + "/name", "a port needs a non-empty string name");
+        }
+        return object["name"].get<std::string>();
+    }
+
+    // "type": "texture" (the default) or "buffer".
+    Result<ResourceType> read_type(const json& object, const std::string& path) const {
+        if (!object.contains("type")) return ResourceType::Texture;
+        const json& type = object["type"];
+        for (ResourceType t : {ResourceType::Texture, ResourceType::Buffer}) {
+            if (type.is_string() && type.get<std::string>() == resource_type_name(t)) return t;
+        }
+        return fail(path + "/type", "must be \"texture\" or \"buffer\", not " + excerpt(type));
+    }
+
+    // An integer in [min, max] (up to 2^40, a buffer's limit, so 64 bits).
+    Result<uint64_t> whole_number(const json& value, const std::string& where, uint64_t min, uint64_t max) const {
+        const std::string wanted = min == 0 ? "a non-negative integer" : "a positive integer";
+        if (!value.is_number_integer()) return fail(where, "must be " + wanted + ", not " + excerpt(value));
+        if (!value.is_number_unsigned() && value.get<int64_t>() < 0) {
+            return fail(where, "must be " + wanted + ", not " + excerpt(value));
+        }
+        const auto number = value.get<uint64_t>();
+        if (number < min) return fail(where, "must be " + wanted + ", not " + excerpt(value));
+        if (number > max) return fail(where, "must be at most " + std::to_string(max) + ", not " + excerpt(value));
+        return number;
+    }
+
+    // "range" of a texture port: {"mip": k} or {"mips": [base, count]} ([base]: to the last
+    // level), and likewise "layer" / "layers"; what is not given is every level (layer).
+    Result<SubresourceRange> read_texture_range(const json& value, const std::string& path) const {
+        if (!value.is_object()) {
+            return fail(path, "must be an object such as {\"mip\": 1} or {\"mips\": [1, 2], \"layer\": 0}, not " +
+                                  excerpt(value));
+        }
+        LOOM_TRY(only_keys(value, path, {"mip", "mips", "layer", "layers"}));
+        SubresourceRange range;
+        // Bases and counts within the texture limits; whether the texture has that many levels
+        // (layers) is known once it is resolved, and planning checks it.
+        auto part = [&](const char* one, const char* many, uint32_t limit, uint32_t& base, uint32_t& count) -> Status {
+            if (value.contains(one) && value.contains(many)) {
+                return fail(path, std::string("give \"") + one + "\" or \"" + many + "\", not both");
+            }
+            if (value.contains(one)) {
+                auto index = whole_number(value[one], path + "/" + one, 0, limit - 1);
+                if (!index) return index.take_error();
+                base = static_cast<uint32_t>(*index);
+                count = 1;
+            } else if (value.contains(many)) {
+                const json& pair = value[many];
+                const std::string where = path + "/" + many;
+                if (!pair.is_array() || pair.empty() || pair.size() > 2) {
+                    return fail(where, "must be [base, count] or [base] (from base to the last), not " + excerpt(pair));
+                }
+                auto first = whole_number(pair[0], where + "/0", 0, limit - 1);
+                if (!first) return first.take_error();
+                base = static_cast<uint32_t>(*first);
+                count = rhi::kRemainingSubresources;
+                if (pair.size() == 2) {
+                    auto n = whole_number(pair[1], where + "/1", 1, limit - base);
+                    if (!n) return n.take_error();
+                    count = static_cast<uint32_t>(*n);
+                }
+            }
+            return {};
+        };
+        LOOM_TRY(part("mip", "mips", kMaxMips, range.base_mip, range.mip_count));
+        LOOM_TRY(part("layer", "layers", kMaxTextureLayers, range.base_layer, range.layer_count));
+        return range;
+    }
+
+    // A buffer port: "size", "usage", "alignment", "range", "optional".
+    Result<Port> read_buffer_port(const json& object, const std::string& path) const {
+        // Texture properties on a buffer port: name the key and what a buffer port takes.
+        static constexpr std::array<std::string_view, 11> kTextureKeys{
+            "format", "channels", "bits", "kind", "srgb", "depth", "stencil", "scale", "samples", "mips", "layers"};
+        for (std::string_view key : kTextureKeys) {
+            if (!object.contains(key)) continue;
+            return fail(path + "/" + std::string(key),
+                        "\"" + std::string(key) + "\" is a property of texture ports; a buffer port takes name, type, "
+                        "size, usage, alignment, range, optional");
+        }
+        LOOM_TRY(only_keys(object, path, {"name", "type", "size", "usage", "alignment", "range", "optional"}));
+        auto name = port_name(object, path);
+        if (!name) return name.take_error();
+        Port port;
+        port.name = std::move(*name);
+        port.type = ResourceType::Buffer;
+        BufferSpec& spec = port.buffer;
+
+        if (object.contains("size")) {
+            auto size = read_buffer_size(object["size"], path + "/size");
+            if (!size) return size.take_error();
+            spec.size = *size;
+        }
+        if (object.contains("alignment")) {
+            auto alignment = whole_number(object["alignment"], path + "/alignment", 1, kMaxBufferAlignment);
+            if (!alignment) return alignment.take_error();
+            if (!std::has_single_bit(*alignment)) {
+                return fail(path + "/alignment", "must be a power of two, not " + excerpt(object["alignment"]));
+            }
+            spec.alignment = *alignment;
+        }
+        if (object.contains("range")) {
+            const json& range = object["range"];
+            const std::string where = path + "/range";
+            if (!range.is_object()) {
+                return fail(where, "must be {\"offset\": bytes, \"size\": bytes} (no size: to the end), not " +
+                                       excerpt(range));
+            }
+            LOOM_TRY(only_keys(range, where, {"offset", "size"}));
+            if (range.contains("offset")) {
+                auto offset = whole_number(range["offset"], where + "/offset", 0, kMaxBufferBytes - 1);
+                if (!offset) return offset.take_error();
+                port.bytes.offset = *offset;
+            }
+            if (range.contains("size")) {
+                auto size = whole_number(range["size"], where + "/size", 1, kMaxBufferBytes - port.bytes.offset);
+                if (!size) return size.take_error();
+                port.bytes.size = *size;
+            }
+        }
+        auto optional = boolean(object, path, "optional");
+        if (!optional) return optional.take_error();
+        port.optional = *optional;
+
+        if (object.contains("usage")) {
+            const json& usage = object["usage"];
+            if (!usage.is_array()) return fail(path + "/usage", "must be an array of buffer usage names");
+            for (std::size_t i = 0; i < usage.size(); ++i) {
+                const std::string where = path + "/usage/" + std::to_string(i);
+                if (!usage[i].is_string()) return fail(where, "must be a usage name, not " + excerpt(usage[i]));
+                auto flag = parse_buffer_usage_flag(usage[i].get<std::string>());
+                if (!flag) {
+                    return fail(where, "unknown buffer usage \"" + usage[i].get<std::string>() +
+                                           "\" (vertex, index, uniform, storage, indirect, copy_src, copy_dst)");
+                }
+                spec.usage |= *flag;
+            }
+        }
+        return port;
+    }
+
+    // A buffer's "size": a byte count, {"per_pixel": bytes, "scale": s} (scale 1 by default)
+    // or {"per_tile": bytes, "tile": [w, h]}.
+    Result<BufferSize> read_buffer_size(const json& value, const std::string& path) const {
+        if (value.is_number_integer()) {
+            auto bytes = whole_number(value, path, 1, kMaxBufferBytes);
+            if (!bytes) return bytes.take_error();
+            return BufferSize::absolute(*bytes);
+        }
+        if (!value.is_object()) {
+            return fail(path, "must be a byte count, {\"per_pixel\": bytes, \"scale\": s} or {\"per_tile\": bytes, "
+                              "\"tile\": [w, h]}, not " + excerpt(value));
+        }
+        LOOM_TRY(only_keys(value, path, {"per_pixel", "scale", "per_tile", "tile"}));
+        const bool per_pixel = value.contains("per_pixel");
+        if (per_pixel == value.contains("per_tile")) return fail(path, "give \"per_pixel\" or \"per_tile\" (one of them)");
+        const char* unit = per_pixel ? "per_pixel" : "per_tile";
+        auto bytes = whole_number(value[unit], path + "/" + unit, 1, kMaxBufferBytes);
+        if (!bytes) return bytes.take_error();
+        if (per_pixel) {
+            if (value.contains("tile")) return fail(path + "/tile", "goes with \"per_tile\", not \"per_pixel\"");
+            float scale = 1.0f;
+            if (value.contains("scale")) {
+                const json& s = value["scale"];
+                if (!s.is_number() || !(s.get<double>() > 0.0 && s.get<double>() <= 16.0)) {
+                    return fail(path + "/scale", "must be a number in (0, 16], not " + excerpt(s));
+                }
+                scale = s.get<float>();
+            }
+            return BufferSize::per_pixel(*bytes, scale);
+        }
+        if (value.contains("scale")) return fail(path + "/scale", "goes with \"per_pixel\", not \"per_tile\"");
+        if (!value.contains("tile")) return fail(path, "missing \"tile\": [width, height] in pixels");
+        const json& tile = value["tile"];
+        if (!tile.is_array() || tile.size() != 2) {
+            return fail(path + "/tile", "must be [width, height] in pixels, not " + excerpt(tile));
+        }
+        auto width = whole_number(tile[0], path + "/tile/0", 1, kMaxTextureExtent);
+        if (!width) return width.take_error();
+        auto height = whole_number(tile[1], path + "/tile/1", 1, kMaxTextureExtent);
+        if (!height) return height.take_error();
+        return BufferSize::per_tile(static_cast<uint32_t>(*width), static_cast<uint32_t>(*height), *bytes);
     }
 
     Result<std::optional<rhi::FormatFeatures>> read_format(const json& object, const std::string& path) const {
@@ -361,6 +581,10 @@ private:
         features.srgb = *srgb;
         return std::optional(features);
     }
+
+    // A full mip chain of kMaxTextureExtent texels per side.
+    static constexpr uint32_t kMaxMips = 17;
+    static_assert(kMaxTextureExtent == 1u << (kMaxMips - 1));
 
     std::string_view source_;
     std::string pass_name_;  // the pass being read

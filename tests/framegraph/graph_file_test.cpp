@@ -26,6 +26,18 @@ Error parse_error(std::string_view text) {
     return file.ok() ? Error{} : file.error();
 }
 
+/// The planning error of a graph file that parses, located in the file.
+Error planning_error(std::string_view text) {
+    auto file = parse_graph_json(text, "g.json");
+    EXPECT_TRUE(file.ok()) << (file.ok() ? "" : file.error().message);
+    if (!file.ok()) return {};
+    PlanOptions options;
+    options.frame = file->frame;
+    auto plan = build_plan(file->graph, options);
+    EXPECT_FALSE(plan.ok());
+    return plan.ok() ? Error{} : locate_in_graph_file(*file, plan.take_error());
+}
+
 TEST(GraphFile, TheExampleGraphParsesAndPlans) {
     auto file = parse_graph_json(kBriefExample, "example.json");
     ASSERT_TRUE(file.ok()) << file.error().to_string();
@@ -116,8 +128,8 @@ TEST(GraphFile, ErrorsCarryTheJsonPath) {
          R"(g.json: /passes/2/outputs/0/format: unknown format "RGBA17F")"},
         {R"({"passes": [], "extra": 1})", "g.json: /extra: unknown key (expected one of: frame, passes, connections, outputs)"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "colour": 1}]}]})",
-         "g.json: /passes/0/outputs/0/colour: unknown key (expected one of: name, format, channels, bits, kind, srgb, "
-         "depth, stencil, size, scale, samples, mips, layers, optional, usage)"},
+         "g.json: /passes/0/outputs/0/colour: unknown key (expected one of: name, type, format, channels, bits, kind, "
+         "srgb, depth, stencil, size, scale, samples, mips, layers, range, optional, usage)"},
         {R"({"frame": {"width": 0, "height": 10}, "passes": []})",
          "g.json: /frame/width: must be a positive integer, not 0"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "samples": 2.5}]}]})",
@@ -156,6 +168,166 @@ TEST(GraphFile, ErrorsCarryTheJsonPath) {
     }
 }
 
+TEST(GraphFile, PassKindsBufferPortsAndRanges) {
+    auto file = parse_graph_json(R"({"passes": [
+        {"name": "cull", "kind": "compute",
+         "outputs": [{"name": "lights", "type": "buffer", "size": {"per_tile": 1024, "tile": [16, 8]}},
+                     {"name": "heads", "type": "buffer", "size": {"per_pixel": 4, "scale": 0.5}, "usage": ["storage"]},
+                     {"name": "args", "type": "buffer", "size": 20, "alignment": 4, "optional": true},
+                     {"name": "chain", "format": "R32F", "mips": 4, "layers": 6, "range": {"mip": 0, "layers": [2, 3]}}]},
+        {"name": "save", "kind": "copy",
+         "inputs": [{"name": "tail", "type": "buffer", "usage": ["copy_src", "indirect"], "range": {"offset": 512}},
+                    {"name": "head", "type": "buffer", "range": {"offset": 16, "size": 256}},
+                    {"name": "levels", "range": {"mips": [1]}},
+                    {"name": "layer", "range": {"layer": 5, "mips": [1, 2]}}]},
+        {"name": "draw", "kind": "graphics", "side_effect": true}]})");
+    ASSERT_TRUE(file.ok()) << file.error().to_string();
+    const Pass& cull = file->graph.pass(PassId{0});
+    EXPECT_EQ(cull.kind(), PassKind::Compute);
+    EXPECT_EQ(file->graph.pass(PassId{1}).kind(), PassKind::Copy);
+    EXPECT_EQ(file->graph.pass(PassId{2}).kind(), PassKind::Graphics);
+
+    const Port* lights = cull.find_port("lights");
+    EXPECT_EQ(lights->type, ResourceType::Buffer);
+    EXPECT_EQ(lights->buffer, BufferSpec::sized(BufferSize::per_tile(16, 8, 1024)));
+    EXPECT_EQ(lights->bytes, BufferRange{});
+    EXPECT_EQ(cull.find_port("heads")->buffer,
+              BufferSpec::sized(BufferSize::per_pixel(4, 0.5f)).with_usage(rhi::BufferUsage::Storage));
+    const Port* args = cull.find_port("args");
+    EXPECT_EQ(args->buffer, BufferSpec::of_size(20).with_alignment(4));
+    EXPECT_TRUE(args->optional);
+    EXPECT_EQ(args->kind, PortKind::Output);
+    const Port* chain = cull.find_port("chain");
+    EXPECT_EQ(chain->type, ResourceType::Texture);
+    EXPECT_EQ(chain->spec.mips, 4u);
+    EXPECT_EQ(chain->range, (SubresourceRange{0, 1, 2, 3}));
+
+    const Pass& save = file->graph.pass(PassId{1});
+    EXPECT_EQ(save.find_port("tail")->buffer.usage, rhi::BufferUsage::CopySrc | rhi::BufferUsage::Indirect);
+    EXPECT_EQ(save.find_port("tail")->bytes, (BufferRange{512, 0}));
+    EXPECT_EQ(save.find_port("head")->bytes, (BufferRange{16, 256}));
+    EXPECT_EQ(save.find_port("levels")->range, (SubresourceRange{1, rhi::kRemainingSubresources, 0, rhi::kRemainingSubresources}));
+    EXPECT_EQ(save.find_port("layer")->range, (SubresourceRange{1, 2, 5, 1}));
+}
+
+TEST(GraphFile, BufferKindAndRangeErrorsCarryTheJsonPath) {
+    struct Case {
+        std::string_view port;  // one output port of pass "a"
+        std::string_view message;
+    };
+    const Case cases[] = {
+        {R"({"name": "x", "type": "image"})", R"(/passes/0/outputs/0/type: must be "texture" or "buffer", not "image")"},
+        {R"({"name": "x", "type": "buffer", "usage": ["sampled"]})",
+         R"(/passes/0/outputs/0/usage/0: unknown buffer usage "sampled" (vertex, index, uniform, storage, indirect, copy_src, copy_dst))"},
+        {R"({"name": "x", "type": "buffer", "format": "RGBA8"})",
+         R"(/passes/0/outputs/0/format: "format" is a property of texture ports; a buffer port takes name, type, size, usage, alignment, range, optional)"},
+        {R"({"name": "x", "type": "buffer", "mips": 2})",
+         R"(/passes/0/outputs/0/mips: "mips" is a property of texture ports; a buffer port takes name, type, size, usage, alignment, range, optional)"},
+        {R"({"name": "x", "type": "buffer", "size": 64, "colour": 1})",
+         "/passes/0/outputs/0/colour: unknown key (expected one of: name, type, size, usage, alignment, range, optional)"},
+        {R"({"name": "x", "alignment": 16})",
+         R"(/passes/0/outputs/0/alignment: "alignment" is a property of buffer ports; a texture port takes none (add "type": "buffer" for a buffer port))"},
+        {R"({"name": "x", "size": 1024})",
+         R"(/passes/0/outputs/0/size: must be [width, height] in texels, not 1024 (a buffer's size needs "type": "buffer"))"},
+        {R"({"name": "x", "type": "buffer", "size": [64, 64]})",
+         R"(/passes/0/outputs/0/size: must be a byte count, {"per_pixel": bytes, "scale": s} or {"per_tile": bytes, "tile": [w, h]}, not [64,64])"},
+        {R"({"name": "x", "type": "buffer", "size": 0})", "/passes/0/outputs/0/size: must be a positive integer, not 0"},
+        {R"({"name": "x", "type": "buffer", "size": 1099511627777})",
+         "/passes/0/outputs/0/size: must be at most 1099511627776, not 1099511627777"},
+        {R"({"name": "x", "type": "buffer", "size": {"per_tile": 64}})",
+         R"(/passes/0/outputs/0/size: missing "tile": [width, height] in pixels)"},
+        {R"({"name": "x", "type": "buffer", "size": {"per_tile": 64, "tile": [16, 0]}})",
+         "/passes/0/outputs/0/size/tile/1: must be a positive integer, not 0"},
+        {R"({"name": "x", "type": "buffer", "size": {"per_tile": 64, "per_pixel": 4}})",
+         R"(/passes/0/outputs/0/size: give "per_pixel" or "per_tile" (one of them))"},
+        {R"({"name": "x", "type": "buffer", "size": {"per_tile": 64, "tile": [8, 8], "scale": 0.5}})",
+         R"(/passes/0/outputs/0/size/scale: goes with "per_pixel", not "per_tile")"},
+        {R"({"name": "x", "type": "buffer", "size": {"per_pixel": 4, "scale": 0}})",
+         "/passes/0/outputs/0/size/scale: must be a number in (0, 16], not 0"},
+        {R"({"name": "x", "type": "buffer", "size": {"bytes": 4}})",
+         "/passes/0/outputs/0/size/bytes: unknown key (expected one of: per_pixel, scale, per_tile, tile)"},
+        {R"({"name": "x", "type": "buffer", "alignment": 48})", "/passes/0/outputs/0/alignment: must be a power of two, not 48"},
+        {R"({"name": "x", "type": "buffer", "alignment": 131072})",
+         "/passes/0/outputs/0/alignment: must be at most 65536, not 131072"},
+        {R"({"name": "x", "type": "buffer", "range": {"offset": -1}})",
+         "/passes/0/outputs/0/range/offset: must be a non-negative integer, not -1"},
+        {R"({"name": "x", "type": "buffer", "range": {"offset": 8, "size": 0}})",
+         "/passes/0/outputs/0/range/size: must be a positive integer, not 0"},
+        {R"({"name": "x", "type": "buffer", "range": {"mip": 1}})",
+         "/passes/0/outputs/0/range/mip: unknown key (expected one of: offset, size)"},
+        {R"({"name": "x", "type": "buffer", "range": [0, 64]})",
+         R"(/passes/0/outputs/0/range: must be {"offset": bytes, "size": bytes} (no size: to the end), not [0,64])"},
+        {R"({"name": "x", "range": {"mip": 17}})", "/passes/0/outputs/0/range/mip: must be at most 16, not 17"},
+        {R"({"name": "x", "range": {"mip": 1, "mips": [1, 2]}})", R"(/passes/0/outputs/0/range: give "mip" or "mips", not both)"},
+        {R"({"name": "x", "range": {"mips": [1, 0]}})", "/passes/0/outputs/0/range/mips/1: must be a positive integer, not 0"},
+        {R"({"name": "x", "range": {"mips": []}})",
+         "/passes/0/outputs/0/range/mips: must be [base, count] or [base] (from base to the last), not []"},
+        {R"({"name": "x", "range": {"layers": [2047, 2]}})", "/passes/0/outputs/0/range/layers/1: must be at most 1, not 2"},
+        {R"({"name": "x", "range": {"level": 1}})",
+         "/passes/0/outputs/0/range/level: unknown key (expected one of: mip, mips, layer, layers)"},
+        {R"({"name": "x", "range": 2})",
+         R"(/passes/0/outputs/0/range: must be an object such as {"mip": 1} or {"mips": [1, 2], "layer": 0}, not 2)"},
+    };
+    for (const Case& c : cases) {
+        const std::string text = R"({"passes": [{"name": "a", "outputs": [)" + std::string(c.port) + "]}]}";
+        const Error error = parse_error(text);
+        EXPECT_EQ(error.code, ErrorCode::Parse) << text;
+        EXPECT_EQ(error.message, "g.json: " + std::string(c.message)) << text;
+    }
+    const Error kind = parse_error(R"({"passes": [{"name": "a", "kind": "raster"}]})");
+    EXPECT_EQ(kind.code, ErrorCode::Parse);
+    EXPECT_EQ(kind.message, R"(g.json: /passes/0/kind: must be one of graphics, compute, copy, not "raster")");
+    // A port set's port names the whole way down: the deepest pointer a graph file has.
+    const Error deep = parse_error(R"({"passes": [{"name": "a", "parts": [{"name": "p", "outputs": [
+        {"name": "x", "type": "buffer", "size": {"per_tile": 4, "tile": [8, 1.5]}}]}]}]})");
+    EXPECT_EQ(deep.message, "g.json: /passes/0/parts/0/outputs/0/size/tile/1: must be a positive integer, not 1.5");
+}
+
+TEST(GraphFile, BufferAndRangePlanningErrorsNameTheirPointers) {
+    // No port sizes the buffer: its producer, then its reader.
+    const Error unsized = planning_error(R"({"passes": [
+        {"name": "fill", "kind": "compute", "outputs": [{"name": "data", "type": "buffer"}]},
+        {"name": "use", "inputs": [{"name": "data", "type": "buffer"}], "outputs": [{"name": "c", "format": "RGBA8"}]}],
+      "connections": [["fill.data", "use.data"]], "outputs": ["use.c"]})");
+    EXPECT_EQ(unsized.code, ErrorCode::Graph);
+    EXPECT_EQ(unsized.message,
+              "g.json: /passes/0/outputs/0: buffer fill.data: no port gives its size (declare it on the producing port: "
+              "BufferSpec::of_size, BufferSize::per_pixel or BufferSize::per_tile) (see also /passes/1/inputs/0)");
+
+    // A mip the texture does not have.
+    const Error beyond = planning_error(R"({"passes": [
+        {"name": "a", "outputs": [{"name": "t", "format": "RGBA8", "mips": 2}]},
+        {"name": "b", "inputs": [{"name": "t", "range": {"mip": 2}}], "outputs": [{"name": "c", "format": "RGBA8"}]}],
+      "connections": [["a.t", "b.t"]], "outputs": ["b.c"]})");
+    EXPECT_EQ(beyond.message, "g.json: /passes/1/inputs/0: port b.t uses mip 2 of texture a.t, which has 2 mips and 1 layers");
+
+    // Bytes past the buffer's end.
+    const Error bytes = planning_error(R"({"passes": [
+        {"name": "a", "kind": "compute", "outputs": [{"name": "d", "type": "buffer", "size": 64}]},
+        {"name": "b", "inputs": [{"name": "d", "type": "buffer", "range": {"offset": 32, "size": 64}}],
+         "outputs": [{"name": "c", "format": "RGBA8"}]}],
+      "connections": [["a.d", "b.d"]], "outputs": ["b.c"]})");
+    EXPECT_EQ(bytes.message, "g.json: /passes/1/inputs/0: port b.d uses bytes 32+64 of buffer a.d, which has 64 bytes");
+
+    // Reading and modifying the same mips in one pass.
+    const Error overlap = planning_error(R"({"passes": [
+        {"name": "a", "outputs": [{"name": "t", "format": "RGBA8", "size": [16, 16], "mips": 3}]},
+        {"name": "b", "inputs": [{"name": "src", "range": {"mips": [0, 2]}}], "inouts": [{"name": "t", "range": {"mip": 1}}]}],
+      "connections": [["a.t", "b.src"], ["a.t", "b.t"]], "outputs": ["b.t"]})");
+    EXPECT_EQ(overlap.message,
+              "g.json: /passes/1/inouts/0: pass 'b' reads a.t through b.src while modifying it in place through b.t (one "
+              "pass may read and modify one resource only in disjoint ranges) (see also /passes/1/inputs/0, "
+              "/passes/0/outputs/0)");
+
+    // A texture port connected to a buffer port.
+    const Error mixed = parse_error(R"({"passes": [
+        {"name": "a", "kind": "compute", "outputs": [{"name": "d", "type": "buffer", "size": 64}]},
+        {"name": "b", "inputs": [{"name": "d"}], "side_effect": true}],
+      "connections": [["a.d", "b.d"]]})");
+    EXPECT_EQ(mixed.code, ErrorCode::Graph);
+    EXPECT_EQ(mixed.message, "g.json: /connections/0: connect a.d -> b.d: a.d is a buffer port but b.d is a texture port");
+}
+
 TEST(GraphFile, GraphErrorsKeepTheirCodeAndGainAPath) {
     const Error unknown = parse_error(R"({"passes": [{"name": "a", "outputs": [{"name": "x"}]}],
                                          "connections": [["a.x", "b.y"]]})");
@@ -166,18 +338,6 @@ TEST(GraphFile, GraphErrorsKeepTheirCodeAndGainAPath) {
     const Error output = parse_error(R"({"passes": [{"name": "a", "inputs": [{"name": "x"}]}], "outputs": ["a.x"]})");
     EXPECT_EQ(output.code, ErrorCode::Graph);
     EXPECT_NE(output.message.find("g.json: /outputs/0: mark_output a.x"), std::string::npos);
-}
-
-/// The planning error of a graph file that parses, located in the file.
-Error planning_error(std::string_view text) {
-    auto file = parse_graph_json(text, "g.json");
-    EXPECT_TRUE(file.ok()) << (file.ok() ? "" : file.error().message);
-    if (!file.ok()) return {};
-    PlanOptions options;
-    options.frame = file->frame;
-    auto plan = build_plan(file->graph, options);
-    EXPECT_FALSE(plan.ok());
-    return plan.ok() ? Error{} : locate_in_graph_file(*file, plan.take_error());
 }
 
 TEST(GraphFile, PlanningErrorsNameTheFileAndTheJsonPointerOfWhatTheyBlame) {

@@ -92,6 +92,90 @@ TEST(PlanTool, OtherSampleGraphsPlan) {
     EXPECT_EQ(json.at("frame").at("width"), 640);
 }
 
+// The summary of `graph` planned by `allocator`, as loom-plan --json prints it.
+nlohmann::json summary_of(std::string_view graph_file, const char* allocator) {
+    const ToolRun run = run_tool(graph(graph_file) + " --json --allocator " + allocator);
+    EXPECT_EQ(run.status, 0) << run.err;
+    return run.status == 0 ? nlohmann::json::parse(run.out).at("summary") : nlohmann::json{};
+}
+
+// Figures are the DefaultMemoryModel's at 1920x1080: textures in 64 KiB pages, buffers in
+// 256-byte steps.
+TEST(PlanTool, BloomPyramidDownAndUpSamplesMipByMipInOneTexture) {
+    // scene.hdr 1920x1080 RGBA16Float (254 pages), the 960x540 4-mip pyramid (85 pages), the
+    // final RGBA8 (127 pages): all three live at the composite, so every allocator needs them all.
+    constexpr uint64_t kBytes = 16646144 + 5570560 + 8323072;
+    for (const char* allocator : {"paper", "interval", "heap"}) {
+        const auto summary = summary_of("bloom_pyramid.json", allocator);
+        EXPECT_EQ(summary.at("textures"), 3) << allocator;
+        EXPECT_EQ(summary.at("buffers"), 0) << allocator;
+        EXPECT_EQ(summary.at("bytes"), kBytes) << allocator;
+        EXPECT_EQ(summary.at("lower_bound_bytes"), kBytes) << allocator;
+    }
+    const ToolRun run = run_tool(graph("bloom_pyramid.json"));
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("  4  down3      <src=t1(mip 2)  <>pyramid=t1(mip 3)\n"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("  5  up2        <src=t1(mip 3)  <>pyramid=t1(mip 2)\n"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("  bright.pyramid            RGBA16Float  960x540 m4  1-8   t1       5.3 MiB\n"),
+              std::string::npos)
+        << run.out;
+}
+
+TEST(PlanTool, HzbChainIsBuiltByComputeMipByMipAndAliasesTheColourInAHeap) {
+    // Depth32F (127 pages), the 960x540 R32Float 5-mip chain (43 pages), the RGBA16Float colour
+    // (254 pages) and the 20 KiB indirect draw buffer.
+    const auto paper = summary_of("hzb_chain.json", "paper");
+    EXPECT_EQ(paper, nlohmann::json::parse(R"({"textures": 3, "bytes": 27807744, "naive_textures": 3,
+        "naive_bytes": 27807744, "lower_bound_textures": 3, "lower_bound_bytes": 24989696, "buffers": 1,
+        "buffer_bytes": 20480, "naive_buffers": 1, "lower_bound_buffers": 1})"));
+    EXPECT_EQ(summary_of("hzb_chain.json", "interval"), paper);
+    // The chain dies at the culling pass, before the colour is drawn: in a heap they share bytes,
+    // and the heap is the lower bound (depth + draws + colour, live together at the draw).
+    const auto heap = summary_of("hzb_chain.json", "heap");
+    EXPECT_EQ(heap.at("bytes"), 8323072 + 20480 + 16646144);
+    EXPECT_EQ(heap.at("bytes"), heap.at("lower_bound_bytes"));
+
+    const ToolRun run = run_tool(graph("hzb_chain.json"));
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("  2  hzb1 [compute]  <src=t1(mip 0)  <>hzb=t1(mip 1)\n"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("  cull.draws  20480 B aligned 16  storage|indirect  6-7   b0      20.0 KiB\n"),
+              std::string::npos)
+        << run.out;
+    EXPECT_NE(run.out.find("  plan         3         1        26.5 MiB  1.113\n"), std::string::npos) << run.out;
+}
+
+TEST(PlanTool, LightListIsAComputeBuiltBufferReadByTheLightingPass) {
+    // 120 x 68 tiles of 1 KiB, and 20 bytes of indirect arguments in one 256-byte step.
+    for (const char* allocator : {"paper", "interval", "heap"}) {
+        const auto summary = summary_of("light_list.json", allocator);
+        EXPECT_EQ(summary.at("buffers"), 2) << allocator;
+        EXPECT_EQ(summary.at("naive_buffers"), 2) << allocator;
+        EXPECT_EQ(summary.at("lower_bound_buffers"), 2) << allocator;
+        EXPECT_EQ(summary.at("buffer_bytes"), 8355840 + 256) << allocator;
+        EXPECT_EQ(summary.at("bytes"), 8323072 + 16646144 + 8355840 + 256) << allocator;
+        EXPECT_EQ(summary.at("lower_bound_bytes"), summary.at("bytes")) << allocator;
+    }
+    const ToolRun run = run_tool(graph("light_list.json") + " --json");
+    ASSERT_EQ(run.status, 0) << run.err;
+    const auto json = nlohmann::json::parse(run.out);
+    EXPECT_EQ(json.at("buffers")[0].at("size"), 8355840);
+    EXPECT_EQ(json.at("buffers")[0].at("usage"), nlohmann::json({"storage"}));
+    EXPECT_EQ(json.at("buffers")[1].at("size"), 20);
+    EXPECT_EQ(json.at("buffers")[1].at("usage"), nlohmann::json({"storage", "indirect"}));
+    EXPECT_EQ(json.at("passes")[1].at("kind"), "compute");
+    EXPECT_EQ(json.at("passes")[4].at("ports")[0].at("usage"), nlohmann::json({"indirect"}));
+
+    const ToolRun table = run_tool(graph("light_list.json"));
+    ASSERT_EQ(table.status, 0) << table.err;
+    EXPECT_NE(table.out.find("               textures  buffers  bytes     bytes / lower bound\n"
+                             "  plan         2         2        31.8 MiB  1.000\n"
+                             "  naive        2         2        31.8 MiB  1.000\n"
+                             "  lower bound  2         2        31.8 MiB  1.000\n"
+                             "  buffer bytes: 8.0 MiB\n"),
+              std::string::npos)
+        << table.out;
+}
+
 TEST(PlanTool, WritesDot) {
     const std::filesystem::path dot = loom::test::output_dir() / "loom_plan" / "figure2.dot";
     std::filesystem::remove(dot);
@@ -100,6 +184,15 @@ TEST(PlanTool, WritesDot) {
     const std::string text = read_file(dot);
     EXPECT_EQ(text.rfind("digraph plan {", 0), 0u);
     EXPECT_NE(text.find("2: deferred"), std::string::npos);
+
+    const std::filesystem::path buffers = loom::test::output_dir() / "loom_plan" / "light_list.dot";
+    std::filesystem::remove(buffers);
+    const ToolRun light_list = run_tool(graph("light_list.json") + " --dot \"" + buffers.string() + "\"");
+    ASSERT_EQ(light_list.status, 0) << light_list.err;
+    EXPECT_NE(read_file(buffers).find("p1:f1:e -> p2:f0:w [color=\"#637939\", fontcolor=\"#637939\", style=dashed, "
+                                      "label=\"b0\"];"),
+              std::string::npos)
+        << read_file(buffers);
 }
 
 TEST(PlanTool, BrokenGraphsFailWithOneLine) {

@@ -11,12 +11,24 @@
 //     "connections": [["shadow.shadow_map", "deferred.shadow_map"], ["deferred.color", "tint.color"]],
 //     "outputs": ["tint.color"] }
 //
-// A pass's "parts" are port sets (fg::PortSet), added after the pass's own ports.
-// A port object has "name" and any of: "format" (an rhi::format_name or a short alias such as
-// "RGBA16F", "RGBA8", "D32F"), or partial format constraints "channels" (1-4), "bits", "kind"
-// (unorm, snorm, float, uint, sint), "srgb", "depth" (bits), "stencil" (bits); "size" [w, h]
-// or "scale" (a number or [sx, sy]); "samples", "mips", "layers"; "optional"; "usage" (a list
-// of sampled, color_attachment, depth_stencil_attachment, storage, copy_src, copy_dst).
+// A pass's "parts" are port sets (fg::PortSet), added after the pass's own ports; its "kind"
+// is "graphics" (the default), "compute" or "copy" (fg::PassKind).
+// A port object has "name", "type" ("texture", the default, or "buffer") and, for a texture
+// port, any of: "format" (an rhi::format_name or a short alias such as "RGBA16F", "RGBA8",
+// "D32F"), or partial format constraints "channels" (1-4), "bits", "kind" (unorm, snorm, float,
+// uint, sint), "srgb", "depth" (bits), "stencil" (bits); "size" [w, h] or "scale" (a number or
+// [sx, sy]); "samples", "mips", "layers"; "range" (the mips and layers the port uses:
+// {"mip": k} or {"mips": [base, count]}, {"layer": i} or {"layers": [base, count]}; [base]
+// runs to the last); "optional"; "usage" (a list of sampled, color_attachment,
+// depth_stencil_attachment, storage, copy_src, copy_dst).
+// A buffer port takes "size" (bytes: N, {"per_pixel": N, "scale": s} or {"per_tile": N,
+// "tile": [w, h]}), "usage" (vertex, index, uniform, storage, indirect, copy_src, copy_dst),
+// "alignment" (a power of two), "range" ({"offset": N, "size": N}, no size: to the end) and
+// "optional":
+//
+//       {"name": "cull", "kind": "compute",
+//        "outputs": [{"name": "lights", "type": "buffer", "size": {"per_tile": 1024, "tile": [16, 16]}}]}
+//
 // Unknown keys and bad values are ErrorCode::Parse errors with the JSON pointer (RFC 6901), e.g.
 // `graph.json: /passes/2/outputs/0/format: unknown format "RGBA17F"`.
 //
@@ -38,8 +50,8 @@
 
 namespace loom::fg {
 
-/// How deeply a graph file may nest objects and arrays (graph files need five levels); deeper
-/// text is refused before a document is built from it.
+/// How deeply a graph file may nest objects and arrays (graph files need nine: a tile size in a
+/// port of a port set); deeper text is refused before a document is built from it.
 inline constexpr std::size_t kMaxGraphFileDepth = 64;
 
 /// A graph read from a file, with the frame size the file asks for (default 1920x1080).
