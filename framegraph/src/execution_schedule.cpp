@@ -220,6 +220,12 @@ Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<c
             ps.resource = port.resource;
             ps.usage = port.usage;
             if (port.type == ResourceType::Texture && port.resource) ps.range = port.range;
+            // Transitions of a port that uses every subresource name the whole texture.
+            rhi::TextureRange moved = ps.range;
+            if (port.resource && port.type == ResourceType::Texture) {
+                const ResolvedSpec& spec = plan.resources[*port.resource].spec;
+                if (moved == rhi::TextureRange{0, spec.mips, 0, spec.layers}) moved = rhi::TextureRange{};
+            }
             if (port.type == ResourceType::Buffer) {
                 ps.buffer_usage = port.buffer_usage;
                 if (port.resource) {
@@ -280,15 +286,15 @@ Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<c
             if (!ps.texture.empty()) {
                 if (pass.kind == PassKind::Copy) {
                     out.before.push_back(
-                        {ps.texture, port_writes(port.kind) ? rhi::ResourceState::CopyDst : rhi::ResourceState::CopySrc, ps.range});
+                        {ps.texture, port_writes(port.kind) ? rhi::ResourceState::CopyDst : rhi::ResourceState::CopySrc, moved});
                 } else if (storage) {
-                    out.before.push_back({ps.texture, rhi::ResourceState::Storage, ps.range});
+                    out.before.push_back({ps.texture, rhi::ResourceState::Storage, moved});
                 } else if (!port_writes(port.kind) && rhi::has_all(ps.usage, rhi::TextureUsage::Sampled)) {
                     // Imported inputs without a plan resource: format known only at run time;
                     // the executor substitutes DepthRead for depth textures.
                     out.before.push_back({ps.texture,
                                           format == rhi::Format::Undefined ? rhi::ResourceState::ShaderRead : sampled_state(format),
-                                          ps.range});
+                                          moved});
                 }
             }
             out.ports.push_back(std::move(ps));

@@ -31,6 +31,7 @@ ResolvedSpec spec_from_desc(const rhi::TextureDesc& desc) {
     spec.mips = desc.mip_levels;
     spec.layers = desc.depth_or_layers;
     spec.usage = desc.usage;
+    spec.cube = desc.dimension == rhi::TextureDimension::Cube;
     return spec;
 }
 

@@ -280,6 +280,7 @@ void write_resource(JsonWriter& out, const PlanResource& r) {
     out.member("graph_output", r.graph_output);
     out.member("height", r.spec.extent.height);
     out.member("layers", r.spec.layers);
+    if (r.spec.cube) out.member("cube", true);
     write_lifetime(out, r.lifetime);
     out.member("mips", r.spec.mips);
     out.member("name", r.name);
@@ -315,6 +316,7 @@ void write_spec_class(JsonWriter& out, const SpecClass& c) {
     write_format(out, c.spec);
     out.member("height", c.spec.extent.height);
     out.member("layers", c.spec.layers);
+    if (c.spec.cube) out.member("cube", true);
     out.member("mips", c.spec.mips);
     out.member("peak_live", c.peak_live);
     out.array_member("resources", c.resources);
@@ -349,6 +351,7 @@ void write_texture(JsonWriter& out, const PlanTexture& t) {
     if (t.placement) out.member("heap", t.placement->heap);
     out.member("height", t.spec.extent.height);
     out.member("layers", t.spec.layers);
+    if (t.spec.cube) out.member("cube", true);
     out.member("mips", t.spec.mips);
     out.member("name", t.name);
     if (t.placement) out.member("offset", t.placement->offset);

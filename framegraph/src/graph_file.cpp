@@ -236,7 +236,7 @@ private:
         }
         LOOM_TRY(only_keys(object, path,
                            {"name", "type", "format", "channels", "bits", "kind", "srgb", "depth", "stencil", "size",
-                            "scale", "samples", "mips", "layers", "range", "optional", "usage"}));
+                            "scale", "samples", "mips", "layers", "cube", "range", "optional", "usage"}));
         auto name = port_name(object, path);
         if (!name) return name.take_error();
         Port port;
@@ -296,6 +296,12 @@ private:
         auto layers = positive(object, path, "layers", false, kMaxTextureLayers);
         if (!layers) return layers.take_error();
         if (*layers) spec.layers = **layers;
+        auto cube = boolean(object, path, "cube");
+        if (!cube) return cube.take_error();
+        if (*cube) {
+            spec.cube = true;
+            if (!spec.layers) spec.layers = 6;  // a cube map's faces; other counts fail when planned
+        }
         if (object.contains("range")) {
             auto range = read_texture_range(object["range"], path + "/range");
             if (!range) return range.take_error();
@@ -399,8 +405,8 @@ private:
     // A buffer port: "size", "usage", "alignment", "range", "optional".
     Result<Port> read_buffer_port(const json& object, const std::string& path) const {
         // Texture properties on a buffer port: name the key and what a buffer port takes.
-        static constexpr std::array<std::string_view, 11> kTextureKeys{
-            "format", "channels", "bits", "kind", "srgb", "depth", "stencil", "scale", "samples", "mips", "layers"};
+        static constexpr std::array<std::string_view, 12> kTextureKeys{
+            "format", "channels", "bits", "kind", "srgb", "depth", "stencil", "scale", "samples", "mips", "layers", "cube"};
         for (std::string_view key : kTextureKeys) {
             if (!object.contains(key)) continue;
             return fail(path + "/" + std::string(key),

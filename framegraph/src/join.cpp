@@ -148,6 +148,7 @@ Result<TextureSpec> join(const TextureSpec& a, const TextureSpec& b, const JoinC
     LOOM_TRY(join_count("layers", a.layers, b.layers, out.layers));
 
     out.usage = a.usage | b.usage;
+    out.cube = a.cube || b.cube;
     return out;
 }
 

@@ -55,6 +55,7 @@ public:
         add(s.mips);
         add(s.layers);
         add(s.usage);
+        add(s.cube);
     }
     void add(const ResolvedBufferSpec& s) {
         add(s.size);

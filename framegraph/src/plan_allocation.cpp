@@ -19,6 +19,7 @@ TextureSpec as_spec(const ResolvedSpec& resolved) {
     spec.mips = resolved.mips;
     spec.layers = resolved.layers;
     spec.usage = resolved.usage;
+    spec.cube = resolved.cube;
     return spec;
 }
 
@@ -201,9 +202,9 @@ SpecClassAssignment assign_spec_classes(const std::vector<PlanResource>& resourc
     std::vector<SpecClass>& classes = out.classes;
     // Equal sharing: a class per texture shape (its shape never changes, only its usage
     // grows), found by key rather than by trying every class.
-    using ShapeKey = std::tuple<rhi::Format, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t>;
+    using ShapeKey = std::tuple<rhi::Format, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, bool>;
     auto shape_key = [](const ResolvedSpec& spec) {
-        return ShapeKey{spec.format, spec.extent.width, spec.extent.height, spec.samples, spec.mips, spec.layers};
+        return ShapeKey{spec.format, spec.extent.width, spec.extent.height, spec.samples, spec.mips, spec.layers, spec.cube};
     };
     std::map<ShapeKey, uint32_t> class_of_shape;
     // Buffers share only with buffers of the same size and alignment, under either sharing.

@@ -82,8 +82,9 @@ Result<ResolvedSpec> resolve(const TextureSpec& spec, Extent2D frame, std::strin
     out.extent = spec.size ? spec.size->evaluate(frame) : frame;
     out.samples = spec.samples.value_or(1);
     out.mips = spec.mips.value_or(1);
-    out.layers = spec.layers.value_or(1);
+    out.layers = spec.layers.value_or(spec.cube ? 6 : 1);
     out.usage = spec.usage;
+    out.cube = spec.cube;
 
     auto fail = [&](const std::string& problem) {
         return make_error(ErrorCode::Graph, std::string(what) + ": " + problem);
@@ -122,6 +123,11 @@ Result<ResolvedSpec> resolve(const TextureSpec& spec, Extent2D frame, std::strin
         return fail("mips " + std::to_string(out.mips) + " not in 1.." + std::to_string(max_mip_levels(out.extent)) +
                     " for size " + std::to_string(out.extent.width) + "x" + std::to_string(out.extent.height));
     }
+    if (out.cube && (out.layers != 6 || out.extent.width != out.extent.height || out.samples != 1)) {
+        return fail("a cube map has 6 square single-sampled faces, not " + std::to_string(out.layers) + " layers of " +
+                    std::to_string(out.extent.width) + "x" + std::to_string(out.extent.height) + " with " +
+                    std::to_string(out.samples) + " samples");
+    }
     if (out.samples > 1 && out.mips > 1) {
         return fail("a multisampled texture (" + std::to_string(out.samples) + " samples) cannot have " +
                     std::to_string(out.mips) + " mips");
@@ -131,13 +137,14 @@ Result<ResolvedSpec> resolve(const TextureSpec& spec, Extent2D frame, std::strin
 
 bool same_texture_shape(const ResolvedSpec& a, const ResolvedSpec& b) {
     return a.format == b.format && a.extent == b.extent && a.samples == b.samples && a.mips == b.mips &&
-           a.layers == b.layers;
+           a.layers == b.layers && a.cube == b.cube;
 }
 
 rhi::TextureDesc to_texture_desc(const ResolvedSpec& spec, std::string name) {
     rhi::TextureDesc desc;
     desc.name = std::move(name);
-    desc.dimension = spec.layers > 1 ? rhi::TextureDimension::Tex2DArray : rhi::TextureDimension::Tex2D;
+    desc.dimension = spec.cube ? rhi::TextureDimension::Cube
+                               : (spec.layers > 1 ? rhi::TextureDimension::Tex2DArray : rhi::TextureDimension::Tex2D);
     desc.format = spec.format;
     desc.width = spec.extent.width;
     desc.height = spec.extent.height;
@@ -152,7 +159,11 @@ std::string describe_resolved(const ResolvedSpec& spec) {
     std::string out = detail::concat(rhi::format_name(spec.format), " ", spec.extent.width, "x", spec.extent.height);
     if (spec.samples != 1) detail::append(out, " x", spec.samples, " samples");
     if (spec.mips != 1) detail::append(out, " ", spec.mips, " mips");
-    if (spec.layers != 1) detail::append(out, " ", spec.layers, " layers");
+    if (spec.cube) {
+        detail::append(out, " cube");
+    } else if (spec.layers != 1) {
+        detail::append(out, " ", spec.layers, " layers");
+    }
     return out;
 }
 

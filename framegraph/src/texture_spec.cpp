@@ -119,6 +119,13 @@ TextureSpec TextureSpec::with_usage(TextureUsage extra) const {
     return copy;
 }
 
+TextureSpec TextureSpec::with_cube() const {
+    TextureSpec copy = *this;
+    copy.cube = true;
+    copy.layers = 6;
+    return copy;
+}
+
 bool TextureSpec::unconstrained() const { return *this == TextureSpec{}; }
 
 rhi::FormatFeatures color_features(uint32_t channels, uint32_t bits, ChannelKind kind) {
@@ -207,6 +214,7 @@ std::string describe_spec(const TextureSpec& spec) {
     if (spec.mips) add("mips=" + std::to_string(*spec.mips));
     if (spec.layers) add("layers=" + std::to_string(*spec.layers));
     if (spec.usage != TextureUsage::None) add("usage=" + describe_usage(spec.usage));
+    if (spec.cube) add("cube");
     return out.empty() ? "unconstrained" : out;
 }
 

@@ -106,6 +106,16 @@ void main() {
 }
 )";
 
+const char* const kCubeFrag = R"(#version 450
+layout(set = 0, binding = 0) uniform samplerCube faces;
+layout(location = 0) out vec4 out_color;
+void main() {
+    // Column x looks along +X, -X, +Y, -Y, +Z, -Z: the faces' order as layers.
+    vec3 directions[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));
+    out_color = texture(faces, directions[int(gl_FragCoord.x)]);
+}
+)";
+
 class ResourceExecution : public RenderTest {
 protected:
     Result<rhi::ShaderHandle> shader(rhi::ShaderStage stage, const std::string& name, const char* code) {
@@ -460,6 +470,65 @@ TEST_P(ResourceExecution, CascadesRenderedLayerByLayerAreSampledAsAnArray) {
         LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(executor.texture("light", "color")));
         EXPECT_EQ(image.load(3, 5), (std::array<double, 4>{0.125, 0.25, 0.375, 0.5})) << "frame " << frame;
         EXPECT_EQ(image.load(12, 9), (std::array<double, 4>{0.5, 0.625, 0.75, 0.875})) << "frame " << frame;
+    }
+}
+
+TEST_P(ResourceExecution, CubeMapWrittenFaceByFaceIsSampledAsACube) {
+    TestPrograms programs(device());
+    LOOM_ASSIGN_OR_FAIL(auto fill, programs.fill(Format::RGBA32Float));
+    LOOM_ASSIGN_OR_FAIL(auto look, programs.make("cube", kCubeFrag, {Format::RGBA32Float}));
+    LOOM_ASSIGN_OR_FAIL(auto sampler, programs.sampler());
+    const fg::TextureSpec spec = fg::TextureSpec::of(Format::RGBA32Float).with_size(8, 8).with_cube();
+    auto face_color = [](uint32_t face) { return Color{(face + 1) / 8.0f, face / 16.0f, 1.0f - face / 8.0f, 1.0f}; };
+
+    fg::FrameGraph graph;
+    for (uint32_t face = 0; face < 6; ++face) {
+        const std::string name = "face" + std::to_string(face);
+        fg::Pass pass(name);
+        if (face == 0) {
+            pass.output("cube", spec, fg::layer(0));
+        } else {
+            pass.inout("cube", {}, fg::layer(face));
+        }
+        const FillConstants constants{face_color(face), face_color(face), 0.0f};
+        pass.on_execute([fill, constants](fg::PassContext& ctx) {
+            ctx.begin_render_pass({"cube"});
+            ctx.commands().set_pipeline(fill);
+            ctx.commands().push_constants_of(constants);
+            ctx.commands().draw(3);
+            ctx.end_render_pass();
+            return Status{};
+        });
+        ASSERT_TRUE(graph.add_pass(std::move(pass)).ok());
+        if (face > 0) {
+            ASSERT_TRUE(graph.connect(fg::port("face" + std::to_string(face - 1), "cube"), fg::port(name, "cube")).ok());
+        }
+    }
+    auto look_pass = fg::Pass("look")
+                         .input("cube")
+                         .output("color", fg::TextureSpec::of(Format::RGBA32Float))
+                         .on_execute([look, sampler](fg::PassContext& ctx) {
+                             ctx.begin_render_pass({"color"});
+                             ctx.commands().set_pipeline(look);
+                             ctx.commands().set_bind_group(0, rhi::BindGroup{}.texture(0, ctx.texture("cube"), sampler));
+                             ctx.commands().draw(3);
+                             ctx.end_render_pass();
+                             return Status{};
+                         });
+    ASSERT_TRUE(graph.add_pass(std::move(look_pass)).ok());
+    ASSERT_TRUE(graph.connect(fg::port("face5", "cube"), fg::port("look", "cube")).ok());
+    ASSERT_TRUE(graph.mark_output(fg::port("look", "color")).ok());
+
+    fg::Executor executor(device());
+    fg::PlanOptions options;
+    options.frame = {6, 1};
+    LOOM_ASSERT_OK(executor.run_frame(graph, options));
+    EXPECT_TRUE(executor.plan()->resources[0].spec.cube);
+    EXPECT_EQ(executor.plan()->resources[0].spec.layers, 6u);
+    LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(executor.texture("look", "color")));
+    for (uint32_t face = 0; face < 6; ++face) {
+        const Color c = face_color(face);
+        EXPECT_EQ(image.load(face, 0), (std::array<double, 4>{c[0], c[1], c[2], c[3]})) << "face " << face;
     }
 }
 

@@ -320,7 +320,7 @@ TEST(PassKinds, RolesFollowTheKind) {
     const TextureSlot color{TextureSlot::Kind::Plan, plan.resources[0].texture};
     const TextureSlot blurred{TextureSlot::Kind::Plan, plan.resources[1].texture};
     const TextureSlot copied{TextureSlot::Kind::Plan, plan.resources[2].texture};
-    const rhi::TextureRange whole{0, 1, 0, 1};
+    const rhi::TextureRange whole{};  // each port uses its texture's one mip and layer
     EXPECT_EQ(schedule->passes[1].before, (std::vector<Transition>{{color, ResourceState::ShaderRead, whole},
                                                                    {blurred, ResourceState::Storage, whole}}));
     EXPECT_EQ(schedule->passes[2].before, (std::vector<Transition>{{blurred, ResourceState::CopySrc, whole},
@@ -406,7 +406,8 @@ TEST(Subresources, ReadingMipKMinusOneWhileWritingMipKIsNeitherACycleNorAHazard)
     const TextureSlot t{TextureSlot::Kind::Plan, pyramid.texture};
     EXPECT_EQ(schedule->passes[2].before, (std::vector<Transition>{{t, ResourceState::ShaderRead, mip_of_layer(1, 0)},
                                                                    {t, ResourceState::Storage, mip_of_layer(2, 0)}}));
-    EXPECT_EQ(schedule->passes[4].before, (std::vector<Transition>{{t, ResourceState::ShaderRead, {0, 4, 0, 1}}}));
+    // bloom reads every mip: the whole texture moves.
+    EXPECT_EQ(schedule->passes[4].before, (std::vector<Transition>{{t, ResourceState::ShaderRead, {}}}));
     // The first write clears; the in-place writes load (their mip's earlier contents are the
     // texture's, undefined until written).
     EXPECT_EQ(schedule->passes[0].ports[0].load, rhi::LoadOp::Clear);
@@ -459,7 +460,33 @@ TEST(Subresources, CascadesWrittenLayerByLayerAndSampledAsAnArray) {
     auto schedule = build_execution_schedule(plan, {}, {});
     ASSERT_TRUE(schedule.ok());
     const TextureSlot t{TextureSlot::Kind::Plan, plan.resources[0].texture};
-    EXPECT_EQ(schedule->passes[4].before, (std::vector<Transition>{{t, ResourceState::DepthRead, {0, 1, 0, 4}}}));
+    EXPECT_EQ(schedule->passes[4].before, (std::vector<Transition>{{t, ResourceState::DepthRead, {}}}));
+}
+
+TEST(Subresources, CubeMapsHaveSixSquareFacesWrittenOneByOne) {
+    FrameGraph graph;
+    const TextureSpec spec = TextureSpec::of(Format::RGBA16Float).with_size(64, 64).with_cube();
+    ASSERT_TRUE(graph.add_pass(Pass("face0").output("cube", spec, layer(0))).ok());
+    for (uint32_t i = 1; i < 6; ++i) {
+        ASSERT_TRUE(graph.add_pass(Pass("face" + std::to_string(i)).inout("cube", {}, layer(i))).ok());
+        ASSERT_TRUE(graph.connect(port("face" + std::to_string(i - 1), "cube"), port("face" + std::to_string(i), "cube")).ok());
+    }
+    ASSERT_TRUE(graph.add_pass(Pass("sky").input("cube").output("color")).ok());
+    ASSERT_TRUE(graph.connect(port("face5", "cube"), port("sky", "cube")).ok());
+    ASSERT_TRUE(graph.mark_output(port("sky", "color")).ok());
+    const Plan plan = must_plan(graph);
+    const ResolvedSpec& cube = plan.resources[0].spec;
+    EXPECT_TRUE(cube.cube);
+    EXPECT_EQ(cube.layers, 6u);
+    EXPECT_EQ(to_texture_desc(cube, "sky").dimension, rhi::TextureDimension::Cube);
+    EXPECT_EQ(describe_resolved(cube), "RGBA16Float 64x64 cube");
+    EXPECT_EQ(plan.order[6].ports[0].range, (SubresourceRange{0, 1, 0, 6}));
+
+    FrameGraph oblong;
+    ASSERT_TRUE(oblong.add_pass(Pass("sky").output("cube", TextureSpec::of(Format::RGBA8Unorm).with_size(64, 32).with_cube())).ok());
+    ASSERT_TRUE(oblong.mark_output(port("sky", "cube")).ok());
+    EXPECT_EQ(must_fail(oblong).message,
+              "sky.cube: a cube map has 6 square single-sampled faces, not 6 layers of 64x32 with 1 samples");
 }
 
 TEST(Subresources, DisjointByteRangesOfOneBufferInOnePass) {

@@ -129,7 +129,7 @@ TEST(GraphFile, ErrorsCarryTheJsonPath) {
         {R"({"passes": [], "extra": 1})", "g.json: /extra: unknown key (expected one of: frame, passes, connections, outputs)"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "colour": 1}]}]})",
          "g.json: /passes/0/outputs/0/colour: unknown key (expected one of: name, type, format, channels, bits, kind, "
-         "srgb, depth, stencil, size, scale, samples, mips, layers, range, optional, usage)"},
+         "srgb, depth, stencil, size, scale, samples, mips, layers, cube, range, optional, usage)"},
         {R"({"frame": {"width": 0, "height": 10}, "passes": []})",
          "g.json: /frame/width: must be a positive integer, not 0"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "samples": 2.5}]}]})",
@@ -208,6 +208,27 @@ TEST(GraphFile, PassKindsBufferPortsAndRanges) {
     EXPECT_EQ(save.find_port("head")->bytes, (BufferRange{16, 256}));
     EXPECT_EQ(save.find_port("levels")->range, (SubresourceRange{1, rhi::kRemainingSubresources, 0, rhi::kRemainingSubresources}));
     EXPECT_EQ(save.find_port("layer")->range, (SubresourceRange{1, 2, 5, 1}));
+}
+
+TEST(GraphFile, CubeMaps) {
+    auto file = parse_graph_json(R"({"passes": [
+        {"name": "sky", "outputs": [{"name": "faces", "format": "RGBA16F", "size": [64, 64], "cube": true, "range": {"layer": 0}}]},
+        {"name": "odd", "outputs": [{"name": "faces", "format": "RGBA16F", "size": [64, 64], "cube": true, "layers": 4}]}],
+        "outputs": ["sky.faces", "odd.faces"]})");
+    ASSERT_TRUE(file.ok()) << file.error().to_string();
+    EXPECT_EQ(file->graph.pass(PassId{0}).find_port("faces")->spec,
+              TextureSpec::of(rhi::Format::RGBA16Float).with_size(64, 64).with_cube());
+    // A cube with other than six layers is refused when planned, naming the port.
+    PlanOptions options;
+    options.frame = file->frame;
+    auto plan = file->graph.plan(options);
+    ASSERT_FALSE(plan.ok());
+    EXPECT_NE(plan.error().message.find("odd.faces: a cube map has 6 square single-sampled faces, not 4 layers"),
+              std::string::npos)
+        << plan.error().message;
+    auto not_bool = parse_graph_json(R"({"passes": [{"name": "a", "outputs": [{"name": "x", "cube": 1}]}]})", "g.json");
+    ASSERT_FALSE(not_bool.ok());
+    EXPECT_NE(not_bool.error().message.find("/passes/0/outputs/0/cube"), std::string::npos) << not_bool.error().message;
 }
 
 TEST(GraphFile, BufferKindAndRangeErrorsCarryTheJsonPath) {

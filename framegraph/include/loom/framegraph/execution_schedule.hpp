@@ -95,7 +95,8 @@ struct HistoryBinding {
 struct Transition {
     TextureSlot texture;
     rhi::ResourceState state = rhi::ResourceState::Undefined;
-    /// The subresources that change state (a port's range; the whole texture by default).
+    /// The subresources that change state: a port's range, or the whole texture (the default
+    /// TextureRange) when the port uses all of it.
     rhi::TextureRange range{};
     friend bool operator==(const Transition&, const Transition&) = default;
 };

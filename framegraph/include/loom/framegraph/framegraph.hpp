@@ -2,6 +2,7 @@
 // Everything of the frame graph in one include.
 
 #include "loom/framegraph/allocator.hpp"
+#include "loom/framegraph/buffer_spec.hpp"
 #include "loom/framegraph/execution_schedule.hpp"
 #include "loom/framegraph/executor.hpp"
 #include "loom/framegraph/export.hpp"

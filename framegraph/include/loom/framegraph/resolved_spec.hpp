@@ -55,6 +55,7 @@ struct ResolvedSpec {
     uint32_t mips = 1;
     uint32_t layers = 1;
     rhi::TextureUsage usage = rhi::TextureUsage::None;
+    bool cube = false;  ///< a cube map (6 square layers)
 
     friend bool operator==(const ResolvedSpec&, const ResolvedSpec&) = default;
 };

@@ -67,6 +67,9 @@ struct TextureSpec {
     /// Usage this port needs beyond what its role implies (see derive_port_usage); e.g.
     /// Storage for a port written or read as a storage image. Joined by union.
     rhi::TextureUsage usage = rhi::TextureUsage::None;
+    /// A cube map: six square layers (faces +X, -X, +Y, -Y, +Z, -Z) sampled as a samplerCube and
+    /// written face by face through layer ranges. Joined by "or": one port asking is enough.
+    bool cube = false;
 
     /// A spec that asks for exactly `format` and nothing else.
     static TextureSpec of(rhi::Format format);
@@ -96,6 +99,8 @@ struct TextureSpec {
     [[nodiscard]] TextureSpec with_layers(uint32_t count) const;
     /// This spec asking for extra usage (e.g. Storage).
     [[nodiscard]] TextureSpec with_usage(rhi::TextureUsage extra) const;
+    /// This spec as a cube map (and 6 layers).
+    [[nodiscard]] TextureSpec with_cube() const;
 
     /// True when no property is constrained.
     [[nodiscard]] bool unconstrained() const;
