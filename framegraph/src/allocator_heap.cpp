@@ -3,7 +3,7 @@
 // overlap in bytes. Finding the smallest heap is NP-hard (dynamic storage allocation), so this
 // runs a few greedy strategies and keeps the smallest result:
 //   orders:     largest first; longest-lived first; by first use; largest area (bytes × life);
-//               with mixed alignments also strictest alignment first
+//               strictest alignment first when the best needs more than a heap per resource
 //   placements: lowest offset that fits; the tightest gap that fits (best fit)
 // The lower bound is the peak of live bytes over the order; the plan reports both.
 
@@ -327,20 +327,8 @@ public:
             Less([&](uint32_t a, uint32_t b) { return area(b) < area(a); }),
         };
 
-        // Mixed alignments (buffers aligned to bytes beside textures aligned to pages): small-
-        // aligned resources placed first push page-aligned ones past padding, so also try
-        // placing the strictest alignments first and filling the gaps with the rest.
-        std::vector<Less> tried(orders.begin(), orders.end());
-        const bool mixed_alignments =
-            std::any_of(res.begin(), res.end(), [&](const AllocationResource& r) { return r.alignment != res.front().alignment; });
-        if (mixed_alignments) {
-            tried.emplace_back([&](uint32_t a, uint32_t b) {
-                return std::tuple(res[b].alignment, res[b].bytes, length(b)) < std::tuple(res[a].alignment, res[a].bytes, length(a));
-            });
-        }
-
         std::optional<Placement> best;
-        for (const Less& less : tried) {
+        auto try_order = [&](const Less& less) -> Status {
             std::vector<uint32_t> order(count);
             std::iota(order.begin(), order.end(), 0u);
             std::stable_sort(order.begin(), order.end(), less);
@@ -349,6 +337,19 @@ public:
                 if (!placement) return placement.take_error();
                 if (!best || placement->total < best->total) best = std::move(*placement);
             }
+            return {};
+        };
+        for (const Less& less : orders) LOOM_TRY(try_order(less));
+        // Mixed alignments (buffers aligned to bytes beside textures aligned to pages): when
+        // small-aligned resources pushed page-aligned ones past padding so far that one object
+        // per resource would need less, place the strictest alignments first and fill the gaps
+        // with the rest. Only then: the usual orders rarely lose this way, and it costs a run.
+        uint64_t separate = 0;
+        for (const AllocationResource& r : res) separate = checked::add(separate, r.bytes).value_or(UINT64_MAX);
+        if (best && best->total > separate) {
+            LOOM_TRY(try_order(Less([&](uint32_t a, uint32_t b) {
+                return std::tuple(res[b].alignment, res[b].bytes, length(b)) < std::tuple(res[a].alignment, res[a].bytes, length(a));
+            })));
         }
 
         Allocation out;

@@ -334,7 +334,8 @@ Status Executor::Impl::check_imports(FrameState& frame) {
         frame.import_specs[i] = spec_from_desc(*desc);
         // A texture standing in for a plan resource must have the resource's shape.
         for (uint32_t r = 0; r < plan->resources.size(); ++r) {
-            if (schedule->resource_import[r] != i) continue;
+            // resource_import of a buffer resource counts buffer imports, not these.
+            if (plan->resources[r].type != ResourceType::Texture || schedule->resource_import[r] != i) continue;
             const ResolvedSpec& wanted = plan->resources[r].spec;
             const ResolvedSpec& got = frame.import_specs[i];
             if (got.format != wanted.format || got.extent != wanted.extent || got.samples != wanted.samples ||

@@ -73,14 +73,17 @@ void BM_Plan(benchmark::State& state, const char* allocator) {
     const auto passes = static_cast<uint32_t>(state.range(0));
     const FrameGraph graph = testing::random_graph(7, big_graph_options(passes));
     const PlanOptions options = options_for(allocator);
+    uint64_t resources = 0;
     for (auto _ : state) {
         auto plan = build_plan(graph, options);
         if (!plan) {
             state.SkipWithError(plan.error().message.c_str());
             return;
         }
+        resources = plan->resources.size();
         benchmark::DoNotOptimize(plan->summary);
     }
+    state.counters["resources"] = static_cast<double>(resources);
     state.counters["per_pass"] = benchmark::Counter(passes, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
     state.SetComplexityN(passes);
 }
@@ -89,14 +92,15 @@ void BM_Plan(benchmark::State& state, const char* allocator) {
 // outputs after each pass's first are buffers (absolute, per-pixel and per-tile sizes) and a
 // fifth of the textures are mip chains or layer arrays whose ports use one subresource at a
 // time. Compare its per_pass time with BM_Plan's (texture-only graphs) in the same run.
-void BM_PlanMixed(benchmark::State& state, const char* allocator) {
+void BM_PlanMixed(benchmark::State& state, const char* allocator, uint32_t buffer_percent, uint32_t subresource_percent) {
     const auto passes = static_cast<uint32_t>(state.range(0));
     testing::RandomGraphOptions graph_options = big_graph_options(passes);
-    graph_options.buffer_percent = 25;
-    graph_options.subresource_percent = 20;
+    graph_options.buffer_percent = buffer_percent;
+    graph_options.subresource_percent = subresource_percent;
     const FrameGraph graph = testing::random_graph(7, graph_options);
     const PlanOptions options = options_for(allocator);
     uint64_t buffers = 0;
+    uint64_t resources = 0;
     for (auto _ : state) {
         auto plan = build_plan(graph, options);
         if (!plan) {
@@ -104,9 +108,15 @@ void BM_PlanMixed(benchmark::State& state, const char* allocator) {
             return;
         }
         buffers = plan->summary.naive_buffers;
+        resources = plan->resources.size();
         benchmark::DoNotOptimize(plan->summary);
     }
+    state.counters["resources"] = static_cast<double>(resources);
     state.counters["buffers"] = static_cast<double>(buffers);
+    if (auto plan = build_plan(graph, options)) {
+        state.counters["bytes_over_bound"] = static_cast<double>(plan->summary.bytes) / static_cast<double>(plan->summary.lower_bound_bytes);
+        state.counters["bytes_over_naive"] = static_cast<double>(plan->summary.bytes) / static_cast<double>(plan->summary.naive_bytes);
+    }
     state.counters["per_pass"] = benchmark::Counter(passes, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
     state.SetComplexityN(passes);
 }
@@ -329,8 +339,10 @@ BENCHMARK_CAPTURE(BM_BuildAndPlan, heap, "heap")->RangeMultiplier(10)->Range(100
 BENCHMARK_CAPTURE(BM_Plan, paper, "paper")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK_CAPTURE(BM_Plan, interval, "interval")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK_CAPTURE(BM_Plan, heap, "heap")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
-BENCHMARK_CAPTURE(BM_PlanMixed, interval, "interval")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
-BENCHMARK_CAPTURE(BM_PlanMixed, heap, "heap")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_PlanMixed, interval, "interval", 25, 20)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_PlanMixed, heap, "heap", 25, 20)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_PlanMixed, heap_buffers_only, "heap", 25, 0)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanMixed, heap_subresources_only, "heap", 0, 20)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Build)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK(BM_Replan)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BytesOverLowerBoundCorpus)->Iterations(1)->Unit(benchmark::kMillisecond);

@@ -106,6 +106,12 @@ void main() {
 }
 )";
 
+const char* const kNumbersComp = R"(#version 450
+layout(local_size_x = 16) in;
+layout(std430, set = 0, binding = 0) writeonly buffer Data { uint v[]; } data;
+void main() { data.v[gl_LocalInvocationID.x] = gl_LocalInvocationID.x * 3u + 1u; }
+)";
+
 const char* const kCubeFrag = R"(#version 450
 layout(set = 0, binding = 0) uniform samplerCube faces;
 layout(location = 0) out vec4 out_color;
@@ -296,6 +302,79 @@ TEST_P(ResourceExecution, CreatedBuffersAndTexturesAreThePlans) {
             EXPECT_EQ(plan.summary.bytes, heap_bytes);
         }
     }
+}
+
+// An application buffer imported for a buffer port takes the plan buffer's place (beside an
+// imported texture, whose import numbering is separate); a copy pass copies it into a plan buffer.
+TEST_P(ResourceExecution, ImportedBuffersStandInForPlanBuffers) {
+    LOOM_ASSIGN_OR_FAIL(auto numbers, compute("numbers.comp", kNumbersComp));
+    TestPrograms programs(device());
+    LOOM_ASSIGN_OR_FAIL(auto fill, programs.fill(Format::RGBA8Unorm));
+    fg::FrameGraph graph;
+    auto fill_numbers = fg::Pass("fill").set_kind(fg::PassKind::Compute).buffer_output("data", fg::BufferSpec::of_size(64));
+    fill_numbers.on_execute([numbers](fg::PassContext& ctx) {
+        ctx.commands().set_pipeline(numbers);
+        ctx.commands().set_bind_group(0, rhi::BindGroup{}.buffer(0, ctx.buffer("data")));
+        ctx.commands().dispatch(1);
+        return Status{};
+    });
+    ASSERT_TRUE(graph.add_pass(std::move(fill_numbers)).ok());
+    auto save = fg::Pass("save").set_kind(fg::PassKind::Copy).buffer_input("data").buffer_output("copy", fg::BufferSpec::of_size(64));
+    save.on_execute([](fg::PassContext& ctx) -> Status {
+        if (ctx.buffer_size("data") != 64 || ctx.buffer_size("copy") != 64) {
+            return make_error(ErrorCode::InvalidState, "unexpected buffer sizes");
+        }
+        ctx.commands().copy_buffer(ctx.buffer("data"), 0, ctx.buffer("copy"), 0, 64);
+        return Status{};
+    });
+    ASSERT_TRUE(graph.add_pass(std::move(save)).ok());
+    ASSERT_TRUE(graph.add_pass(fill_pass("paint", "color", fg::TextureSpec::of(Format::RGBA8Unorm), fill,
+                                         {{0, 1, 0, 1}, {0, 1, 0, 1}, 0.0f}))
+                    .ok());
+    ASSERT_TRUE(graph.connect(fg::port("fill", "data"), fg::port("save", "data")).ok());
+    ASSERT_TRUE(graph.mark_output(fg::port("save", "copy")).ok());
+    ASSERT_TRUE(graph.mark_output(fg::port("paint", "color")).ok());
+
+    LOOM_ASSIGN_OR_FAIL(auto app_buffer, device().create_buffer({"app numbers", 64, BufferUsage::Storage | BufferUsage::CopySrc}));
+    rhi::TextureDesc td;
+    td.name = "app colour";
+    td.width = 4;
+    td.height = 4;
+    td.usage = rhi::TextureUsage::ColorAttachment | rhi::TextureUsage::Sampled | rhi::TextureUsage::CopySrc;
+    LOOM_ASSIGN_OR_FAIL(auto app_texture, device().create_texture(td));
+
+    {
+        fg::Executor executor(device());
+        executor.import_buffer(fg::port("fill", "data"), app_buffer, rhi::ResourceState::CopySrc);
+        executor.import_texture(fg::port("paint", "color"), app_texture);
+        fg::PlanOptions options;
+        options.frame = {4, 4};
+        LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        EXPECT_EQ(executor.buffer("fill", "data"), app_buffer);
+        std::vector<uint32_t> expected(16);
+        for (uint32_t i = 0; i < 16; ++i) expected[i] = i * 3 + 1;
+        for (rhi::BufferHandle b : {app_buffer, executor.buffer("save", "copy")}) {
+            LOOM_ASSIGN_OR_FAIL(auto bytes, device().read_buffer(b, 0, 64));
+            std::vector<uint32_t> words(16);
+            std::memcpy(words.data(), bytes.data(), 64);
+            EXPECT_EQ(words, expected);
+        }
+        EXPECT_EQ(texel(device(), app_texture, 1, 1), (std::array<double, 4>{0, 1, 0, 1}));
+        EXPECT_EQ(executor.stats().buffers, 1u) << describe(executor.stats());  // the copy only
+
+        // A buffer smaller than the port's is refused, naming the port.
+        LOOM_ASSIGN_OR_FAIL(auto small, device().create_buffer({"small", 32, BufferUsage::Storage}));
+        executor.import_buffer(fg::port("fill", "data"), small);
+        Status status = executor.run_frame(graph, options);
+        ASSERT_FALSE(status.ok());
+        EXPECT_EQ(status.error().message, "buffer import fill.data: buffer 'small' is 32 bytes storage but the port's buffer is "
+                                          "buffer 64 bytes storage|copy_src");
+        (void)device().wait_idle();
+        ASSERT_TRUE(executor.release().ok());
+        ASSERT_TRUE(device().destroy(small).ok());
+    }
+    ASSERT_TRUE(device().destroy(app_buffer).ok());
+    ASSERT_TRUE(device().destroy(app_texture).ok());
 }
 
 TEST_P(ResourceExecution, ComputePassesCannotOpenRenderPasses) {
