@@ -22,6 +22,23 @@ std::string texture_label(const Plan& plan, uint32_t index) {
     return label + "]";
 }
 
+// The plan's heap offsets must hold on this device: `needs` (the device's size and alignment for
+// the object called `what`) must fit the bytes and the offset the plan gave it.
+Status check_placement(const std::string& what, const Result<rhi::MemoryRequirements>& needs, uint64_t planned_bytes,
+                       const HeapRange& range, const std::vector<uint64_t>& heap_sizes) {
+    if (!needs) return make_error(needs.error().code, "executor: " + what + ": " + needs.error().message);
+    if (range.offset % std::max<uint64_t>(needs->alignment, 1) != 0 || needs->size > planned_bytes ||
+        !checked::range_fits(range.offset, needs->size, heap_sizes[range.heap])) {
+        return make_error(ErrorCode::InvalidArgument,
+                          "executor: " + what + " needs " + std::to_string(needs->size) + " bytes aligned to " +
+                              std::to_string(needs->alignment) + " on this device, but the plan gives it " +
+                              std::to_string(planned_bytes) + " bytes at offset " + std::to_string(range.offset) +
+                              " of heap " + std::to_string(range.heap) +
+                              "; plan with the executor's memory model (Executor::effective_options)");
+    }
+    return {};
+}
+
 ResolvedSpec spec_from_desc(const rhi::TextureDesc& desc) {
     ResolvedSpec spec;
     spec.format = desc.format;
@@ -177,20 +194,9 @@ Status Executor::Impl::create_plan_resources() {
             if (p.resources[history.resource].texture == t) desc.usage |= rhi::TextureUsage::CopySrc;
         }
         if (placed && planned.placement) {
-            // The plan's offsets must hold on this device: sizes and alignments from it.
-            auto needs = device.texture_memory_requirements(desc);
-            if (!needs) return make_error(needs.error().code, "executor: texture " + in_quotes(desc.name) + ": " + needs.error().message);
-            const HeapRange& range = *planned.placement;
-            if (range.offset % std::max<uint64_t>(needs->alignment, 1) != 0 || needs->size > planned.bytes ||
-                !checked::range_fits(range.offset, needs->size, p.heaps[range.heap])) {
-                return make_error(ErrorCode::InvalidArgument,
-                                  "executor: texture " + in_quotes(desc.name) + " needs " + std::to_string(needs->size) +
-                                      " bytes aligned to " + std::to_string(needs->alignment) + " on this device, but the plan gives it " +
-                                      std::to_string(planned.bytes) + " bytes at offset " + std::to_string(range.offset) +
-                                      " of heap " + std::to_string(range.heap) +
-                                      "; plan with the executor's memory model (Executor::effective_options)");
-            }
-            desc.placement = rhi::TexturePlacement{heaps[range.heap], range.offset};
+            LOOM_TRY(check_placement("texture " + in_quotes(desc.name), device.texture_memory_requirements(desc),
+                                     planned.bytes, *planned.placement, p.heaps));
+            desc.placement = rhi::TexturePlacement{heaps[planned.placement->heap], planned.placement->offset};
         }
         auto texture = device.create_texture(desc);
         if (!texture) return make_error(texture.error().code, "executor: texture " + in_quotes(desc.name) + ": " + texture.error().message);
@@ -212,20 +218,9 @@ Status Executor::Impl::create_plan_buffers() {
         }
         rhi::BufferDesc desc = to_buffer_desc(planned.spec, label + "]");
         if (!heaps.empty() && planned.placement) {
-            // As for textures: the plan's offsets must hold on this device.
-            auto needs = device.buffer_memory_requirements(desc);
-            if (!needs) return make_error(needs.error().code, "executor: buffer " + in_quotes(desc.name) + ": " + needs.error().message);
-            const HeapRange& range = *planned.placement;
-            if (range.offset % std::max<uint64_t>(needs->alignment, 1) != 0 || needs->size > planned.bytes ||
-                !checked::range_fits(range.offset, needs->size, p.heaps[range.heap])) {
-                return make_error(ErrorCode::InvalidArgument,
-                                  "executor: buffer " + in_quotes(desc.name) + " needs " + std::to_string(needs->size) +
-                                      " bytes aligned to " + std::to_string(needs->alignment) + " on this device, but the plan gives it " +
-                                      std::to_string(planned.bytes) + " bytes at offset " + std::to_string(range.offset) +
-                                      " of heap " + std::to_string(range.heap) +
-                                      "; plan with the executor's memory model (Executor::effective_options)");
-            }
-            desc.placement = rhi::BufferPlacement{heaps[range.heap], range.offset};
+            LOOM_TRY(check_placement("buffer " + in_quotes(desc.name), device.buffer_memory_requirements(desc), planned.bytes,
+                                     *planned.placement, p.heaps));
+            desc.placement = rhi::BufferPlacement{heaps[planned.placement->heap], planned.placement->offset};
         }
         auto buffer = device.create_buffer(desc);
         if (!buffer) return make_error(buffer.error().code, "executor: buffer " + in_quotes(desc.name) + ": " + buffer.error().message);

@@ -54,27 +54,6 @@ std::string colour_of(const PlanResource& resource) {
     return std::string(kPalette[resource.texture % kPalette.size()]);
 }
 
-// The part of its resource a port uses, "" when it is all of it: "mip 2", "layers 1..3",
-// "mips 1..3 layer 0", "bytes 512+512" (offset+size), as describe_range() writes them.
-std::string range_of(const PlanResource& resource, const PlanPort& port) {
-    if (resource.type == ResourceType::Buffer) {
-        if (port.bytes.offset == 0 && port.bytes.size == resource.buffer_spec.size) return {};
-        return detail::concat("bytes ", port.bytes.offset, "+", port.bytes.size);
-    }
-    // The plan's counts are concrete: a part is left out when it covers every level (layer).
-    auto part = [](std::string_view one, std::string_view many, uint32_t base, uint32_t count,
-                   uint32_t total) -> std::string {
-        if (base == 0 && count == total) return {};
-        if (count == 1) return detail::concat(one, " ", base);
-        return detail::concat(many, " ", base, "..", uint64_t{base} + count - 1);
-    };
-    const std::string mips = part("mip", "mips", port.range.base_mip, port.range.mip_count, resource.spec.mips);
-    const std::string layers =
-        part("layer", "layers", port.range.base_layer, port.range.layer_count, resource.spec.layers);
-    if (mips.empty() || layers.empty()) return mips + layers;
-    return mips + " " + layers;
-}
-
 }  // namespace
 
 void write_plan_dot(std::ostream& out, const Plan& plan) {
@@ -101,7 +80,7 @@ void write_plan_dot(std::ostream& out, const Plan& plan) {
             std::string field = numbered("<f", i) + "> " + record_escape(port.name);
             if (port.resource) {
                 const PlanResource& resource = plan.resources[*port.resource];
-                const std::string range = range_of(resource, port);
+                const std::string range = describe_port_range(resource, port);
                 field += " (" + physical_name(resource) + (range.empty() ? "" : " " + range) + ")";
             }
             std::string& side = port.kind == PortKind::Input ? inputs : outputs;
@@ -125,7 +104,7 @@ void write_plan_dot(std::ostream& out, const Plan& plan) {
         const PlanResource& resource = plan.resources[e.resource];
         const std::string colour = colour_of(resource);
         // The edge says what its reader uses: the resource, and the part of it when not all.
-        const std::string range = range_of(resource, plan.order[e.to_pass].ports[e.to_port]);
+        const std::string range = describe_port_range(resource, plan.order[e.to_pass].ports[e.to_port]);
         out << "  " << pass_node(e.from_pass) << numbered(":f", e.from_port) << ":e -> " << pass_node(e.to_pass)
             << numbered(":f", e.to_port) << ":w [color=" << quoted(colour) << ", fontcolor=" << quoted(colour)
             << (resource.type == ResourceType::Buffer ? ", style=dashed" : "")

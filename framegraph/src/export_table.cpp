@@ -51,25 +51,10 @@ std::string physical_name(const PlanResource& resource) {
     return resource.type == ResourceType::Buffer ? numbered("b", resource.buffer) : numbered("t", resource.texture);
 }
 
-// The part of its resource a port uses, in parentheses, or "" when it is all of it: "(mip 2)",
-// "(mips 1..3 layer 0)", "(bytes 512+512)" (offset+size). The plan's counts are concrete.
+// The part of its resource a port uses, in parentheses, or "" when it is all of it.
 std::string range_suffix(const PlanResource& resource, const PlanPort& port) {
-    if (resource.type == ResourceType::Buffer) {
-        if (port.bytes.offset == 0 && port.bytes.size == resource.buffer_spec.size) return {};
-        return detail::concat("(bytes ", port.bytes.offset, "+", port.bytes.size, ")");
-    }
-    auto part = [](std::string_view one, std::string_view many, uint32_t base, uint32_t count,
-                   uint32_t total) -> std::string {
-        if (base == 0 && count == total) return {};
-        if (count == 1) return detail::concat(one, " ", base);
-        return detail::concat(many, " ", base, "..", uint64_t{base} + count - 1);
-    };
-    const std::string mips = part("mip", "mips", port.range.base_mip, port.range.mip_count, resource.spec.mips);
-    const std::string layers =
-        part("layer", "layers", port.range.base_layer, port.range.layer_count, resource.spec.layers);
-    if (mips.empty() && layers.empty()) return {};
-    if (mips.empty() || layers.empty()) return "(" + mips + layers + ")";
-    return "(" + mips + " " + layers + ")";
+    const std::string range = describe_port_range(resource, port);
+    return range.empty() ? range : "(" + range + ")";
 }
 
 }  // namespace

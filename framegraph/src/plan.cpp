@@ -110,6 +110,19 @@ std::optional<uint32_t> Plan::buffer_of(std::string_view pass_name, std::string_
     return resource->buffer;
 }
 
+std::string describe_port_range(const PlanResource& resource, const PlanPort& port) {
+    if (resource.type == ResourceType::Buffer) {
+        if (port.bytes.offset == 0 && port.bytes.size == resource.buffer_spec.size) return {};
+        return "bytes " + std::to_string(port.bytes.offset) + "+" + std::to_string(port.bytes.size);
+    }
+    // The plan's counts are concrete: a part covering every level (layer) is left out.
+    SubresourceRange shown = port.range;
+    if (shown.base_mip == 0 && shown.mip_count == resource.spec.mips) shown.mip_count = rhi::kRemainingSubresources;
+    if (shown.base_layer == 0 && shown.layer_count == resource.spec.layers) shown.layer_count = rhi::kRemainingSubresources;
+    std::string text = describe_range(shown);
+    return text == "whole" ? std::string() : text;
+}
+
 uint64_t plan_hash(const Plan& plan) {
     Hasher h;
     h.add(plan.allocator);

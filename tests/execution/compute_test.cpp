@@ -2,7 +2,6 @@
 // The executor's transitions (→ Storage before each storage pass, → ShaderRead before the
 // sampling pass) are what makes the writes visible: Vulkan barriers, GL glMemoryBarrier.
 #include "execution_helpers.hpp"
-#include "loom/shader_compiler/shader_compiler.hpp"
 #include "loom_test/render_fixture.hpp"
 
 namespace loom::test {
@@ -28,27 +27,7 @@ void main() {
 }
 )";
 
-class ComputeExecution : public RenderTest {
-protected:
-    Result<rhi::PipelineHandle> compute(const std::string& name, const char* code) {
-        shader_compiler::ShaderCompiler compiler;
-        auto module = compiler.compile(shader_compiler::ShaderSource{name, rhi::ShaderStage::Compute, code, {}});
-        if (!module) return module.take_error();
-        auto shader = device().create_shader(*module);
-        if (!shader) return shader.take_error();
-        shaders_.push_back(*shader);
-        auto pipeline = device().create_compute_pipeline(rhi::ComputePipelineDesc{name, *shader});
-        if (pipeline) pipelines_.push_back(*pipeline);
-        return pipeline;
-    }
-    void TearDown() override {
-        for (auto p : pipelines_) (void)device().destroy(p);
-        for (auto s : shaders_) (void)device().destroy(s);
-        RenderTest::TearDown();
-    }
-    std::vector<rhi::PipelineHandle> pipelines_;
-    std::vector<rhi::ShaderHandle> shaders_;
-};
+class ComputeExecution : public RenderTest {};
 
 fg::Pass compute_pass(const std::string& name, rhi::PipelineHandle pipeline, const std::string& port) {
     return fg::Pass(name).on_execute([pipeline, port](fg::PassContext& ctx) {
@@ -61,9 +40,9 @@ fg::Pass compute_pass(const std::string& name, rhi::PipelineHandle pipeline, con
 }
 
 TEST_P(ComputeExecution, StoragePassesThenSampled) {
-    LOOM_ASSIGN_OR_FAIL(auto generate, compute("generate.comp", kGenerateComp));
-    LOOM_ASSIGN_OR_FAIL(auto increment, compute("increment.comp", kIncrementComp));
     TestPrograms programs(device());
+    LOOM_ASSIGN_OR_FAIL(auto generate, programs.compute("generate.comp", kGenerateComp));
+    LOOM_ASSIGN_OR_FAIL(auto increment, programs.compute("increment.comp", kIncrementComp));
     LOOM_ASSIGN_OR_FAIL(auto filter, programs.filter(Format::RGBA32Float));
     LOOM_ASSIGN_OR_FAIL(auto sampler, programs.sampler());
     const fg::TextureSpec storage = fg::TextureSpec::of(Format::RGBA32Float).with_usage(rhi::TextureUsage::Storage);

@@ -105,6 +105,25 @@ Result<rhi::PipelineHandle> TestPrograms::make(const std::string& name, const st
     return pipeline;
 }
 
+Result<rhi::ShaderHandle> TestPrograms::shader(rhi::ShaderStage stage, const std::string& name, const std::string& code) {
+    auto made = compile(device_, stage, name, code);
+    if (made) shaders_.push_back(*made);
+    return made;
+}
+
+Result<rhi::PipelineHandle> TestPrograms::compute(const std::string& name, const std::string& code) {
+    const std::string key = "compute/" + name;
+    for (auto& [k, pipeline] : pipelines_) {
+        if (k == key) return pipeline;
+    }
+    auto cs = shader(rhi::ShaderStage::Compute, name, code);
+    if (!cs) return cs.take_error();
+    auto pipeline = device_.create_compute_pipeline(rhi::ComputePipelineDesc{name, *cs});
+    if (!pipeline) return pipeline;
+    pipelines_.emplace_back(key, *pipeline);
+    return pipeline;
+}
+
 Result<rhi::PipelineHandle> TestPrograms::fill(rhi::Format format) {
     return make("fill", kFillFrag, {format}, rhi::Format::Undefined, false);
 }

@@ -72,6 +72,12 @@ public:
     Result<rhi::PipelineHandle> combine(rhi::Format format);
     /// Nearest-filtering sampler.
     Result<rhi::SamplerHandle> sampler();
+    /// A shader of `stage` compiled from GLSL `code` (destroyed with the programs).
+    Result<rhi::ShaderHandle> shader(rhi::ShaderStage stage, const std::string& name, const std::string& code);
+    /// A compute pipeline from GLSL `code` (cached by name).
+    Result<rhi::PipelineHandle> compute(const std::string& name, const std::string& code);
+    /// Keeps `pipeline` to destroy it with the programs.
+    void adopt(rhi::PipelineHandle pipeline, const std::string& name) { pipelines_.emplace_back(name, pipeline); }
     /// A fullscreen-triangle pipeline with the given fragment shader (cached by name and formats);
     /// with a depth format, depth test Always and writes as `depth_write` says.
     Result<rhi::PipelineHandle> make(const std::string& name, const std::string& fragment, std::vector<rhi::Format> colors,

@@ -8,7 +8,6 @@
 #include <cstring>
 
 #include "execution_helpers.hpp"
-#include "loom/shader_compiler/shader_compiler.hpp"
 #include "loom_test/render_fixture.hpp"
 
 namespace loom::test {
@@ -122,37 +121,14 @@ void main() {
 }
 )";
 
-class ResourceExecution : public RenderTest {
-protected:
-    Result<rhi::ShaderHandle> shader(rhi::ShaderStage stage, const std::string& name, const char* code) {
-        shader_compiler::ShaderCompiler compiler;
-        auto module = compiler.compile(shader_compiler::ShaderSource{name, stage, code, {}});
-        if (!module) return module.take_error();
-        auto made = device().create_shader(*module);
-        if (made) shaders_.push_back(*made);
-        return made;
-    }
-    Result<rhi::PipelineHandle> compute(const std::string& name, const char* code) {
-        auto s = shader(rhi::ShaderStage::Compute, name, code);
-        if (!s) return s.take_error();
-        auto pipeline = device().create_compute_pipeline(rhi::ComputePipelineDesc{name, *s});
-        if (pipeline) pipelines_.push_back(*pipeline);
-        return pipeline;
-    }
-    void TearDown() override {
-        for (auto p : pipelines_) (void)device().destroy(p);
-        for (auto s : shaders_) (void)device().destroy(s);
-        RenderTest::TearDown();
-    }
-    std::vector<rhi::PipelineHandle> pipelines_;
-    std::vector<rhi::ShaderHandle> shaders_;
-};
+class ResourceExecution : public RenderTest {};
 
 TEST_P(ResourceExecution, ComputeBuiltGeometryIsDrawnIndirectly) {
-    LOOM_ASSIGN_OR_FAIL(auto fill, compute("fill_geometry.comp", kFillGeometryComp));
-    LOOM_ASSIGN_OR_FAIL(auto shift, compute("shift.comp", kShiftComp));
-    LOOM_ASSIGN_OR_FAIL(auto vs, shader(rhi::ShaderStage::Vertex, "position.vert", kPositionVert));
-    LOOM_ASSIGN_OR_FAIL(auto fs, shader(rhi::ShaderStage::Fragment, "color.frag", kColorFrag));
+    TestPrograms programs(device());
+    LOOM_ASSIGN_OR_FAIL(auto fill, programs.compute("fill_geometry.comp", kFillGeometryComp));
+    LOOM_ASSIGN_OR_FAIL(auto shift, programs.compute("shift.comp", kShiftComp));
+    LOOM_ASSIGN_OR_FAIL(auto vs, programs.shader(rhi::ShaderStage::Vertex, "position.vert", kPositionVert));
+    LOOM_ASSIGN_OR_FAIL(auto fs, programs.shader(rhi::ShaderStage::Fragment, "color.frag", kColorFrag));
     rhi::GraphicsPipelineDesc pd;
     pd.name = "draw geometry";
     pd.vertex = vs;
@@ -160,7 +136,7 @@ TEST_P(ResourceExecution, ComputeBuiltGeometryIsDrawnIndirectly) {
     pd.vertex_buffers = {rhi::VertexBufferLayout{8, rhi::VertexStepMode::PerVertex, {{0, rhi::VertexFormat::Float2, 0}}}};
     pd.color_formats = {Format::RGBA32Float};
     LOOM_ASSIGN_OR_FAIL(auto draw_pipeline, device().create_graphics_pipeline(pd));
-    pipelines_.push_back(draw_pipeline);
+    programs.adopt(draw_pipeline, pd.name);
 
     fg::FrameGraph graph;
     auto fill_pass = fg::Pass("fill")
@@ -307,8 +283,8 @@ TEST_P(ResourceExecution, CreatedBuffersAndTexturesAreThePlans) {
 // An application buffer imported for a buffer port takes the plan buffer's place (beside an
 // imported texture, whose import numbering is separate); a copy pass copies it into a plan buffer.
 TEST_P(ResourceExecution, ImportedBuffersStandInForPlanBuffers) {
-    LOOM_ASSIGN_OR_FAIL(auto numbers, compute("numbers.comp", kNumbersComp));
     TestPrograms programs(device());
+    LOOM_ASSIGN_OR_FAIL(auto numbers, programs.compute("numbers.comp", kNumbersComp));
     LOOM_ASSIGN_OR_FAIL(auto fill, programs.fill(Format::RGBA8Unorm));
     fg::FrameGraph graph;
     auto fill_numbers = fg::Pass("fill").set_kind(fg::PassKind::Compute).buffer_output("data", fg::BufferSpec::of_size(64));
@@ -413,9 +389,9 @@ void up(Row& fine, const Row& coarse) {
 }
 
 TEST_P(ResourceExecution, MipPyramidIsBuiltAndUpsampledInPlace) {
-    LOOM_ASSIGN_OR_FAIL(auto down_compute, compute("down.comp", kDownComp));
-    LOOM_ASSIGN_OR_FAIL(auto up_compute, compute("up.comp", kUpComp));
     TestPrograms programs(device());
+    LOOM_ASSIGN_OR_FAIL(auto down_compute, programs.compute("down.comp", kDownComp));
+    LOOM_ASSIGN_OR_FAIL(auto up_compute, programs.compute("up.comp", kUpComp));
     LOOM_ASSIGN_OR_FAIL(auto fill, programs.fill(Format::RGBA32Float));
     LOOM_ASSIGN_OR_FAIL(auto down_render, programs.make("down", kDownFrag, {Format::RGBA32Float}));
     LOOM_ASSIGN_OR_FAIL(auto sampler, programs.sampler());

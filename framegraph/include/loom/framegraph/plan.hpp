@@ -197,6 +197,10 @@ struct Plan {
     friend bool operator==(const Plan&, const Plan&) = default;
 };
 
+/// The part of `resource` that `port` uses, or "" when it is all of it: "mip 2", "mips 1..3
+/// layer 0", "layers 2..5" (describe_range), "bytes 512+512" (offset+size).
+std::string describe_port_range(const PlanResource& resource, const PlanPort& port);
+
 /// A 64-bit hash of every field of the plan; equal plans hash equal, on every platform.
 uint64_t plan_hash(const Plan& plan);
 
