@@ -55,14 +55,39 @@ ResolvedSpec spec_from_desc(const rhi::TextureDesc& desc) {
 }  // namespace
 
 struct Executor::Impl {
-    struct Import {
+    // An application texture or buffer bound to a port.
+    template <class Handle>
+    struct Bound {
         ImportBinding binding;
-        rhi::TextureHandle texture;
+        Handle handle;
     };
-    struct BufferImport {
-        ImportBinding binding;
-        rhi::BufferHandle buffer;
-    };
+    using Import = Bound<rhi::TextureHandle>;
+    using BufferImport = Bound<rhi::BufferHandle>;
+
+    // Binds `handle` to `port` in `bound` (re-binding costs nothing unless the final state changes).
+    template <class Handle>
+    void bind(std::vector<Bound<Handle>>& bound, const PortRef& port, Handle handle, rhi::ResourceState final_state) {
+        for (Bound<Handle>& import : bound) {
+            if (import.binding.port == port) {
+                import.handle = handle;
+                if (import.binding.final_state != final_state) {
+                    import.binding.final_state = final_state;
+                    ++bindings_revision;
+                }
+                return;
+            }
+        }
+        bound.push_back({ImportBinding{port, final_state}, handle});
+        ++bindings_revision;
+    }
+    template <class Handle>
+    bool unbind(std::vector<Bound<Handle>>& bound, const PortRef& port) {
+        auto it = std::find_if(bound.begin(), bound.end(), [&](const Bound<Handle>& i) { return i.binding.port == port; });
+        if (it == bound.end()) return false;
+        bound.erase(it);
+        ++bindings_revision;
+        return true;
+    }
     // Textures carrying a source into the next frame.
     struct History {
         HistoryTexture layout;
@@ -322,10 +347,10 @@ Status Executor::Impl::check_imports(FrameState& frame) {
     for (uint32_t i = 0; i < imports.size(); ++i) {
         const Import& import = imports[i];
         const std::string what = "import " + import.binding.port.to_string();
-        if (!import.texture) return make_error(ErrorCode::InvalidHandle, what + ": no texture bound (null handle)");
-        auto desc = device.texture_desc(import.texture);
+        if (!import.handle) return make_error(ErrorCode::InvalidHandle, what + ": no texture bound (null handle)");
+        auto desc = device.texture_desc(import.handle);
         if (!desc) return make_error(desc.error().code, what + ": " + desc.error().message);
-        frame.imports[i] = import.texture;
+        frame.imports[i] = import.handle;
         frame.import_specs[i] = spec_from_desc(*desc);
         // A texture standing in for a plan resource must have the resource's shape.
         for (uint32_t r = 0; r < plan->resources.size(); ++r) {
@@ -350,10 +375,10 @@ Status Executor::Impl::check_buffer_imports(FrameState& frame) {
     for (uint32_t i = 0; i < buffer_imports.size(); ++i) {
         const BufferImport& import = buffer_imports[i];
         const std::string what = "buffer import " + import.binding.port.to_string();
-        if (!import.buffer) return make_error(ErrorCode::InvalidHandle, what + ": no buffer bound (null handle)");
-        auto desc = device.buffer_desc(import.buffer);
+        if (!import.handle) return make_error(ErrorCode::InvalidHandle, what + ": no buffer bound (null handle)");
+        auto desc = device.buffer_desc(import.handle);
         if (!desc) return make_error(desc.error().code, what + ": " + desc.error().message);
-        frame.buffer_imports[i] = import.buffer;
+        frame.buffer_imports[i] = import.handle;
         frame.buffer_import_sizes[i] = desc->size;
         // A buffer standing in for a plan resource must hold it and allow what its ports do.
         for (uint32_t r = 0; r < plan->resources.size(); ++r) {
@@ -471,52 +496,16 @@ PlanOptions Executor::effective_options(PlanOptions options) const {
 }
 
 void Executor::import_texture(const PortRef& port, rhi::TextureHandle texture, rhi::ResourceState final_state) {
-    for (Impl::Import& import : impl_->imports) {
-        if (import.binding.port == port) {
-            import.texture = texture;
-            if (import.binding.final_state != final_state) {
-                import.binding.final_state = final_state;
-                ++impl_->bindings_revision;
-            }
-            return;
-        }
-    }
-    impl_->imports.push_back({ImportBinding{port, final_state}, texture});
-    ++impl_->bindings_revision;
+    impl_->bind(impl_->imports, port, texture, final_state);
 }
+
+bool Executor::remove_import(const PortRef& port) { return impl_->unbind(impl_->imports, port); }
 
 void Executor::import_buffer(const PortRef& port, rhi::BufferHandle buffer, rhi::ResourceState final_state) {
-    for (Impl::BufferImport& import : impl_->buffer_imports) {
-        if (import.binding.port == port) {
-            import.buffer = buffer;
-            if (import.binding.final_state != final_state) {
-                import.binding.final_state = final_state;
-                ++impl_->bindings_revision;
-            }
-            return;
-        }
-    }
-    impl_->buffer_imports.push_back({ImportBinding{port, final_state}, buffer});
-    ++impl_->bindings_revision;
+    impl_->bind(impl_->buffer_imports, port, buffer, final_state);
 }
 
-bool Executor::remove_buffer_import(const PortRef& port) {
-    auto& imports = impl_->buffer_imports;
-    auto it = std::find_if(imports.begin(), imports.end(), [&](const Impl::BufferImport& i) { return i.binding.port == port; });
-    if (it == imports.end()) return false;
-    imports.erase(it);
-    ++impl_->bindings_revision;
-    return true;
-}
-
-bool Executor::remove_import(const PortRef& port) {
-    auto& imports = impl_->imports;
-    auto it = std::find_if(imports.begin(), imports.end(), [&](const Impl::Import& i) { return i.binding.port == port; });
-    if (it == imports.end()) return false;
-    imports.erase(it);
-    ++impl_->bindings_revision;
-    return true;
-}
+bool Executor::remove_buffer_import(const PortRef& port) { return impl_->unbind(impl_->buffer_imports, port); }
 
 void Executor::bind_history(const PortRef& reader, const PortRef& source) {
     for (HistoryBinding& binding : impl_->history_bindings) {
@@ -591,7 +580,7 @@ rhi::TextureHandle Executor::texture(std::string_view pass, std::string_view por
             switch (ps.texture.kind) {
                 case TextureSlot::Kind::None: return {};
                 case TextureSlot::Kind::Plan: return plan_texture(ps.texture.index);
-                case TextureSlot::Kind::Import: return s.imports[ps.texture.index].texture;
+                case TextureSlot::Kind::Import: return s.imports[ps.texture.index].handle;
                 case TextureSlot::Kind::History: {
                     // What the port will read in the next frame.
                     const Impl::History& h = s.histories[ps.texture.index];
@@ -617,7 +606,7 @@ rhi::BufferHandle Executor::buffer(std::string_view pass, std::string_view port)
             switch (ps.buffer.kind) {
                 case BufferSlot::Kind::None: return {};
                 case BufferSlot::Kind::Plan: return plan_buffer(ps.buffer.index);
-                case BufferSlot::Kind::Import: return s.buffer_imports[ps.buffer.index].buffer;
+                case BufferSlot::Kind::Import: return s.buffer_imports[ps.buffer.index].handle;
             }
         }
     }
