@@ -102,44 +102,37 @@ Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<c
     std::vector<std::optional<uint32_t>> port_history(port_offset.back(), std::nullopt);
     std::vector<std::optional<uint32_t>> port_buffer_import(port_offset.back(), std::nullopt);
 
-    for (uint32_t i = 0; i < imports.size(); ++i) {
-        auto at = locate(plan, imports[i].port, "import");
-        if (!at) return at.take_error();
-        const PlanPort& port = plan.order[at->position].ports[at->port];
-        if (port.type != ResourceType::Texture) {
-            return graph_error("import " + imports[i].port.to_string() +
-                               ": a buffer port takes a buffer (Executor::import_buffer), not a texture");
-        }
-        if (port.resource) {
+    // Texture imports on texture ports, buffer imports on buffer ports; per resource the import
+    // numbered in its type's list.
+    auto bind = [&](std::span<const ImportBinding> bindings, ResourceType type,
+                    std::vector<std::optional<uint32_t>>& port_bound) -> Status {
+        const bool texture = type == ResourceType::Texture;
+        const std::string what = texture ? "import" : "buffer import";
+        for (uint32_t i = 0; i < bindings.size(); ++i) {
+            auto at = locate(plan, bindings[i].port, what);
+            if (!at) return at.take_error();
+            const PlanPort& port = plan.order[at->position].ports[at->port];
+            if (port.type != type) {
+                return graph_error(what + " " + bindings[i].port.to_string() +
+                                   (texture ? ": a buffer port takes a buffer (Executor::import_buffer), not a texture"
+                                            : ": a texture port takes a texture (Executor::import_texture), not a buffer"));
+            }
+            if (!port.resource) {
+                port_bound[port_offset[at->position] + at->port] = i;
+                continue;
+            }
             if (auto& existing = schedule.resource_import[*port.resource]) {
-                return graph_error("import " + imports[i].port.to_string() + ": its texture (resource " +
+                return graph_error(what + " " + bindings[i].port.to_string() + ": its " +
+                                   std::string(resource_type_name(type)) + " (resource " +
                                    plan.resources[*port.resource].name + ") is already imported through " +
-                                   imports[*existing].port.to_string());
+                                   bindings[*existing].port.to_string());
             }
             schedule.resource_import[*port.resource] = i;
-        } else {
-            port_import[port_offset[at->position] + at->port] = i;
         }
-    }
-    for (uint32_t i = 0; i < buffer_imports.size(); ++i) {
-        auto at = locate(plan, buffer_imports[i].port, "buffer import");
-        if (!at) return at.take_error();
-        const PlanPort& port = plan.order[at->position].ports[at->port];
-        if (port.type != ResourceType::Buffer) {
-            return graph_error("buffer import " + buffer_imports[i].port.to_string() +
-                               ": a texture port takes a texture (Executor::import_texture), not a buffer");
-        }
-        if (port.resource) {
-            if (auto& existing = schedule.resource_import[*port.resource]) {
-                return graph_error("buffer import " + buffer_imports[i].port.to_string() + ": its buffer (resource " +
-                                   plan.resources[*port.resource].name + ") is already imported through " +
-                                   buffer_imports[*existing].port.to_string());
-            }
-            schedule.resource_import[*port.resource] = i;
-        } else {
-            port_buffer_import[port_offset[at->position] + at->port] = i;
-        }
-    }
+        return {};
+    };
+    LOOM_TRY(bind(imports, ResourceType::Texture, port_import));
+    LOOM_TRY(bind(buffer_imports, ResourceType::Buffer, port_buffer_import));
     for (uint32_t t = 0; t < plan.textures.size(); ++t) {
         for (uint32_t r : plan.textures[t].resources) {
             if (!schedule.resource_import[r]) schedule.texture_needed[t] = true;
