@@ -188,6 +188,12 @@ TEST_P(ResourceExecution, ComputeBuiltGeometryIsDrawnIndirectly) {
     options.frame = {32, 16};
     for (int frame = 0; frame < 2; ++frame) {
         LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        // The barriers the plan's transitions make: after the storage writes, shift's
+        // read-modify-write and draw's vertex, index and indirect reads (GL: one glMemoryBarrier
+        // each, 4); Vulkan also orders fill's writes after the previous frame's reads (and the
+        // first frame's after nothing), 3 more. Without the transitions there would be none.
+        const uint64_t barriers = device().last_frame_stats().buffer_barriers;
+        EXPECT_EQ(barriers, backend() == rhi::Backend::OpenGL ? 4u : 7u) << "frame " << frame;
         LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(executor.texture("draw", "color")));
         for (uint32_t y = 1; y < 16; y += 4) {
             EXPECT_EQ(image.load(7, y), (std::array<double, 4>{0, 0, 0, 0})) << "left half, row " << y << " frame " << frame;

@@ -640,6 +640,7 @@ void GlCommandList::transition(rhi::BufferHandle buffer, ResourceState state) {
             record([bits](GlStateCache& cache) {
                 glMemoryBarrier(bits);
                 cache.count_call();
+                cache.count_buffer_barrier();
             });
         }
     }

@@ -119,6 +119,7 @@ Status GlDevice::end_frame() {
     stats.api_calls = counters_.api_calls;
     stats.draw_calls = counters_.draw_calls;
     stats.dispatches = counters_.dispatches;
+    stats.buffer_barriers = counters_.buffer_barriers;
     stats.pipeline_binds = counters_.pipeline_binds;
     stats.texture_binds = counters_.texture_binds;
     stats.buffer_binds = counters_.buffer_binds;

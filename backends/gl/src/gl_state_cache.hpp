@@ -20,6 +20,7 @@ struct GlCallCounters {
     uint64_t buffer_binds = 0;
     uint64_t draw_calls = 0;
     uint64_t dispatches = 0;
+    uint64_t buffer_barriers = 0;
 };
 
 /// Fixed-function state of a graphics pipeline, in GL enums, applied at draw time.
@@ -67,6 +68,7 @@ public:
     void count_call(uint64_t n = 1) { counters_->api_calls += n; }
     void count_draw() { ++counters_->draw_calls; }
     void count_dispatch() { ++counters_->dispatches; }
+    void count_buffer_barrier() { ++counters_->buffer_barriers; }
 
     void use_program(GLuint program);
     void bind_vertex_array(GLuint vao);

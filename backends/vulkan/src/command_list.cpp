@@ -554,6 +554,7 @@ void VulkanCommandList::transition(rhi::BufferHandle handle, ResourceState state
     BarrierBatch batch;
     batch.buffer(b.buffer, b.state, state);
     b.state = state;
+    stats_.buffer_barriers += batch.buffer_barriers().size();
     stats_.api_calls += batch.flush(cmd_);
 }
 

@@ -130,6 +130,10 @@ struct FrameStats {
     uint64_t buffer_binds = 0;     ///< vertex, index, uniform and storage buffer bindings
     uint64_t render_passes = 0;
     uint64_t bytes_uploaded = 0;   ///< write_buffer / write_texture / transient uniforms
+    /// Buffer transitions (CommandList::transition of a buffer) that needed a barrier: on GL a
+    /// glMemoryBarrier after storage writes, on Vulkan a buffer memory barrier (also for
+    /// write-after-read); transitions that need none are not counted.
+    uint64_t buffer_barriers = 0;
 };
 
 /// GPU time of one labelled range of a frame.
