@@ -48,6 +48,15 @@ PlanOptions options_for(const char* allocator) {
     return options;
 }
 
+// The mean number of resources alive at a position of the order: how much an allocator must
+// keep apart at each step.
+double mean_live(const Plan& plan) {
+    if (plan.order.empty()) return 0.0;
+    uint64_t total = 0;
+    for (const PlanResource& r : plan.resources) total += uint64_t{r.lifetime.last} - r.lifetime.first + 1;
+    return static_cast<double>(total) / static_cast<double>(plan.order.size());
+}
+
 // Building the graph (passes, connections, outputs) and planning it from scratch.
 void BM_BuildAndPlan(benchmark::State& state, const char* allocator) {
     const auto passes = static_cast<uint32_t>(state.range(0));
@@ -84,6 +93,7 @@ void BM_Plan(benchmark::State& state, const char* allocator) {
         benchmark::DoNotOptimize(plan->summary);
     }
     state.counters["resources"] = static_cast<double>(resources);
+    if (auto plan = build_plan(graph, options)) state.counters["mean_live"] = mean_live(*plan);
     state.counters["per_pass"] = benchmark::Counter(passes, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
     state.SetComplexityN(passes);
 }
@@ -116,6 +126,7 @@ void BM_PlanMixed(benchmark::State& state, const char* allocator, uint32_t buffe
     if (auto plan = build_plan(graph, options)) {
         state.counters["bytes_over_bound"] = static_cast<double>(plan->summary.bytes) / static_cast<double>(plan->summary.lower_bound_bytes);
         state.counters["bytes_over_naive"] = static_cast<double>(plan->summary.bytes) / static_cast<double>(plan->summary.naive_bytes);
+        state.counters["mean_live"] = mean_live(*plan);
     }
     state.counters["per_pass"] = benchmark::Counter(passes, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
     state.SetComplexityN(passes);
