@@ -306,8 +306,10 @@ Result<rhi::BufferUsage> port_buffer_usage(const Port& port, PassKind pass_kind,
 }
 
 std::vector<JoinedGroup> join_port_groups(const FrameGraph& graph, Extent2D frame) {
+    std::vector<std::vector<PortAddress>> groups = collect_groups(graph);
     std::vector<JoinedGroup> joined;
-    for (std::vector<PortAddress>& group : collect_groups(graph)) {
+    joined.reserve(groups.size());
+    for (std::vector<PortAddress>& group : groups) {
         if (graph.port_at(group.front()).type == ResourceType::Buffer) {
             Result<BufferSpec> buffer = join_buffer_group(graph, group, frame);
             joined.push_back(JoinedGroup{std::move(group), TextureSpec{}, ResourceType::Buffer, std::move(buffer)});
