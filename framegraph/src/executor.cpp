@@ -118,6 +118,17 @@ struct Executor::Impl {
         return out;
     }
     Status create_plan_buffers();
+    // The schedule of `pass`.`port` in the latest plan; null when there is none.
+    const PortSchedule* find_port(std::string_view pass, std::string_view port) const {
+        if (!plan || !schedule) return nullptr;
+        for (uint32_t p = 0; p < plan->order.size(); ++p) {
+            if (plan->order[p].name != pass) continue;
+            for (const PortSchedule& ps : schedule->passes[p].ports) {
+                if (ps.name == port) return &ps;
+            }
+        }
+        return nullptr;
+    }
     Status check_buffer_imports(FrameState& frame);
 
     rhi::Device& device;
@@ -572,21 +583,16 @@ const ExecutionSchedule* Executor::schedule() const { return impl_->schedule ? &
 
 rhi::TextureHandle Executor::texture(std::string_view pass, std::string_view port) const {
     const Impl& s = *impl_;
-    if (!s.plan || !s.schedule) return {};
-    for (uint32_t p = 0; p < s.plan->order.size(); ++p) {
-        if (s.plan->order[p].name != pass) continue;
-        for (const PortSchedule& ps : s.schedule->passes[p].ports) {
-            if (ps.name != port) continue;
-            switch (ps.texture.kind) {
-                case TextureSlot::Kind::None: return {};
-                case TextureSlot::Kind::Plan: return plan_texture(ps.texture.index);
-                case TextureSlot::Kind::Import: return s.imports[ps.texture.index].handle;
-                case TextureSlot::Kind::History: {
-                    // What the port will read in the next frame.
-                    const Impl::History& h = s.histories[ps.texture.index];
-                    return h.textures[h.layout.textures == 1 ? 0 : (s.frame_index + 1) % 2];
-                }
-            }
+    const PortSchedule* ps = s.find_port(pass, port);
+    if (!ps) return {};
+    switch (ps->texture.kind) {
+        case TextureSlot::Kind::None: return {};
+        case TextureSlot::Kind::Plan: return plan_texture(ps->texture.index);
+        case TextureSlot::Kind::Import: return s.imports[ps->texture.index].handle;
+        case TextureSlot::Kind::History: {
+            // What the port will read in the next frame.
+            const Impl::History& h = s.histories[ps->texture.index];
+            return h.textures[h.layout.textures == 1 ? 0 : (s.frame_index + 1) % 2];
         }
     }
     return {};
@@ -598,17 +604,12 @@ rhi::TextureHandle Executor::plan_texture(uint32_t index) const {
 
 rhi::BufferHandle Executor::buffer(std::string_view pass, std::string_view port) const {
     const Impl& s = *impl_;
-    if (!s.plan || !s.schedule) return {};
-    for (uint32_t p = 0; p < s.plan->order.size(); ++p) {
-        if (s.plan->order[p].name != pass) continue;
-        for (const PortSchedule& ps : s.schedule->passes[p].ports) {
-            if (ps.name != port) continue;
-            switch (ps.buffer.kind) {
-                case BufferSlot::Kind::None: return {};
-                case BufferSlot::Kind::Plan: return plan_buffer(ps.buffer.index);
-                case BufferSlot::Kind::Import: return s.buffer_imports[ps.buffer.index].handle;
-            }
-        }
+    const PortSchedule* ps = s.find_port(pass, port);
+    if (!ps) return {};
+    switch (ps->buffer.kind) {
+        case BufferSlot::Kind::None: return {};
+        case BufferSlot::Kind::Plan: return plan_buffer(ps->buffer.index);
+        case BufferSlot::Kind::Import: return s.buffer_imports[ps->buffer.index].handle;
     }
     return {};
 }
