@@ -77,25 +77,34 @@ void BM_BuildAndPlan(benchmark::State& state, const char* allocator) {
     state.SetComplexityN(passes);
 }
 
-// Planning only: the graph is built once outside the loop.
-void BM_Plan(benchmark::State& state, const char* allocator) {
-    const auto passes = static_cast<uint32_t>(state.range(0));
-    const FrameGraph graph = testing::random_graph(7, big_graph_options(passes));
-    const PlanOptions options = options_for(allocator);
-    uint64_t resources = 0;
+// Plans `graph` in the timed loop, then reports from one more (untimed) plan: resources,
+// buffers, the mean number alive at a position, bytes over the lower bound and over one object
+// per resource, and the time per pass.
+void plan_repeatedly(benchmark::State& state, const FrameGraph& graph, const PlanOptions& options, uint32_t passes) {
     for (auto _ : state) {
         auto plan = build_plan(graph, options);
         if (!plan) {
             state.SkipWithError(plan.error().message.c_str());
             return;
         }
-        resources = plan->resources.size();
         benchmark::DoNotOptimize(plan->summary);
     }
-    state.counters["resources"] = static_cast<double>(resources);
-    if (auto plan = build_plan(graph, options)) state.counters["mean_live"] = mean_live(*plan);
+    if (auto plan = build_plan(graph, options)) {
+        const PlanSummary& summary = plan->summary;
+        state.counters["resources"] = static_cast<double>(plan->resources.size());
+        state.counters["buffers"] = static_cast<double>(summary.naive_buffers);
+        state.counters["mean_live"] = mean_live(*plan);
+        state.counters["bytes_over_bound"] = static_cast<double>(summary.bytes) / static_cast<double>(summary.lower_bound_bytes);
+        state.counters["bytes_over_naive"] = static_cast<double>(summary.bytes) / static_cast<double>(summary.naive_bytes);
+    }
     state.counters["per_pass"] = benchmark::Counter(passes, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
     state.SetComplexityN(passes);
+}
+
+// Planning only: the graph is built once outside the loop.
+void BM_Plan(benchmark::State& state, const char* allocator) {
+    const auto passes = static_cast<uint32_t>(state.range(0));
+    plan_repeatedly(state, testing::random_graph(7, big_graph_options(passes)), options_for(allocator), passes);
 }
 
 // Planning graphs of the same shape with buffers and subresource ranges: a quarter of the
@@ -107,29 +116,7 @@ void BM_PlanMixed(benchmark::State& state, const char* allocator, uint32_t buffe
     testing::RandomGraphOptions graph_options = big_graph_options(passes);
     graph_options.buffer_percent = buffer_percent;
     graph_options.subresource_percent = subresource_percent;
-    const FrameGraph graph = testing::random_graph(7, graph_options);
-    const PlanOptions options = options_for(allocator);
-    uint64_t buffers = 0;
-    uint64_t resources = 0;
-    for (auto _ : state) {
-        auto plan = build_plan(graph, options);
-        if (!plan) {
-            state.SkipWithError(plan.error().message.c_str());
-            return;
-        }
-        buffers = plan->summary.naive_buffers;
-        resources = plan->resources.size();
-        benchmark::DoNotOptimize(plan->summary);
-    }
-    state.counters["resources"] = static_cast<double>(resources);
-    state.counters["buffers"] = static_cast<double>(buffers);
-    if (auto plan = build_plan(graph, options)) {
-        state.counters["bytes_over_bound"] = static_cast<double>(plan->summary.bytes) / static_cast<double>(plan->summary.lower_bound_bytes);
-        state.counters["bytes_over_naive"] = static_cast<double>(plan->summary.bytes) / static_cast<double>(plan->summary.naive_bytes);
-        state.counters["mean_live"] = mean_live(*plan);
-    }
-    state.counters["per_pass"] = benchmark::Counter(passes, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-    state.SetComplexityN(passes);
+    plan_repeatedly(state, testing::random_graph(7, graph_options), options_for(allocator), passes);
 }
 
 // Building only, for reference.
