@@ -37,12 +37,21 @@ bool PassContext::has_texture(std::string_view port) const {
     return false;
 }
 
-rhi::TextureHandle PassContext::texture(std::string_view port) {
+const PortSchedule* PassContext::find_typed(std::string_view port, ResourceType type) {
     const PortSchedule* p = find(port, true);
-    if (p && !p->buffer.empty()) {
-        fail(make_error(ErrorCode::InvalidArgument, "port '" + std::string(port) + "' is a buffer port (use buffer())"));
-        return {};
+    if (!p) return nullptr;
+    const std::size_t index = static_cast<std::size_t>(p - frame_.schedule.passes[position_].ports.data());
+    if (plan_pass().ports[index].type != type) {
+        const bool buffer = type == ResourceType::Buffer;
+        fail(make_error(ErrorCode::InvalidArgument, "port '" + std::string(port) + "' is a " +
+                                                        (buffer ? "texture port (use texture())" : "buffer port (use buffer())")));
+        return nullptr;
     }
+    return p;
+}
+
+rhi::TextureHandle PassContext::texture(std::string_view port) {
+    const PortSchedule* p = find_typed(port, ResourceType::Texture);
     return p ? frame_.resolve(p->texture) : rhi::TextureHandle{};
 }
 
@@ -54,14 +63,8 @@ bool PassContext::has_buffer(std::string_view port) const {
 }
 
 rhi::BufferHandle PassContext::buffer(std::string_view port) {
-    const PortSchedule* p = find(port, true);
-    if (!p) return {};
-    if (plan_pass().ports[static_cast<std::size_t>(p - frame_.schedule.passes[position_].ports.data())].type !=
-        ResourceType::Buffer) {
-        fail(make_error(ErrorCode::InvalidArgument, "port '" + std::string(port) + "' is a texture port (use texture())"));
-        return {};
-    }
-    return frame_.resolve(p->buffer);
+    const PortSchedule* p = find_typed(port, ResourceType::Buffer);
+    return p ? frame_.resolve(p->buffer) : rhi::BufferHandle{};
 }
 
 uint64_t PassContext::buffer_size(std::string_view port) {

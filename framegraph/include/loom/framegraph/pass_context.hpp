@@ -99,7 +99,7 @@ public:
     /// True when `port` is a port of this pass with a texture behind it.
     [[nodiscard]] bool has_texture(std::string_view port) const;
     /// The texture behind `port`: null for an unconnected optional port (no error); an unknown
-    /// port name records an error and returns null.
+    /// port name or a buffer port records an error and returns null.
     [[nodiscard]] rhi::TextureHandle texture(std::string_view port);
     /// The resolved spec (format, extent, samples, mips, layers, usage) of `port`'s texture;
     /// nullptr when it has none.
@@ -150,6 +150,8 @@ public:
 
 private:
     const PortSchedule* find(std::string_view port, bool record_error);
+    // find(port, true), and an error when the port is not of `type`.
+    const PortSchedule* find_typed(std::string_view port, ResourceType type);
 
     FrameState& frame_;
     uint32_t position_;
