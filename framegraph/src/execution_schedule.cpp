@@ -226,12 +226,6 @@ Result<ExecutionSchedule> build_execution_schedule(const Plan& plan, std::span<c
                     ps.first_write = port_writes(port.kind) && plan.resources[*port.resource].name == pass.name + "." + port.name;
                 } else if (auto import = port_buffer_import[port_offset[p] + i]) {
                     ps.buffer = {BufferSlot::Kind::Import, *import};
-                    // The plan gave the port no usage (it had no buffer); its role says it.
-                    if (ps.buffer_usage == rhi::BufferUsage::None) {
-                        const bool copy = pass.kind == PassKind::Copy;
-                        ps.buffer_usage = port_writes(port.kind) ? (copy ? rhi::BufferUsage::CopyDst : rhi::BufferUsage::Storage)
-                                                                 : (copy ? rhi::BufferUsage::CopySrc : rhi::BufferUsage::Storage);
-                    }
                     out.buffers_after.push_back({ps.buffer, buffer_imports[*import].final_state});
                 }
                 if (!ps.buffer.empty()) out.buffers_before.push_back({ps.buffer, buffer_state(port.kind, ps.buffer_usage)});

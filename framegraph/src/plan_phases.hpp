@@ -82,6 +82,9 @@ std::optional<BufferRange> resolve_bytes(const BufferRange& bytes, uint64_t size
 /// Storage (CopySrc) when it declares none. ErrorCode::Graph naming the port when it declares
 /// several read usages.
 Result<rhi::BufferUsage> port_buffer_usage(const Port& port, PassKind pass_kind, std::string_view port_name);
+/// What a buffer port does by its role alone: Storage, or in a copy pass CopyDst (writes) and
+/// CopySrc (reads).
+rhi::BufferUsage default_buffer_use(PortKind kind, PassKind pass_kind);
 
 /// Join: every group of the graph, in declaration order of their starting ports, with its join.
 /// Groups of culled passes are joined too: a bad connection is an error either way.

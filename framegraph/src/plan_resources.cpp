@@ -91,23 +91,24 @@ Result<TextureSpec> join_group(const FrameGraph& graph, const std::vector<PortAd
 }
 
 // A buffer group's join in group order; on a size conflict the error names the port that first
-// gave a size and the port that contradicts it.
+// gave a size and the port that contradicts it. Names are written only for the error.
 Result<BufferSpec> join_buffer_group(const FrameGraph& graph, const std::vector<PortAddress>& group, Extent2D frame) {
     BufferSpec joined;
     std::optional<PortAddress> sized;
+    JoinContext context;
+    context.frame = frame;
     for (const PortAddress& address : group) {
         const BufferSpec& spec = graph.port_at(address).buffer;
-        const std::string a_name = sized ? graph.port_name(*sized) : std::string("a");
-        const std::string b_name = graph.port_name(address);
-        JoinContext context;
-        context.frame = frame;
-        context.a_name = a_name;
-        context.b_name = b_name;
         auto result = join_buffer_specs(joined, spec, context);
         if (!result) {
-            Error error = result.take_error();
-            error.subjects = {b_name};
-            if (sized) error.subjects.push_back(a_name);
+            // Only sizes conflict, so a port gave one before: name it and this port.
+            const std::string a_name = graph.port_name(*sized);
+            const std::string b_name = graph.port_name(address);
+            JoinContext named = context;
+            named.a_name = a_name;
+            named.b_name = b_name;
+            Error error = join_buffer_specs(joined, spec, named).take_error();
+            error.subjects = {b_name, a_name};
             return error;
         }
         if (spec.size && !sized) sized = address;
@@ -282,10 +283,15 @@ TextureUsage port_texture_usage(const Port& port, PassKind pass_kind, rhi::Forma
     return usage;
 }
 
+rhi::BufferUsage default_buffer_use(PortKind kind, PassKind pass_kind) {
+    const bool copy = pass_kind == PassKind::Copy;
+    if (port_writes(kind)) return copy ? rhi::BufferUsage::CopyDst : rhi::BufferUsage::Storage;
+    return copy ? rhi::BufferUsage::CopySrc : rhi::BufferUsage::Storage;
+}
+
 Result<rhi::BufferUsage> port_buffer_usage(const Port& port, PassKind pass_kind, std::string_view port_name) {
     using rhi::BufferUsage;
-    const bool copy = pass_kind == PassKind::Copy;
-    if (port_writes(port.kind)) return copy ? BufferUsage::CopyDst : BufferUsage::Storage;
+    if (port_writes(port.kind)) return default_buffer_use(port.kind, pass_kind);
     static constexpr BufferUsage kReads[] = {BufferUsage::Vertex, BufferUsage::Index, BufferUsage::Uniform,
                                              BufferUsage::Storage, BufferUsage::Indirect, BufferUsage::CopySrc};
     BufferUsage read = BufferUsage::None;
@@ -302,7 +308,7 @@ Result<rhi::BufferUsage> port_buffer_usage(const Port& port, PassKind pass_kind,
         read = flag;
     }
     if (read != BufferUsage::None) return read;
-    return copy ? BufferUsage::CopySrc : BufferUsage::Storage;
+    return default_buffer_use(port.kind, pass_kind);
 }
 
 std::vector<JoinedGroup> join_port_groups(const FrameGraph& graph, Extent2D frame) {
@@ -380,13 +386,18 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
         for (uint32_t i = 0; i < pass.ports().size(); ++i) {
             const Port& port = pass.ports()[i];
             PlanPort planned_port{port.name, port.kind, port.optional, std::nullopt, TextureUsage::None, port.type};
+            // A buffer port's use is its role's with or without a buffer behind it (an imported
+            // buffer may stand in). Ports with a resource were checked when it was resolved.
+            if (port.type == ResourceType::Buffer) {
+                planned_port.buffer_usage =
+                    port_buffer_usage(port, pass.kind(), {}).value_or(default_buffer_use(port.kind, pass.kind()));
+            }
             const uint32_t r = resolved.resource_of_port[p][i];
             if (r != kNoResource) {
                 planned_port.resource = r;
                 // Usages and ranges were checked when the resource was resolved.
                 const PlanResource& resource = resolved.resources[r];
                 if (port.type == ResourceType::Buffer) {
-                    planned_port.buffer_usage = port_buffer_usage(port, pass.kind(), {}).value_or(rhi::BufferUsage::None);
                     planned_port.bytes = resolve_bytes(port.bytes, resource.buffer_spec.size).value_or(BufferRange{});
                 } else {
                     planned_port.usage = port_texture_usage(port, pass.kind(), resource.spec.format);

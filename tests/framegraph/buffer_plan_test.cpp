@@ -528,6 +528,20 @@ TEST(BufferImports, ImportsReplaceThePlanBufferAndReachTheirFinalState) {
     EXPECT_EQ(schedule->passes[1].ports[1].buffer, imported);
     EXPECT_EQ(schedule->passes[3].buffers_after, (std::vector<BufferTransition>{{imported, ResourceState::ShaderRead}}));
 
+    // An imported buffer on an unconnected optional input is read as the port says.
+    FrameGraph optional;
+    ASSERT_TRUE(optional.add_pass(Pass("draw")
+                                      .optional_buffer_input("extra", BufferSpec{}.with_usage(BufferUsage::Vertex))
+                                      .output("color"))
+                    .ok());
+    ASSERT_TRUE(optional.mark_output(port("draw", "color")).ok());
+    const Plan optional_plan = must_plan(optional);
+    EXPECT_EQ(optional_plan.order[0].ports[0].buffer_usage, BufferUsage::Vertex);
+    const std::vector<ImportBinding> extra{{port("draw", "extra"), ResourceState::VertexBuffer}};
+    auto extra_schedule = build_execution_schedule(optional_plan, {}, {}, extra);
+    ASSERT_TRUE(extra_schedule.ok()) << extra_schedule.error().to_string();
+    EXPECT_EQ(extra_schedule->passes[0].buffers_before, (std::vector<BufferTransition>{{imported, ResourceState::VertexBuffer}}));
+
     const std::vector<ImportBinding> wrong{{port("shade", "color"), ResourceState::ShaderRead}};
     auto texture_port = build_execution_schedule(plan, {}, {}, wrong);
     ASSERT_FALSE(texture_port.ok());

@@ -53,7 +53,7 @@ struct PlanPort {
     rhi::TextureUsage usage = rhi::TextureUsage::None;
     ResourceType type = ResourceType::Texture;
     /// How this buffer port uses the buffer: one flag (Storage, Uniform, Vertex, Index,
-    /// Indirect, CopySrc, CopyDst); None for texture ports.
+    /// Indirect, CopySrc, CopyDst), also when no buffer is behind it; None for texture ports.
     rhi::BufferUsage buffer_usage = rhi::BufferUsage::None;
     /// Texture ports: the mip levels and layers it uses, with concrete counts.
     SubresourceRange range{};
