@@ -12,13 +12,11 @@ namespace {
 
 std::string in_quotes(std::string_view name) { return "'" + std::string(name) + "'"; }
 
-// "t3 [gbuffer.albedo, blur.out]": the plan's name and the resources it holds.
-std::string texture_label(const Plan& plan, uint32_t index) {
-    const PlanTexture& texture = plan.textures[index];
-    std::string label = texture.name + " [";
-    for (std::size_t i = 0; i < texture.resources.size(); ++i) {
-        label += (i ? ", " : "") + plan.resources[texture.resources[i]].name;
-    }
+// "t3 [gbuffer.albedo, blur.out]", "b0 [cull.lights]": a plan object's name and the resources
+// it holds.
+std::string object_label(const Plan& plan, const std::string& name, const std::vector<uint32_t>& resources) {
+    std::string label = name + " [";
+    for (std::size_t i = 0; i < resources.size(); ++i) label += (i ? ", " : "") + plan.resources[resources[i]].name;
     return label + "]";
 }
 
@@ -200,7 +198,7 @@ Status Executor::Impl::create_plan_resources() {
     for (uint32_t t = 0; t < p.textures.size(); ++t) {
         if (!schedule->texture_needed[t]) continue;
         const PlanTexture& planned = p.textures[t];
-        rhi::TextureDesc desc = to_texture_desc(planned.spec, texture_label(p, t));
+        rhi::TextureDesc desc = to_texture_desc(planned.spec, object_label(p, planned.name, planned.resources));
         // Plans stay within loom's limits (texture_spec.hpp), which a device may not reach:
         // say so naming the ports, before the backend refuses a texture nobody asked for by name.
         const rhi::Capabilities& caps = device.capabilities();
@@ -248,11 +246,7 @@ Status Executor::Impl::create_plan_buffers() {
     for (uint32_t b = 0; b < p.buffers.size(); ++b) {
         if (!schedule->buffer_needed[b]) continue;
         const PlanBuffer& planned = p.buffers[b];
-        std::string label = planned.name + " [";
-        for (std::size_t i = 0; i < planned.resources.size(); ++i) {
-            label += (i ? ", " : "") + p.resources[planned.resources[i]].name;
-        }
-        rhi::BufferDesc desc = to_buffer_desc(planned.spec, label + "]");
+        rhi::BufferDesc desc = to_buffer_desc(planned.spec, object_label(p, planned.name, planned.resources));
         if (!heaps.empty() && planned.placement) {
             LOOM_TRY(check_placement("buffer " + in_quotes(desc.name), device.buffer_memory_requirements(desc), planned.bytes,
                                      *planned.placement, p.heaps));
