@@ -41,7 +41,10 @@ public:
     Result<GraphFile> read(const json& root) {
         GraphFile file;
         if (!root.is_object()) return fail("", "the top level must be an object");
-        LOOM_TRY(only_keys(root, "", {"frame", "passes", "connections", "outputs"}));
+        LOOM_TRY(only_keys(root, "", {"frame", "passes", "connections", "outputs", "description"}));
+        if (root.contains("description") && !root["description"].is_string()) {
+            return fail("/description", "must be a string (what the graph is, where it comes from)");
+        }
 
         if (root.contains("frame")) {
             const json& frame = root["frame"];
@@ -151,7 +154,7 @@ private:
 
     Result<Pass> read_pass(const json& object, const std::string& path) {
         if (!object.is_object()) return fail(path, "a pass must be an object");
-        LOOM_TRY(only_keys(object, path, {"name", "kind", "inputs", "outputs", "inouts", "parts", "side_effect"}));
+        LOOM_TRY(only_keys(object, path, {"name", "kind", "queue", "inputs", "outputs", "inouts", "parts", "side_effect"}));
         if (!object.contains("name") || !object["name"].is_string() || object["name"].get<std::string>().empty()) {
             return fail(path + "/name", "a pass needs a non-empty string name");
         }
@@ -171,6 +174,17 @@ private:
                 return fail(path + "/kind", "must be one of graphics, compute, copy, not " + excerpt(kind));
             }
             pass.set_kind(*found);
+        }
+        if (object.contains("queue")) {
+            const json& queue = object["queue"];
+            static constexpr std::array<Queue, 2> kQueues{Queue::Graphics, Queue::AsyncCompute};
+            const auto found = std::find_if(kQueues.begin(), kQueues.end(), [&](Queue q) {
+                return queue.is_string() && queue.get<std::string>() == queue_name(q);
+            });
+            if (found == kQueues.end()) {
+                return fail(path + "/queue", "must be one of graphics, async_compute, not " + excerpt(queue));
+            }
+            pass.set_queue(*found);
         }
 
         // The pass's own ports first, then each port set of "parts", as Pass::add composes them.

@@ -33,6 +33,14 @@ std::string_view pass_kind_name(PassKind kind) {
     return "unknown";
 }
 
+std::string_view queue_name(Queue queue) {
+    switch (queue) {
+        case Queue::Graphics: return "graphics";
+        case Queue::AsyncCompute: return "async_compute";
+    }
+    return "unknown";
+}
+
 std::optional<std::string> name_problem(std::string_view name) {
     if (name.empty()) return "is empty";
     for (const char c : name) {

@@ -135,6 +135,7 @@ uint64_t plan_hash(const Plan& plan) {
         h.add(pass.declaration_index);
         h.add(pass.side_effect);
         h.add(pass.kind);
+        h.add(pass.queue);
         h.add(pass.ports.size());
         for (const PlanPort& port : pass.ports) {
             h.add(port.name);

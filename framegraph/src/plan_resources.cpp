@@ -382,7 +382,7 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
     passes.reserve(schedule.order.size());
     for (uint32_t p : schedule.order) {
         const Pass& pass = graph.pass(PassId{p});
-        PlanPass planned{pass.name(), p, pass.side_effect(), {}, pass.kind()};
+        PlanPass planned{pass.name(), p, pass.side_effect(), {}, pass.kind(), pass.queue()};
         for (uint32_t i = 0; i < pass.ports().size(); ++i) {
             const Port& port = pass.ports()[i];
             PlanPort planned_port{port.name, port.kind, port.optional, std::nullopt, TextureUsage::None, port.type};

@@ -51,6 +51,15 @@ enum class PassKind : uint8_t { Graphics, Compute, Copy };
 /// "graphics", "compute", "copy".
 std::string_view pass_kind_name(PassKind kind);
 
+/// The queue a pass is submitted to. Compute and copy passes may ask for the async compute
+/// queue: where the device has one, they run there beside the graphics queue, with the
+/// semaphores and queue-ownership transfers the plan derives (Plan::queue_syncs,
+/// Plan::ownership_transfers); elsewhere the same plan runs serially on one queue.
+enum class Queue : uint8_t { Graphics, AsyncCompute };
+
+/// "graphics", "async_compute".
+std::string_view queue_name(Queue queue);
+
 /// True for the kinds that take a source (input, inout).
 inline bool port_reads(PortKind kind) { return kind != PortKind::Output; }
 /// True for the kinds that produce a texture others can read (output, inout).
@@ -252,6 +261,15 @@ public:
     /// What the pass records.
     [[nodiscard]] PassKind kind() const { return kind_; }
 
+    /// Sets the queue the pass runs on (graphics by default). Only compute and copy passes may
+    /// run on Queue::AsyncCompute; planning a graphics pass there is an error naming it.
+    Pass& set_queue(Queue queue) {
+        queue_ = queue;
+        return *this;
+    }
+    /// The queue the pass asks for.
+    [[nodiscard]] Queue queue() const { return queue_; }
+
     /// Marks the pass as having effects outside the graph (present, readback, writes to a
     /// buffer): it is never culled.
     Pass& set_side_effect(bool side_effect = true) {
@@ -296,6 +314,7 @@ private:
     std::map<std::string, uint32_t, std::less<>> port_indices_;
     bool side_effect_ = false;
     PassKind kind_ = PassKind::Graphics;
+    Queue queue_ = Queue::Graphics;
     std::optional<Error> error_;
     ExecuteFunction execute_function_;
 };

@@ -70,6 +70,7 @@ struct PlanPass {
     bool side_effect = false;
     std::vector<PlanPort> ports;     ///< in the pass's port order
     PassKind kind = PassKind::Graphics;
+    Queue queue = Queue::Graphics;   ///< the queue it is submitted to
 
     friend bool operator==(const PlanPass&, const PlanPass&) = default;
 };
