@@ -90,11 +90,15 @@ void write_plan_dot(std::ostream& out, const Plan& plan) {
         std::string label = "{";
         if (!inputs.empty()) label += "{" + inputs + "}|";
         label += std::to_string(at) + ": " + record_escape(pass.name);
-        if (pass.kind != PassKind::Graphics) label += " [" + std::string(pass_kind_name(pass.kind)) + "]";
+        if (pass.kind != PassKind::Graphics) {
+            label += " [" + std::string(pass_kind_name(pass.kind)) + (pass.queue == Queue::AsyncCompute ? ", async]" : "]");
+        }
         if (pass.side_effect) label += " (side effect)";
         if (!outputs.empty()) label += "|{" + outputs + "}";
         label += "}";
-        out << "  " << pass_node(at) << " [label=\"" << label << "\"];\n";
+        // Async compute passes are filled, so the two queues read apart at a glance.
+        out << "  " << pass_node(at) << " [label=\"" << label << "\""
+            << (pass.queue == Queue::AsyncCompute ? ", style=filled, fillcolor=\"#e8f0ff\"" : "") << "];\n";
     }
     for (std::size_t i = 0; i < plan.culled.size(); ++i) {
         out << numbered("  c", i) << " [label=" << quoted(plan.culled[i] + " (culled)")
@@ -109,6 +113,13 @@ void write_plan_dot(std::ostream& out, const Plan& plan) {
             << numbered(":f", e.to_port) << ":w [color=" << quoted(colour) << ", fontcolor=" << quoted(colour)
             << (resource.type == ResourceType::Buffer ? ", style=dashed" : "")
             << ", label=" << quoted(physical_name(resource) + (range.empty() ? "" : " " + range)) << "];\n";
+    }
+    // Semaphores between the queues: dotted, from the signalling pass to the waiting one (the
+    // frame's start and end are left out: they have no node).
+    for (const QueueSync& sync : plan.queue_syncs) {
+        if (sync.signal_after == kFrameStart || sync.wait_before >= plan.order.size()) continue;
+        out << "  " << pass_node(sync.signal_after) << " -> " << pass_node(sync.wait_before)
+            << " [style=dotted, color=\"#3050c0\", label=\"sync\"];\n";
     }
     if (!plan.graph_outputs.empty()) {
         out << "  output [shape=doublecircle, label=\"output\"];\n";

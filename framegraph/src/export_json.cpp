@@ -223,6 +223,7 @@ void write_pass(JsonWriter& out, const Plan& plan, const PlanPass& pass) {
     out.begin_array();
     for (const PlanPort& port : pass.ports) write_port(out, plan, port);
     out.end_array();
+    out.member("queue", queue_name(pass.queue));
     out.member("side_effect", pass.side_effect);
     out.end_object();
 }
@@ -241,8 +242,8 @@ void write_edge(JsonWriter& out, const Plan& plan, const PlanEdge& e) {
     out.end_object();
 }
 
-void write_lifetime(JsonWriter& out, const Lifetime& lifetime) {
-    out.key("lifetime");
+void write_lifetime(JsonWriter& out, const Lifetime& lifetime, std::string_view key = "lifetime") {
+    out.key(key);
     out.begin_array();
     out.value(lifetime.first);
     out.value(lifetime.last);
@@ -258,7 +259,9 @@ void write_buffer_resource(JsonWriter& out, const PlanResource& r) {
     out.member("graph_output", r.graph_output);
     write_lifetime(out, r.lifetime);
     out.member("name", r.name);
+    write_lifetime(out, r.occupancy, "occupancy");
     out.array_member("ports", r.ports);
+    out.member("queue_shared", r.queue_shared);
     out.member("size", r.buffer_spec.size);
     out.member("spec_alignment", r.buffer_spec.alignment);
     out.member("spec_class", r.spec_class);
@@ -284,7 +287,9 @@ void write_resource(JsonWriter& out, const PlanResource& r) {
     write_lifetime(out, r.lifetime);
     out.member("mips", r.spec.mips);
     out.member("name", r.name);
+    write_lifetime(out, r.occupancy, "occupancy");
     out.array_member("ports", r.ports);
+    out.member("queue_shared", r.queue_shared);
     if (r.requested_format) {
         out.member("requested_format", describe_features(*r.requested_format));
     } else {
@@ -363,6 +368,43 @@ void write_texture(JsonWriter& out, const PlanTexture& t) {
     out.end_object();
 }
 
+// A position a sync or transfer refers to, and the pass there (null at the frame's start or end:
+// a position of null, or the order's length).
+void write_position(JsonWriter& out, const Plan& plan, std::string_view key, std::string_view pass_key,
+                    uint32_t position) {
+    const bool at_pass = position != kFrameStart && position < plan.order.size();
+    if (position == kFrameStart) {
+        out.member(key, nullptr);
+    } else {
+        out.member(key, position);
+    }
+    if (at_pass) {
+        out.member(pass_key, plan.order[position].name);
+    } else {
+        out.member(pass_key, nullptr);
+    }
+}
+
+void write_queue_sync(JsonWriter& out, const Plan& plan, const QueueSync& sync) {
+    out.begin_object();
+    out.member("from", queue_name(sync.from));
+    write_position(out, plan, "signal_after", "signal_pass", sync.signal_after);
+    out.member("to", queue_name(sync.to));
+    write_position(out, plan, "wait_before", "wait_pass", sync.wait_before);
+    out.end_object();
+}
+
+void write_transfer(JsonWriter& out, const Plan& plan, const OwnershipTransfer& t) {
+    out.begin_object();
+    write_position(out, plan, "acquire_before", "acquire_pass", t.acquire_before);
+    out.member("from", queue_name(t.from));
+    write_position(out, plan, "release_after", "release_pass", t.release_after);
+    out.member("resource", t.resource);
+    out.member("resource_name", plan.resources[t.resource].name);
+    out.member("to", queue_name(t.to));
+    out.end_object();
+}
+
 }  // namespace
 
 void write_plan_json(std::ostream& stream, const Plan& plan, int indent) {
@@ -394,9 +436,17 @@ void write_plan_json(std::ostream& stream, const Plan& plan, int indent) {
     out.begin_array();
     for (const PlanPass& pass : plan.order) out.value(pass.name);
     out.end_array();
+    out.key("ownership_transfers");
+    out.begin_array();
+    for (const OwnershipTransfer& t : plan.ownership_transfers) write_transfer(out, plan, t);
+    out.end_array();
     out.key("passes");
     out.begin_array();
     for (const PlanPass& pass : plan.order) write_pass(out, plan, pass);
+    out.end_array();
+    out.key("queue_syncs");
+    out.begin_array();
+    for (const QueueSync& sync : plan.queue_syncs) write_queue_sync(out, plan, sync);
     out.end_array();
     out.key("resources");
     out.begin_array();

@@ -57,6 +57,47 @@ std::string range_suffix(const PlanResource& resource, const PlanPort& port) {
     return range.empty() ? range : "(" + range + ")";
 }
 
+// "3-7", and where async compute widened it the positions its memory is held, and "shared"
+// when both queues read it: "3-7 held 1-9 shared".
+std::string life_text(const PlanResource& r) {
+    std::string text = std::to_string(r.lifetime.first) + "-" + std::to_string(r.lifetime.last);
+    if (r.occupancy != r.lifetime) {
+        text += " held " + std::to_string(r.occupancy.first) + "-" + std::to_string(r.occupancy.last);
+    }
+    if (r.queue_shared) text += " shared";
+    return text;
+}
+
+// A position a sync or transfer refers to: "2 ssao", or the frame's start or end.
+std::string position_text(const Plan& plan, uint32_t position) {
+    if (position == kFrameStart) return "frame start";
+    if (position >= plan.order.size()) return "frame end";
+    return std::to_string(position) + " " + plan.order[position].name;
+}
+
+// The semaphores and ownership transfers between the queues; nothing without async passes.
+void write_queue_tables(std::ostream& out, const Plan& plan) {
+    if (plan.queue_syncs.empty()) return;
+    out << "queue syncs\n";
+    Table syncs({"signal", "after", "wait", "before"});
+    for (const QueueSync& sync : plan.queue_syncs) {
+        syncs.add({std::string(queue_name(sync.from)), position_text(plan, sync.signal_after),
+                   std::string(queue_name(sync.to)), position_text(plan, sync.wait_before)});
+    }
+    syncs.render(out, "  ");
+    out << "\n";
+    if (plan.ownership_transfers.empty()) return;
+    out << "ownership transfers\n";
+    Table transfers({"resource", "from", "release after", "to", "acquire before"});
+    for (const OwnershipTransfer& t : plan.ownership_transfers) {
+        transfers.add({plan.resources[t.resource].name, std::string(queue_name(t.from)),
+                       position_text(plan, t.release_after), std::string(queue_name(t.to)),
+                       position_text(plan, t.acquire_before)});
+    }
+    transfers.render(out, "  ");
+    out << "\n";
+}
+
 }  // namespace
 
 std::string format_bytes(uint64_t bytes) {
@@ -96,14 +137,17 @@ void write_plan_table(std::ostream& out, const Plan& plan) {
                 ports += "-";
             }
         }
-        // Graphics is the default kind and goes unsaid.
+        // Graphics is the default kind and queue and goes unsaid.
         std::string name = pass.name;
-        if (pass.kind != PassKind::Graphics) name += " [" + std::string(pass_kind_name(pass.kind)) + "]";
+        if (pass.kind != PassKind::Graphics) {
+            name += " [" + std::string(pass_kind_name(pass.kind)) + (pass.queue == Queue::AsyncCompute ? ", async]" : "]");
+        }
         if (pass.side_effect) name += " (side effect)";
         order.add({std::to_string(at), name, ports});
     }
     order.render(out, "  ");
     out << "\n";
+    write_queue_tables(out, plan);
 
     out << "resources\n";
     Table resources({"resource", "format", "size", "life", "texture", "bytes"});
@@ -120,8 +164,7 @@ void write_plan_table(std::ostream& out, const Plan& plan) {
         if (r.spec.mips != 1) size += numbered(" m", r.spec.mips);
         if (r.spec.layers != 1) size += numbered(" l", r.spec.layers);
         resources.add({r.name + (r.graph_output ? " (output)" : ""), format, size,
-                       std::to_string(r.lifetime.first) + "-" + std::to_string(r.lifetime.last),
-                       numbered("t", r.texture), format_bytes(r.bytes)});
+                       life_text(r), numbered("t", r.texture), format_bytes(r.bytes)});
     }
     resources.render(out, "  ");
     out << "\n";
@@ -156,8 +199,7 @@ void write_plan_table(std::ostream& out, const Plan& plan) {
             if (r.buffer_spec.alignment > 1) size += numbered(" aligned ", r.buffer_spec.alignment);
             buffer_resources.add({r.name + (r.graph_output ? " (output)" : ""), size,
                                   describe_buffer_usage(r.buffer_spec.usage),
-                                  std::to_string(r.lifetime.first) + "-" + std::to_string(r.lifetime.last),
-                                  physical_name(r), format_bytes(r.bytes)});
+                                  life_text(r), physical_name(r), format_bytes(r.bytes)});
         }
         buffer_resources.render(out, "  ");
         out << "\n";

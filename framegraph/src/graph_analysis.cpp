@@ -112,6 +112,13 @@ Result<Dependencies> analyze(const FrameGraph& graph) {
 
     for (uint32_t pass_index = 0; pass_index < count; ++pass_index) {
         const Pass& pass = graph.pass(PassId{pass_index});
+        if (pass.queue() == Queue::AsyncCompute && pass.kind() == PassKind::Graphics) {
+            Error error = graph_error("pass '" + pass.name() +
+                                      "' is a graphics pass: only compute and copy passes run on the async compute "
+                                      "queue (set_kind, or \"kind\" in a graph file)");
+            error.subjects = {pass.name()};
+            return error;
+        }
         for (uint32_t port_index = 0; port_index < pass.ports().size(); ++port_index) {
             const PortAddress address{pass_index, port_index};
             const Port& port = pass.ports()[port_index];

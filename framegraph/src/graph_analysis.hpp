@@ -17,8 +17,8 @@ struct Dependencies {
     std::vector<std::vector<uint32_t>> producers;
 };
 
-/// Builds the dependencies and checks: required inputs connected, no pass reading a texture
-/// it also modifies in place, no cycle. Errors are ErrorCode::Graph naming passes and ports.
+/// Builds the dependencies and checks: only compute and copy passes on the async compute queue,
+/// required inputs connected, no pass reading a texture it also modifies in place, no cycle. Errors are ErrorCode::Graph naming passes and ports.
 Result<Dependencies> analyze(const FrameGraph& graph);
 
 }  // namespace loom::fg::detail

@@ -174,6 +174,9 @@ uint64_t plan_hash(const Plan& plan) {
         h.add(r.spec);
         h.add(r.lifetime.first);
         h.add(r.lifetime.last);
+        h.add(r.occupancy.first);
+        h.add(r.occupancy.last);
+        h.add(r.queue_shared);
         h.add(r.graph_output);
         h.add(r.spec_class);
         h.add(r.bytes);
@@ -225,6 +228,21 @@ uint64_t plan_hash(const Plan& plan) {
     h.add(s.buffer_bytes);
     h.add(s.naive_buffers);
     h.add(s.lower_bound_buffers);
+    h.add(plan.queue_syncs.size());
+    for (const QueueSync& sync : plan.queue_syncs) {
+        h.add(sync.from);
+        h.add(sync.to);
+        h.add(sync.signal_after);
+        h.add(sync.wait_before);
+    }
+    h.add(plan.ownership_transfers.size());
+    for (const OwnershipTransfer& t : plan.ownership_transfers) {
+        h.add(t.resource);
+        h.add(t.from);
+        h.add(t.to);
+        h.add(t.release_after);
+        h.add(t.acquire_before);
+    }
     return h.value();
 }
 

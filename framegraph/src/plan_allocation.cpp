@@ -39,7 +39,8 @@ std::optional<ResolvedSpec> join_resolved(const ResolvedSpec& a, const ResolvedS
     return *resolved;
 }
 
-// Most members of each class alive at once, and the peak of live bytes, over the order.
+// Most members of each class alive at once, and the peak of live bytes, over the order
+// (alive: within its occupancy, which async compute widens).
 struct Peaks {
     std::vector<uint32_t> live_per_class;
     uint64_t bytes = 0;
@@ -51,8 +52,8 @@ Peaks measure_peaks(const std::vector<PlanResource>& resources, const std::vecto
     std::vector<std::vector<uint32_t>> starting(position_count + 1);
     std::vector<std::vector<uint32_t>> ending(position_count + 1);
     for (uint32_t r = 0; r < resources.size(); ++r) {
-        starting[resources[r].lifetime.first].push_back(r);
-        ending[resources[r].lifetime.last + 1].push_back(r);
+        starting[resources[r].occupancy.first].push_back(r);
+        ending[resources[r].occupancy.last + 1].push_back(r);
     }
     Peaks peaks;
     peaks.live_per_class.assign(class_count, 0);
@@ -276,7 +277,7 @@ AllocationProblem make_allocation_problem(const std::vector<PlanPass>& order,
     for (uint32_t r = 0; r < resources.size(); ++r) {
         const PlanResource& resource = resources[r];
         problem.passes[resource.lifetime.first].begins.push_back(r);
-        problem.resources.push_back(AllocationResource{resource.spec_class, resource.lifetime, resource.bytes,
+        problem.resources.push_back(AllocationResource{resource.spec_class, resource.occupancy, resource.bytes,
                                                        resource.alignment, resource.name});
     }
     problem.graph_outputs = std::move(graph_output_resources);

@@ -6,6 +6,8 @@
 //   join          the port groups, each with the join of its specs     plan_resources.cpp
 //   resolve       the logical resources: resolved specs, usages,       plan_resources.cpp
 //                 lifetimes, bytes; each running pass's ports, edges
+//   queues        semaphores and ownership transfers between the       plan_queues.cpp
+//                 graphics and async compute queues; occupancies
 //   spec classes  which resources may share a texture; the peaks       plan_allocation.cpp
 //   allocate      the allocation problem, the allocator's checked      plan_allocation.cpp
 //                 answer, textures numbered by first use, heaps
@@ -118,6 +120,26 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
 /// The connections between passes that run, by position, each with its resource (Plan::edges).
 std::vector<PlanEdge> plan_edges(const FrameGraph& graph, const Schedule& schedule,
                                  const std::vector<std::vector<uint32_t>>& resource_of_port);
+
+/// What running passes on two queues decides (Plan::queue_syncs, Plan::ownership_transfers,
+/// PlanResource::occupancy).
+struct QueuePlan {
+    std::vector<QueueSync> syncs;
+    std::vector<OwnershipTransfer> transfers;
+    std::vector<Lifetime> occupancy;  ///< per resource
+    std::vector<bool> queue_shared;   ///< per resource (PlanResource::queue_shared)
+};
+
+/// Queues: without async passes, no syncs or transfers and every occupancy is the lifetime.
+/// Otherwise the transfers (a read on the other queue than the previous use's; a graph output
+/// last used on the async queue goes back to graphics at the end of the frame; a first use
+/// that reads on the async queue starts from graphics at the start of the frame), then the
+/// fewest semaphores that order every cross-queue dependency, every transfer, and the end of
+/// the frame after the last async pass (a wait is left out when an earlier wait on that queue
+/// already covers it), then the occupancies: each async use widened over the positions between
+/// the last signal its queue waited for and the first wait on a signal after it.
+QueuePlan plan_queues(const std::vector<PlanPass>& order, const std::vector<PlanResource>& resources,
+                      const Dependencies& dependencies, const Schedule& schedule);
 
 /// Which resources may share a texture.
 struct SpecClassAssignment {

@@ -150,6 +150,7 @@ PendingResource running_part(const std::vector<PortAddress>& group, const Schedu
     const auto last_position = static_cast<uint32_t>(schedule.order.size() - 1);
     item.resource.graph_output = graph_output;
     item.resource.lifetime = {position[item.start.pass], graph_output ? last_position : last};
+    item.resource.occupancy = item.resource.lifetime;
     return item;
 }
 

@@ -1,5 +1,7 @@
 #include "loom/framegraph/planner.hpp"
 
+#include <algorithm>
+
 #include "graph_analysis.hpp"
 #include "loom/framegraph/allocator.hpp"
 #include "loom/framegraph/graph.hpp"
@@ -28,14 +30,29 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
     auto resolved = detail::resolve_resources(graph, detail::join_port_groups(graph, options.frame), schedule,
                                               options.frame, *memory);
     if (!resolved) return resolved.take_error();
-    detail::SpecClassAssignment classes =
-        detail::assign_spec_classes(resolved->resources, options.sharing, options.frame, positions);
 
     Plan plan;
     plan.allocator = std::string((*allocator)->name());
     plan.frame = options.frame;
     plan.sharing = options.sharing;
     plan.order = detail::plan_passes(graph, schedule, *resolved);
+    detail::QueuePlan queues = detail::plan_queues(plan.order, resolved->resources, *dependencies, schedule);
+    if (!queues.syncs.empty() && plan.allocator == "paper") {
+        const auto async = std::find_if(plan.order.begin(), plan.order.end(),
+                                        [](const PlanPass& pass) { return pass.queue != Queue::Graphics; });
+        return make_error(ErrorCode::InvalidArgument,
+                          "allocator 'paper' colours ports pass by pass and cannot keep apart the resources of "
+                          "passes that run at the same time on two queues (async compute pass '" +
+                              async->name + "'): use 'interval' or 'heap'");
+    }
+    for (uint32_t r = 0; r < resolved->resources.size(); ++r) {
+        resolved->resources[r].occupancy = queues.occupancy[r];
+        resolved->resources[r].queue_shared = queues.queue_shared[r];
+    }
+    plan.queue_syncs = std::move(queues.syncs);
+    plan.ownership_transfers = std::move(queues.transfers);
+    detail::SpecClassAssignment classes =
+        detail::assign_spec_classes(resolved->resources, options.sharing, options.frame, positions);
     plan.culled = detail::culled_pass_names(graph, *kept);
     plan.edges = detail::plan_edges(graph, schedule, resolved->resource_of_port);
     for (const PortAddress& out : graph.outputs()) plan.graph_outputs.push_back(graph.port_name(out));

@@ -267,7 +267,8 @@ TEST(Export, JsonCarriesPassKindsPortRangesBufferResourcesBuffersAndTheBufferSum
               json::parse(R"({"from": "base.pyramid", "resource": 0, "texture": 0, "to": "down.pyramid"})"));
     EXPECT_EQ(plan.at("resources")[1],
               json::parse(R"({"alignment": 256, "buffer": 0, "bytes": 1024, "graph_output": false, "lifetime": [2, 3],
-                              "name": "cull.lights", "ports": ["cull.lights", "shade.lights"], "size": 1024,
+                              "name": "cull.lights", "occupancy": [2, 3], "ports": ["cull.lights", "shade.lights"],
+                              "queue_shared": false, "size": 1024,
                               "spec_alignment": 16, "spec_class": 1, "type": "buffer", "usage": ["uniform", "storage"]})"));
     EXPECT_EQ(plan.at("resources")[0].at("type"), "texture");
     EXPECT_EQ(plan.at("spec_classes")[1],

@@ -126,7 +126,7 @@ TEST(GraphFile, ErrorsCarryTheJsonPath) {
     const Case cases[] = {
         {R"({"passes": [{"name": "a"}, {"name": "b"}, {"name": "c", "outputs": [{"name": "x", "format": "RGBA17F"}]}]})",
          R"(g.json: /passes/2/outputs/0/format: unknown format "RGBA17F")"},
-        {R"({"passes": [], "extra": 1})", "g.json: /extra: unknown key (expected one of: frame, passes, connections, outputs)"},
+        {R"({"passes": [], "extra": 1})", "g.json: /extra: unknown key (expected one of: frame, passes, connections, outputs, description)"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "colour": 1}]}]})",
          "g.json: /passes/0/outputs/0/colour: unknown key (expected one of: name, type, format, channels, bits, kind, "
          "srgb, depth, stencil, size, scale, samples, mips, layers, cube, range, optional, usage)"},

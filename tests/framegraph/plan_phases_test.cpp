@@ -219,7 +219,10 @@ TEST(PlanPhases, ResolveMakesTheResourcesOfRunningPassesWithUsagesLifetimesAndBy
     expected[4].spec = resolved_spec(Format::R32Float, FormatMatch::Exact, {256, 1}, TextureUsage::ColorAttachment);
     expected[4].lifetime = {3, 3};
     expected[4].bytes = 256 * 4;
-    for (PlanResource& resource : expected) resource.alignment = 256;
+    for (PlanResource& resource : expected) {
+        resource.alignment = 256;
+        resource.occupancy = resource.lifetime;  // no async passes: held exactly while alive
+    }
     EXPECT_EQ(resolved->resources, expected);
 
     EXPECT_EQ(resolved->resource_of_port, (std::vector<std::vector<uint32_t>>{
@@ -327,6 +330,7 @@ PlanResource resource(std::string name, Format format, Extent2D extent, TextureU
     out.name = std::move(name);
     out.spec = resolved_spec(format, FormatMatch::Exact, extent, usage);
     out.lifetime = lifetime;
+    out.occupancy = lifetime;
     out.bytes = bytes;
     out.alignment = 256;
     return out;

@@ -243,7 +243,10 @@ TEST_F(RandomGraphs, OrderIsTopologicalAndLifetimesCoverEveryUse) {
             if (r.graph_output) {
                 EXPECT_EQ(r.lifetime.last, plan.order.size() - 1) << "seed " << seed;
             }
+            // One queue: memory is held exactly while the resource lives.
+            EXPECT_EQ(r.occupancy, r.lifetime) << "seed " << seed;
         }
+        EXPECT_TRUE(plan.queue_syncs.empty()) << "seed " << seed;
     }
 }
 

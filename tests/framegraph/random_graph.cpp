@@ -179,6 +179,10 @@ FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options) {
         }
         if (in_place) producers.push_back(*in_place);
         if (rng.percent(options.side_effect_percent)) pass.set_side_effect();
+        // Drawn only when asked for, so that graphs without async passes stay what they were.
+        if (options.async_percent != 0 && rng.percent(options.async_percent)) {
+            pass.set_kind(PassKind::Compute).set_queue(Queue::AsyncCompute);
+        }
         if (i + 1 == options.passes || rng.percent(options.graph_output_percent)) outputs.push_back(pass.name() + ".o0");
         passes.push_back(std::move(pass));
     }

@@ -24,6 +24,9 @@ struct RandomGraphOptions {
     /// Chance that a texture output is a mip chain or a layer array whose readers and in-place
     /// writers use single mips or layers (a pass may then read one mip and write another).
     uint32_t subresource_percent = 0;
+    /// Chance that a pass is a compute pass on the async compute queue (0: every pass is a
+    /// graphics pass, as the benchmarks use).
+    uint32_t async_percent = 0;
 };
 
 /// A random DAG: passes named p0, p1, ... in generation (topological) order, each with inputs

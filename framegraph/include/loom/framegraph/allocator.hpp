@@ -30,7 +30,9 @@ struct AllocationPass {
 /// A logical resource as an allocator sees it.
 struct AllocationResource {
     uint32_t spec_class = 0;  ///< resources may share a texture only within one class
-    Lifetime lifetime;        ///< positions in the order; graph outputs last until the end
+    /// Positions in the order during which it holds its memory (PlanResource::occupancy);
+    /// graph outputs last until the end.
+    Lifetime lifetime;
     uint64_t bytes = 0;
     uint64_t alignment = 1;
     std::string name;         ///< the resource's name ("pass.port"), for error messages

@@ -37,6 +37,11 @@ struct Lifetime {
     friend bool operator==(const Lifetime&, const Lifetime&) = default;
 };
 
+/// QueueSync::signal_after and OwnershipTransfer::release_after of what happens at the start of
+/// the frame on the graphics queue, before its first pass. (Their wait_before and
+/// acquire_before use Plan::order.size() for the end of the frame.)
+inline constexpr uint32_t kFrameStart = UINT32_MAX;
+
 /// PlanResource::texture of a buffer, PlanResource::buffer of a texture.
 inline constexpr uint32_t kNoPhysical = UINT32_MAX;
 
@@ -84,7 +89,15 @@ struct PlanResource {
     /// The joined format features before resolution; empty when no port constrained the format.
     std::optional<rhi::FormatFeatures> requested_format;
     ResolvedSpec spec;               ///< the joined spec made concrete; usage is what the ports need
-    Lifetime lifetime;
+    Lifetime lifetime;               ///< from its producer to its last reader, positions in Plan::order
+    /// The positions during which its memory is reserved: its lifetime, widened over the passes
+    /// of the other queue that may run while an async compute pass uses it (equal to `lifetime`
+    /// in a plan without async passes). Allocators and lower bounds use it.
+    Lifetime occupancy;
+    /// Some of its contents are read on both queues (a depth buffer read by the graphics queue
+    /// and by async compute): it is shared by both queue families rather than owned by one, and
+    /// never appears in Plan::ownership_transfers.
+    bool queue_shared = false;
     bool graph_output = false;       ///< read after the frame: lives until the last pass
     uint32_t spec_class = 0;         ///< index into Plan::spec_classes
     uint64_t bytes = 0;              ///< memory model size of a texture of `spec`
@@ -108,6 +121,34 @@ struct PlanEdge {
     uint32_t resource = 0;  ///< the resource flowing along it
 
     friend bool operator==(const PlanEdge&, const PlanEdge&) = default;
+};
+
+/// A semaphore between the two queues: signalled on `from` after the pass at `signal_after`
+/// (kFrameStart: at the start of the frame) and waited on `to` before the pass at
+/// `wait_before` (Plan::order.size(): before the frame ends). Every later command of `to`
+/// waits for every earlier command of `from`.
+struct QueueSync {
+    Queue from = Queue::Graphics;
+    Queue to = Queue::AsyncCompute;
+    uint32_t signal_after = 0;
+    uint32_t wait_before = 0;
+
+    friend bool operator==(const QueueSync&, const QueueSync&) = default;
+};
+
+/// A resource whose contents move between the queues: released on `from` after the pass at
+/// `release_after` (kFrameStart: at the start of the frame), acquired on `to` before the pass
+/// at `acquire_before` (Plan::order.size(): at the end of the frame, for a graph output last
+/// used on the async queue). A QueueSync orders the two. On a device whose queues share one
+/// queue family (or one queue), only the sync is needed.
+struct OwnershipTransfer {
+    uint32_t resource = 0;  ///< index into Plan::resources
+    Queue from = Queue::Graphics;
+    Queue to = Queue::AsyncCompute;
+    uint32_t release_after = 0;
+    uint32_t acquire_before = 0;
+
+    friend bool operator==(const OwnershipTransfer&, const OwnershipTransfer&) = default;
 };
 
 /// Where a texture lives inside a heap.
@@ -185,6 +226,11 @@ struct Plan {
     std::vector<PlanBuffer> buffers;
     std::vector<uint64_t> heaps;      ///< heap sizes in bytes; empty unless the allocator places
     PlanSummary summary;
+    /// Semaphores between the graphics and async compute queues, by wait position; empty when
+    /// every pass runs on the graphics queue.
+    std::vector<QueueSync> queue_syncs;
+    /// Resources moving between the queues, by acquire position, then resource.
+    std::vector<OwnershipTransfer> ownership_transfers;
 
     /// The scheduled pass called `name`, or nullptr (also for culled passes).
     [[nodiscard]] const PlanPass* find_pass(std::string_view name) const;
