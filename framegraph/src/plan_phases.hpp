@@ -134,9 +134,9 @@ struct QueuePlan {
 /// Otherwise the transfers (a read on the other queue than the previous use's; a graph output
 /// last used on the async queue goes back to graphics at the end of the frame; a first use
 /// that reads on the async queue starts from graphics at the start of the frame), then the
-/// fewest semaphores that order every cross-queue dependency, every transfer, and the end of
-/// the frame after the last async pass (a wait is left out when an earlier wait on that queue
-/// already covers it), then the occupancies: each async use widened over the positions between
+/// fewest semaphores that order every cross-queue dependency, every transfer, the start of the
+/// frame before the first async pass and the end of the frame after the last (a wait is left
+/// out when an earlier wait on that queue already covers it), then the occupancies: each async use widened over the positions between
 /// the last signal its queue waited for and the first wait on a signal after it.
 QueuePlan plan_queues(const std::vector<PlanPass>& order, const std::vector<PlanResource>& resources,
                       const Dependencies& dependencies, const Schedule& schedule);

@@ -139,6 +139,14 @@ QueuePlan plan_queues(const std::vector<PlanPass>& order, const std::vector<Plan
         requirements.push_back(Requirement{at, pass_count, Queue::Graphics});
         break;
     }
+    // And the first async pass after the start of the frame on the graphics queue: a signal
+    // there covers every earlier frame's graphics work, whose resources this frame's async
+    // passes reuse (the end of the frame covers the other way round).
+    for (uint32_t at = 0; at < pass_count; ++at) {
+        if (order[at].queue == Queue::Graphics) continue;
+        requirements.push_back(Requirement{-1, at, order[at].queue});
+        break;
+    }
     std::sort(requirements.begin(), requirements.end(), [](const Requirement& a, const Requirement& b) {
         return std::tie(a.consumer, a.producer) < std::tie(b.consumer, b.producer);
     });

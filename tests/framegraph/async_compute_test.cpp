@@ -417,6 +417,7 @@ void expect_dependencies_and_transfers_ordered(const Plan& plan, uint64_t seed) 
     }
     for (uint32_t at = 0; at < plan.order.size(); ++at) {
         if (plan.order[at].queue != A) continue;
+        ASSERT_TRUE(happens_before(plan, At{-1, G}, At{at, A})) << "seed " << seed;
         ASSERT_TRUE(happens_before(plan, At{at, A}, At{end, G})) << "seed " << seed;
     }
     // No wait is covered by an earlier one on its queue: signals grow wait after wait.
