@@ -3,6 +3,8 @@
 // snippets_test.cpp) plans each and checks that it is the plan of its JSON twin in
 // samples/plan/graphs/, which the guide quotes, so the two forms cannot drift apart.
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "loom/framegraph/framegraph.hpp"
 #include "snippets.hpp"
@@ -99,6 +101,34 @@ Status build_bloom(fg::FrameGraph& graph) {
 }
 // [/docs:bloom]
 
+// [docs:async]
+// SSAO and its blur run on the async compute queue while the graphics queue draws shadows and
+// the G-buffer; lighting reads the blurred AO.
+Status build_async_ssao(fg::FrameGraph& graph) {
+    using fg::PassKind;
+    using fg::Queue;
+    using rhi::Format;
+    LOOM_TRY(graph.add_pass(fg::Pass("depth").output("depth", fg::TextureSpec::of(Format::Depth32F))));
+    LOOM_TRY(graph.add_pass(fg::Pass("ssao").set_kind(PassKind::Compute).set_queue(Queue::AsyncCompute)
+                                .input("depth").output("raw", fg::TextureSpec::of(Format::R16Float).with_scale(0.5f))));
+    LOOM_TRY(graph.add_pass(fg::Pass("ssao_blur").set_kind(PassKind::Compute).set_queue(Queue::AsyncCompute)
+                                .input("raw").output("ao", fg::TextureSpec::of(Format::R8Unorm).with_scale(0.5f))));
+    LOOM_TRY(graph.add_pass(fg::Pass("shadows").output("shadow", fg::TextureSpec::of(Format::Depth32F).with_size(2048, 2048))));
+    LOOM_TRY(graph.add_pass(fg::Pass("gbuffer").input("depth").output("albedo", fg::TextureSpec::of(Format::RGBA8Unorm))));
+    LOOM_TRY(graph.add_pass(fg::Pass("lighting").input("albedo").input("shadow").input("ao")
+                                .output("hdr", fg::TextureSpec::of(Format::RGBA16Float))));
+    LOOM_TRY(graph.add_pass(fg::Pass("tonemap").input("hdr").output("final", fg::TextureSpec::of(Format::RGBA8Unorm))));
+    LOOM_TRY(graph.connect(fg::port("depth", "depth"), fg::port("ssao", "depth")));
+    LOOM_TRY(graph.connect(fg::port("ssao", "raw"), fg::port("ssao_blur", "raw")));
+    LOOM_TRY(graph.connect(fg::port("depth", "depth"), fg::port("gbuffer", "depth")));
+    LOOM_TRY(graph.connect(fg::port("gbuffer", "albedo"), fg::port("lighting", "albedo")));
+    LOOM_TRY(graph.connect(fg::port("shadows", "shadow"), fg::port("lighting", "shadow")));
+    LOOM_TRY(graph.connect(fg::port("ssao_blur", "ao"), fg::port("lighting", "ao")));
+    LOOM_TRY(graph.connect(fg::port("lighting", "hdr"), fg::port("tonemap", "hdr")));
+    return graph.mark_output(fg::port("tonemap", "final"));
+}
+// [/docs:async]
+
 Status check(bool condition, const std::string& what) {
     return condition ? Status{} : Status(Error{ErrorCode::InvalidState, "docs/framegraph.md buffer example: " + what});
 }
@@ -109,14 +139,17 @@ Status plan_buffer_examples(const std::string& graphs_dir) {
     struct Example {
         const char* file;
         Status (*build)(fg::FrameGraph&);
+        bool async = false;  // the paper allocator refuses plans with async passes
     };
     for (const Example& example : {Example{"light_list.json", build_light_list}, Example{"hzb_chain.json", build_hzb},
-                                   Example{"bloom_pyramid.json", build_bloom}}) {
+                                   Example{"bloom_pyramid.json", build_bloom},
+                                   Example{"async_ssao.json", build_async_ssao, true}}) {
         fg::FrameGraph graph;
         LOOM_TRY(example.build(graph));
         auto file = fg::load_graph_file(graphs_dir + "/" + example.file);
         if (!file) return file.take_error();
         for (const char* allocator : {"paper", "interval", "heap"}) {
+            if (example.async && std::string_view(allocator) == "paper") continue;
             fg::PlanOptions options;
             options.frame = file->frame;
             options.allocator = allocator;
@@ -144,6 +177,18 @@ Status plan_buffer_examples(const std::string& graphs_dir) {
     if (!placed) return placed.take_error();
     LOOM_TRY(check(placed->summary.bytes == 24989696 && placed->summary.lower_bound_bytes == 24989696,
                    "the HZB chain and the colour share heap bytes"));
+    fg::FrameGraph async;
+    LOOM_TRY(build_async_ssao(async));
+    auto two_queues = fg::build_plan(async, {});
+    if (!two_queues) return two_queues.take_error();
+    using fg::Queue;
+    LOOM_TRY(check(two_queues->queue_syncs == std::vector<fg::QueueSync>{{Queue::Graphics, Queue::AsyncCompute, 0, 1},
+                                                                        {Queue::AsyncCompute, Queue::Graphics, 2, 5}},
+                   "ssao waits for depth, lighting for the blur"));
+    const fg::PlanResource* raw = two_queues->resource_of("ssao", "raw");
+    LOOM_TRY(check(raw && raw->lifetime == fg::Lifetime{1, 2} && raw->occupancy == fg::Lifetime{1, 4},
+                   "the raw AO is held while shadows and the G-buffer may run beside the blur"));
+    LOOM_TRY(check(two_queues->resource_of("depth", "depth")->queue_shared, "both queues read the depth"));
     return {};
 }
 

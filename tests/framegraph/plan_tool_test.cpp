@@ -176,6 +176,32 @@ TEST(PlanTool, LightListIsAComputeBuiltBufferReadByTheLightingPass) {
         << table.out;
 }
 
+TEST(PlanTool, AsyncSsaoPrintsSyncsTransfersAndHeldLifetimes) {
+    // docs/framegraph.md, Async compute, quotes these lines.
+    const ToolRun run = run_tool(graph("async_ssao.json"));
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_NE(run.out.find("  2  ssao_blur [compute, async]  <raw=t1  >ao=t2\n"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("queue syncs\n"
+                           "  signal         after        wait           before\n"
+                           "  graphics       0 depth      async_compute  1 ssao\n"
+                           "  async_compute  2 ssao_blur  graphics       5 lighting\n\n"
+                           "ownership transfers\n"
+                           "  resource      from           release after  to        acquire before\n"
+                           "  ssao_blur.ao  async_compute  2 ssao_blur    graphics  5 lighting\n"),
+              std::string::npos)
+        << run.out;
+    EXPECT_NE(run.out.find("  depth.depth             Depth32F     1920x1080  0-4 shared    t0       7.9 MiB\n"
+                           "  ssao.raw                R16Float     960x540    1-2 held 1-4  t1       1.0 MiB\n"),
+              std::string::npos)
+        << run.out;
+    // The heap reaches the lower bound; paper refuses async plans (bad arguments: status 2).
+    const auto heap = summary_of("async_ssao.json", "heap");
+    EXPECT_EQ(heap.at("bytes"), heap.at("lower_bound_bytes"));
+    const ToolRun paper = run_tool(graph("async_ssao.json") + " --allocator paper");
+    EXPECT_EQ(paper.status, 2);
+    EXPECT_NE(paper.err.find("allocator 'paper'"), std::string::npos) << paper.err;
+}
+
 TEST(PlanTool, WritesDot) {
     const std::filesystem::path dot = loom::test::output_dir() / "loom_plan" / "figure2.dot";
     std::filesystem::remove(dot);
