@@ -440,11 +440,36 @@ Status Executor::Impl::run_passes(FrameGraph& graph, rhi::CommandList& commands,
         }
         return t.state;
     };
-    for (uint32_t p = 0; p < plan->order.size(); ++p) {
+    // Plans with async compute passes: each pass on its queue, the plan's semaphores between
+    // them (positions of signals and waits; kFrameStart and the order's length for the frame's
+    // start and end, both on the graphics queue).
+    const auto pass_count = static_cast<uint32_t>(plan->order.size());
+    const std::vector<QueueSync>& syncs = plan->queue_syncs;
+    std::vector<rhi::QueueSignal> signals(syncs.size());
+    auto to_rhi = [](Queue queue) { return queue == Queue::Graphics ? rhi::QueueType::Graphics : rhi::QueueType::Compute; };
+    auto signal_after = [&](uint32_t position) {
+        for (std::size_t i = 0; i < syncs.size(); ++i) {
+            if (syncs[i].signal_after == position) signals[i] = commands.signal_queue();
+        }
+    };
+    auto wait_before = [&](uint32_t position) {
+        for (std::size_t i = 0; i < syncs.size(); ++i) {
+            if (syncs[i].wait_before == position) commands.wait_queue(signals[i]);
+        }
+    };
+    if (!syncs.empty()) {
+        commands.set_queue(rhi::QueueType::Graphics);
+        signal_after(kFrameStart);
+    }
+    for (uint32_t p = 0; p < pass_count; ++p) {
         const PlanPass& planned = plan->order[p];
         const PassSchedule& around = schedule->passes[p];
         const auto start = std::chrono::steady_clock::now();
         frame.position = p;
+        if (!syncs.empty()) {
+            commands.set_queue(to_rhi(planned.queue));
+            wait_before(p);
+        }
         if (timed) commands.begin_timer(planned.name);
         commands.push_debug_group(planned.name);
         for (const Transition& t : around.before) commands.transition(frame.resolve(t.texture), state_for(t), t.range);
@@ -477,8 +502,14 @@ Status Executor::Impl::run_passes(FrameGraph& graph, rhi::CommandList& commands,
         }
         commands.pop_debug_group();
         if (timed) commands.end_timer();
+        if (!syncs.empty()) signal_after(p);
         cpu_ms[p] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         if (frame.pass_error) return *frame.pass_error;
+    }
+    if (!syncs.empty()) {
+        // The frame goes on (and ends) on the graphics queue, after the async passes it waits for.
+        commands.set_queue(rhi::QueueType::Graphics);
+        wait_before(pass_count);
     }
     return {};
 }

@@ -42,6 +42,23 @@ void PassCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
     in_render_pass_ = true;
 }
 
+void PassCommandList::set_queue(rhi::QueueType queue) {
+    frame_.fail(make_error(ErrorCode::InvalidState, "set_queue(" + std::string(rhi::queue_type_name(queue)) +
+                                                        "): the executor runs each pass on the queue its plan names "
+                                                        "(Pass::set_queue)"));
+}
+
+rhi::QueueSignal PassCommandList::signal_queue() {
+    frame_.fail(make_error(ErrorCode::InvalidState,
+                           "signal_queue: the executor makes the semaphores between queues from the plan"));
+    return {};
+}
+
+void PassCommandList::wait_queue(rhi::QueueSignal) {
+    frame_.fail(make_error(ErrorCode::InvalidState,
+                           "wait_queue: the executor makes the semaphores between queues from the plan"));
+}
+
 void PassCommandList::end_render_pass() {
     if (!in_render_pass_) {
         frame_.fail(make_error(ErrorCode::InvalidState, "end_render_pass without an open render pass"));

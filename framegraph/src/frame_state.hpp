@@ -74,6 +74,11 @@ public:
     void end_timer() override;
     void push_debug_group(std::string_view label) override;
     void pop_debug_group() override;
+    // Queues belong to the executor (Pass::set_queue): a pass that switches or syncs them is
+    // reported and the command skipped.
+    void set_queue(rhi::QueueType queue) override;
+    rhi::QueueSignal signal_queue() override;
+    void wait_queue(rhi::QueueSignal signal) override;
 
 private:
     /// True when the command may run: inside a render pass when `inside`, else outside one.

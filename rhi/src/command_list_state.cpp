@@ -39,6 +39,9 @@ void CommandListState::reset() {
     index_buffer_ = {};
     open_timer_.reset();
     debug_depth_ = 0;
+    queue_ = QueueType::Graphics;
+    signal_queue_.clear();
+    signal_waited_.clear();
 }
 
 // ---- frames ----------------------------------------------------------------------------------------
@@ -76,6 +79,11 @@ void CommandListState::end_frame() {
 // ---- render passes ---------------------------------------------------------------------------------
 
 Status CommandListState::check_begin_render_pass(std::string_view label) const {
+    if (queue_ != QueueType::Graphics) {
+        return invalid_state("begin_render_pass " + in_quotes(label) +
+                             ": the commands go to the compute queue, which runs no render passes; "
+                             "set_queue(QueueType::Graphics) first");
+    }
     if (!pass_) return {};
     return invalid_state("begin_render_pass " + in_quotes(label) + ": render pass " + in_quotes(pass_->label) +
                          " is still open; render passes do not nest");
@@ -95,6 +103,48 @@ Status CommandListState::check_outside_render_pass(std::string_view command) con
     if (!pass_) return {};
     return invalid_state(std::string(command) + ": render pass " + in_quotes(pass_->label) +
                          " is open; dispatches, copies, transitions and readbacks go outside render passes");
+}
+
+// ---- queues ------------------------------------------------------------------------------------
+
+Status CommandListState::set_queue(QueueType queue) {
+    const std::string command = "set_queue(" + std::string(queue_type_name(queue)) + ")";
+    LOOM_TRY(check_recording(command));
+    LOOM_TRY(check_outside_render_pass(command));
+    // A timer or debug group cannot span two queues: each queue's commands are submitted apart.
+    if (open_timer_) return invalid_state(command + ": timer " + in_quotes(*open_timer_) + " is open; end it first");
+    if (debug_depth_ > 0) {
+        return invalid_state(command + ": " + std::to_string(debug_depth_) + " debug group(s) open; pop them first");
+    }
+    queue_ = queue;
+    return {};
+}
+
+Result<QueueSignal> CommandListState::signal_queue() {
+    LOOM_TRY(check_recording("signal_queue"));
+    LOOM_TRY(check_outside_render_pass("signal_queue"));
+    signal_queue_.push_back(queue_);
+    signal_waited_.push_back(false);
+    return QueueSignal{static_cast<uint32_t>(signal_queue_.size() - 1), queue_};
+}
+
+Status CommandListState::wait_queue(QueueSignal signal) {
+    LOOM_TRY(check_recording("wait_queue"));
+    LOOM_TRY(check_outside_render_pass("wait_queue"));
+    const std::string command = "wait_queue(signal " + std::to_string(signal.index) + ")";
+    if (signal.index >= signal_queue_.size() || signal_queue_[signal.index] != signal.queue) {
+        return Error{ErrorCode::InvalidArgument, command + ": not a signal of this frame (" +
+                                                     std::to_string(signal_queue_.size()) + " made so far)"};
+    }
+    if (signal.queue == queue_) {
+        return Error{ErrorCode::InvalidArgument, command + ": made on the " + std::string(queue_type_name(queue_)) +
+                                                     " queue, which is the queue recording; wait on the other one"};
+    }
+    if (signal_waited_[signal.index]) {
+        return Error{ErrorCode::InvalidArgument, command + ": already waited for; a signal is waited at most once"};
+    }
+    signal_waited_[signal.index] = true;
+    return {};
 }
 
 // ---- bound state -------------------------------------------------------------------------------

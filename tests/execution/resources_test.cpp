@@ -277,6 +277,23 @@ TEST_P(ResourceExecution, AsyncComputePassesDrawWhatGraphicsQueuePassesDraw) {
     EXPECT_EQ(images[0].pixels, images[1].pixels);
 }
 
+// Queues belong to the executor: a pass that switches them fails the frame, named.
+TEST_P(ResourceExecution, PassesCannotSwitchQueues) {
+    fg::FrameGraph graph;
+    auto pass = fg::Pass("sneaky").set_kind(fg::PassKind::Compute).buffer_output("data", fg::BufferSpec::of_size(64));
+    pass.on_execute([](fg::PassContext& ctx) {
+        ctx.commands().set_queue(rhi::QueueType::Compute);
+        return Status{};
+    });
+    ASSERT_TRUE(graph.add_pass(std::move(pass)).ok());
+    ASSERT_TRUE(graph.mark_output(fg::port("sneaky", "data")).ok());
+    fg::Executor executor(device());
+    const Status status = executor.run_frame(graph, {});
+    ASSERT_FALSE(status.ok());
+    EXPECT_EQ(status.error().message,
+              "pass 'sneaky': set_queue(compute): the executor runs each pass on the queue its plan names (Pass::set_queue)");
+}
+
 // What the executor creates is what the plan says: every buffer with the plan's size and usage
 // and, where the device places resources, at the plan's heap offset, beside the textures.
 TEST_P(ResourceExecution, CreatedBuffersAndTexturesAreThePlans) {

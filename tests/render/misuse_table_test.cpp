@@ -887,6 +887,47 @@ void main() { result.value = textureLod(tex, vec2(0.5), 0.0); }
     add("pop_debug_group without a group",
         outside_pass([](rhi::CommandList& list, const Kit&) { list.pop_debug_group(); }),
         wrong_state("pop_debug_group: no debug group is open"));
+
+    // ---- queues (CommandList::set_queue, signal_queue, wait_queue)
+    add("render pass on the compute queue", outside_pass([](rhi::CommandList& list, const Kit& k) {
+            list.set_queue(rhi::QueueType::Compute);
+            list.begin_render_pass(clear_pass("p", k.target, {0, 0, 0, 1}));
+            list.end_render_pass();
+        }),
+        wrong_state("begin_render_pass 'p': the commands go to the compute queue, which runs no render passes; "
+                    "set_queue(QueueType::Graphics) first"));
+    add("set_queue inside a render pass",
+        in_pass([](rhi::CommandList& list, const Kit&) { list.set_queue(rhi::QueueType::Compute); }),
+        wrong_state("set_queue(compute): render pass 'p'" + outside_only));
+    add("set_queue with a timer open", outside_pass([](rhi::CommandList& list, const Kit&) {
+            list.begin_timer("t");
+            list.set_queue(rhi::QueueType::Compute);
+            list.end_timer();
+        }),
+        wrong_state("set_queue(compute): timer 't' is open; end it first"));
+    add("set_queue with a debug group open", outside_pass([](rhi::CommandList& list, const Kit&) {
+            list.push_debug_group("g");
+            list.set_queue(rhi::QueueType::Compute);
+            list.pop_debug_group();
+        }),
+        wrong_state("set_queue(compute): 1 debug group(s) open; pop them first"));
+    add("wait_queue on the signalling queue", outside_pass([](rhi::CommandList& list, const Kit&) {
+            const rhi::QueueSignal signal = list.signal_queue();
+            list.wait_queue(signal);
+        }),
+        invalid("wait_queue(signal 0): made on the graphics queue, which is the queue recording; wait on the other one"));
+    add("wait_queue twice", outside_pass([](rhi::CommandList& list, const Kit&) {
+            list.set_queue(rhi::QueueType::Compute);
+            const rhi::QueueSignal signal = list.signal_queue();
+            list.set_queue(rhi::QueueType::Graphics);
+            list.wait_queue(signal);
+            list.wait_queue(signal);
+        }),
+        invalid("wait_queue(signal 0): already waited for; a signal is waited at most once"));
+    add("wait_queue on a signal of no frame", outside_pass([](rhi::CommandList& list, const Kit&) {
+            list.wait_queue(rhi::QueueSignal{3, rhi::QueueType::Compute});
+        }),
+        invalid("wait_queue(signal 3): not a signal of this frame (0 made so far)"));
     return rows;
 }
 

@@ -227,6 +227,40 @@ TEST_F(CommandListStateTest, IndexedDrawsNeedAnIndexBufferThatHoldsTheirIndices)
                  "draw_indexed: index buffer: " + stale_message(indices));
 }
 
+TEST_F(CommandListStateTest, SignalsAreNumberedPerFrameAndWaitedOnceByTheOtherQueue) {
+    state.begin_frame();
+    EXPECT_EQ(state.queue(), QueueType::Graphics);
+    auto first = state.signal_queue();
+    ASSERT_TRUE(first.ok());
+    EXPECT_EQ(*first, (QueueSignal{0, QueueType::Graphics}));
+    ASSERT_TRUE(state.set_queue(QueueType::Compute).ok());
+    auto second = state.signal_queue();
+    ASSERT_TRUE(second.ok());
+    EXPECT_EQ(*second, (QueueSignal{1, QueueType::Compute}));
+    EXPECT_TRUE(state.wait_queue(*first).ok());
+    expect_error(state.wait_queue(*first), ErrorCode::InvalidArgument,
+                 "wait_queue(signal 0): already waited for; a signal is waited at most once");
+    expect_error(state.wait_queue(*second), ErrorCode::InvalidArgument,
+                 "wait_queue(signal 1): made on the compute queue, which is the queue recording; wait on the other one");
+    // A signal of the wrong queue is not this frame's signal.
+    expect_error(state.wait_queue(QueueSignal{1, QueueType::Graphics}), ErrorCode::InvalidArgument,
+                 "wait_queue(signal 1): not a signal of this frame (2 made so far)");
+    expect_error(state.check_begin_render_pass("p"), ErrorCode::InvalidState,
+                 "begin_render_pass 'p': the commands go to the compute queue, which runs no render passes; "
+                 "set_queue(QueueType::Graphics) first");
+    EXPECT_EQ(state.signal_count(), 2u);
+    state.end_frame();
+    // The next frame starts on the graphics queue with no signals.
+    state.begin_frame();
+    EXPECT_EQ(state.queue(), QueueType::Graphics);
+    EXPECT_EQ(state.signal_count(), 0u);
+    expect_error(state.wait_queue(*second), ErrorCode::InvalidArgument,
+                 "wait_queue(signal 1): not a signal of this frame (0 made so far)");
+    state.end_frame();
+    expect_error(state.set_queue(QueueType::Compute), ErrorCode::InvalidState,
+                 "set_queue(compute): no frame is being recorded; call begin_frame first");
+}
+
 TEST_F(CommandListStateTest, TimersDoNotNestAndDebugGroupsBalance) {
     state.begin_frame();
     expect_error(state.end_timer(), ErrorCode::InvalidState, "end_timer: no timer is open");

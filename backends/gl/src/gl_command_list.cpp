@@ -684,4 +684,22 @@ void GlCommandList::pop_debug_group() {
     });
 }
 
+// ---- queues ------------------------------------------------------------------------------------
+// GL has one queue: a context executes its commands in order, so the compute queue's commands
+// simply run where they were recorded and signals and waits order nothing that is not ordered
+// already. The state tracker still checks their use, as on every backend.
+
+void GlCommandList::set_queue(rhi::QueueType queue) { accepted(state_.set_queue(queue)); }
+
+rhi::QueueSignal GlCommandList::signal_queue() {
+    auto signal = state_.signal_queue();
+    if (!signal.ok()) {
+        accepted(signal.take_error());
+        return {};
+    }
+    return *signal;
+}
+
+void GlCommandList::wait_queue(rhi::QueueSignal signal) { accepted(state_.wait_queue(signal)); }
+
 }  // namespace loom::gl

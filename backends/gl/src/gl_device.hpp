@@ -66,6 +66,9 @@ public:
     void end_timer() override;
     void push_debug_group(std::string_view label) override;
     void pop_debug_group() override;
+    void set_queue(rhi::QueueType queue) override;
+    rhi::QueueSignal signal_queue() override;
+    void wait_queue(rhi::QueueSignal signal) override;
 
     // -- used by GlDevice ---------------------------------------------------------------
     /// Starts recording a frame (the device has checked that none is being recorded).

@@ -597,4 +597,28 @@ void VulkanCommandList::pop_debug_group() {
     ++stats_.api_calls;
 }
 
+// ---- queues ------------------------------------------------------------------------------------
+// The state tracker checks; the device turns the calls into batches and semaphores
+// (device_queues.cpp).
+
+void VulkanCommandList::set_queue(rhi::QueueType queue) {
+    if (!accepted(state_.set_queue(queue))) return;
+    accepted(device_.switch_queue(queue));
+}
+
+rhi::QueueSignal VulkanCommandList::signal_queue() {
+    auto signal = state_.signal_queue();
+    if (!signal.ok()) {
+        accepted(signal.take_error());
+        return {};
+    }
+    accepted(device_.signal_queue(signal->index));
+    return *signal;
+}
+
+void VulkanCommandList::wait_queue(rhi::QueueSignal signal) {
+    if (!accepted(state_.wait_queue(signal))) return;
+    accepted(device_.wait_queue(signal.index));
+}
+
 }  // namespace loom::vulkan

@@ -1,6 +1,7 @@
 #include "loom/vulkan/context.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -307,11 +308,18 @@ loom::Status VulkanContext::create_logical_device() {
     enable.features.multiDrawIndirect = supported.multiDrawIndirect;
     enable.features.drawIndirectFirstInstance = supported.drawIndirectFirstInstance;
 
-    const float priority = 1.0f;
+    // A second queue of the same family runs async compute beside the graphics queue: no
+    // queue-ownership transfers are needed between queues of one family.
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &family_count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(family_count);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &family_count, families.data());
+    const bool second_queue = families[queue_family_].queueCount >= 2 && !env_is("LOOM_VK_ASYNC_COMPUTE", "off");
+    const std::array<float, 2> priorities{1.0f, 1.0f};
     auto queue_info = vk_init<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
     queue_info.queueFamilyIndex = queue_family_;
-    queue_info.queueCount = 1;
-    queue_info.pQueuePriorities = &priority;
+    queue_info.queueCount = second_queue ? 2 : 1;
+    queue_info.pQueuePriorities = priorities.data();
 
     std::vector<const char*> device_extensions;
     if (surface_) device_extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
@@ -326,6 +334,8 @@ loom::Status VulkanContext::create_logical_device() {
         return vk_error(r, std::string("vkCreateDevice on ") + properties_.deviceName);
     }
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
+    compute_queue_ = queue_;
+    if (second_queue) vkGetDeviceQueue(device_, queue_family_, 1, &compute_queue_);
     return {};
 }
 
@@ -340,6 +350,7 @@ loom::Result<std::unique_ptr<VulkanContext>> VulkanContext::adopt(const External
     context->physical_device_ = desc.physical_device;
     context->device_ = desc.device;
     context->queue_ = desc.queue;
+    context->compute_queue_ = desc.queue;  // the application's one queue runs everything in order
     context->queue_family_ = desc.queue_family;
     context->query_device_properties();
     const VkPhysicalDeviceProperties& props = context->properties_;

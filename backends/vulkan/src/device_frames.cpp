@@ -42,6 +42,7 @@ loom::Status VulkanDevice::recycle_current_slot() {
     slot.descriptors->reset();
     slot.uniform_ring_offset = 0;
     slot.timer_labels.clear();
+    slot.used_queue_semaphores = 0;
     vkResetCommandPool(context_->device(), slot.command_pool, 0);
     slot.used_command_buffers = 0;
     staging_->release(submissions_->completed_serial());
@@ -57,6 +58,7 @@ rhi::CommandList& VulkanDevice::begin_frame() {
     }
     if (auto status = recycle_current_slot(); !status.ok()) loom::log_error("vulkan", status.error().to_string());
     external_frame_ = false;
+    reset_queues();
     command_list_->state().begin_frame();
     if (swapchain_) {
         if (auto status = acquire_backbuffer(); !status.ok()) loom::log_error("vulkan", status.error().to_string());
@@ -69,6 +71,8 @@ loom::Status VulkanDevice::end_frame() {
     LOOM_TRY(command_list_->state().check_recording("end_frame"));
     if (external_frame_) return end_external_frame();
     command_list_->finish();
+    // The frame ends on the graphics queue, after the compute queue's part of it.
+    Status joined = join_queues();
     FrameSlot& slot = current_frame();
     VkCommandBuffer cmd = command_list_->command_buffer();
     const bool presenting = swapchain_ && backbuffer_index_ != UINT32_MAX;
@@ -79,10 +83,12 @@ loom::Status VulkanDevice::end_frame() {
             batch.flush(cmd);
         }
     }
-    Status result;
-    if (VkResult r = vkEndCommandBuffer(cmd); r != VK_SUCCESS) result = vk_error(r, "vkEndCommandBuffer");
+    Status result = joined;
+    if (VkResult r = vkEndCommandBuffer(cmd); r != VK_SUCCESS && result.ok()) result = vk_error(r, "vkEndCommandBuffer");
     const VkSemaphore signal = presenting ? swapchain_->render_finished(backbuffer_index_) : VK_NULL_HANDLE;
-    if (result.ok()) result = submit(std::span<const VkCommandBuffer>(&cmd, 1), true, signal);
+    const std::vector<VkSemaphore> waits = std::move(batch_waits_);
+    batch_waits_.clear();
+    if (result.ok()) result = submit(std::span<const VkCommandBuffer>(&cmd, 1), true, std::span<const VkSemaphore>(&signal, 1), waits);
     // Even a frame without timers is "the latest frame" whose (empty) results timer_results()
     // describes once it has finished.
     slot.timers_pending = true;
@@ -105,12 +111,7 @@ loom::Status VulkanDevice::end_frame() {
     return result;
 }
 
-loom::Status VulkanDevice::split_frame() {
-    VkCommandBuffer cmd = command_list_->command_buffer();
-    if (VkResult r = vkEndCommandBuffer(cmd); r != VK_SUCCESS) return vk_error(r, "vkEndCommandBuffer");
-    LOOM_TRY(submit(std::span<const VkCommandBuffer>(&cmd, 1), true, VK_NULL_HANDLE));
-    return begin_frame_commands();
-}
+loom::Status VulkanDevice::split_frame() { return submit_batch({}, batch_queue_); }
 
 loom::Status VulkanDevice::wait_idle() {
     LOOM_TRY(flush_setup());

@@ -104,9 +104,14 @@ VkCommandBuffer VulkanDevice::setup_commands() {
     return setup_cmd_;
 }
 
-loom::Status VulkanDevice::submit(std::span<const VkCommandBuffer> frame_commands, bool frame_part, VkSemaphore signal) {
+loom::Status VulkanDevice::submit(std::span<const VkCommandBuffer> frame_commands, bool frame_part,
+                                  std::span<const VkSemaphore> signals, std::span<const VkSemaphore> waits,
+                                  rhi::QueueType queue) {
+    const bool graphics = queue == rhi::QueueType::Graphics;
     std::vector<VkCommandBufferSubmitInfo> buffers;
-    VkCommandBuffer setup = setup_cmd_;
+    // Uploads go first on the graphics queue, which every later frame batch follows (compute
+    // batches through the semaphores that order them after graphics work).
+    VkCommandBuffer setup = graphics ? setup_cmd_ : VK_NULL_HANDLE;
     if (setup) {
         if (setup_has_buffer_writes_) {
             // Buffer uploads become visible to everything that follows.
@@ -119,26 +124,31 @@ loom::Status VulkanDevice::submit(std::span<const VkCommandBuffer> frame_command
         buffers.push_back({VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, nullptr, setup, 0});
     }
     for (VkCommandBuffer cmd : frame_commands) buffers.push_back({VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, nullptr, cmd, 0});
-    auto wait = vk_init<VkSemaphoreSubmitInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO);
-    auto signal_info = vk_init<VkSemaphoreSubmitInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO);
-    auto info = vk_init<VkSubmitInfo2>(VK_STRUCTURE_TYPE_SUBMIT_INFO_2);
-    if (frame_part && pending_wait_) {
-        wait.semaphore = pending_wait_;
-        wait.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;  // also covers frames split by a readback
-        info.waitSemaphoreInfoCount = 1;
-        info.pWaitSemaphoreInfos = &wait;
+    std::vector<VkSemaphoreSubmitInfo> wait_infos;
+    std::vector<VkSemaphoreSubmitInfo> signal_infos;
+    auto semaphore_info = [](VkSemaphore semaphore) {
+        auto info = vk_init<VkSemaphoreSubmitInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO);
+        info.semaphore = semaphore;
+        info.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;  // also covers frames split by a readback
+        return info;
+    };
+    if (frame_part && graphics && pending_wait_) {
+        wait_infos.push_back(semaphore_info(pending_wait_));
         pending_wait_ = VK_NULL_HANDLE;
     }
-    if (signal) {
-        signal_info.semaphore = signal;
-        signal_info.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-        info.signalSemaphoreInfoCount = 1;
-        info.pSignalSemaphoreInfos = &signal_info;
+    for (VkSemaphore w : waits) wait_infos.push_back(semaphore_info(w));
+    for (VkSemaphore s : signals) {
+        if (s) signal_infos.push_back(semaphore_info(s));
     }
-    if (buffers.empty() && info.waitSemaphoreInfoCount == 0 && !signal) return {};
+    if (buffers.empty() && wait_infos.empty() && signal_infos.empty()) return {};
+    auto info = vk_init<VkSubmitInfo2>(VK_STRUCTURE_TYPE_SUBMIT_INFO_2);
+    info.waitSemaphoreInfoCount = static_cast<uint32_t>(wait_infos.size());
+    info.pWaitSemaphoreInfos = wait_infos.data();
+    info.signalSemaphoreInfoCount = static_cast<uint32_t>(signal_infos.size());
+    info.pSignalSemaphoreInfos = signal_infos.data();
     info.commandBufferInfoCount = static_cast<uint32_t>(buffers.size());
     info.pCommandBufferInfos = buffers.data();
-    auto serial = submissions_->submit(context_->queue(), info);
+    auto serial = submissions_->submit(graphics ? context_->queue() : context_->compute_queue(), info);
     if (!serial.ok()) return serial.take_error();
     if (setup) used_setup_buffers_.push_back({setup, *serial});
     if (frame_part) {
@@ -150,7 +160,7 @@ loom::Status VulkanDevice::submit(std::span<const VkCommandBuffer> frame_command
 
 loom::Status VulkanDevice::flush_setup() {
     if (!setup_cmd_) return {};
-    return submit({}, false, VK_NULL_HANDLE);
+    return submit({}, false, {});
 }
 
 loom::Result<StagingRing::Span> VulkanDevice::staging(VkDeviceSize size) {

@@ -77,6 +77,7 @@ loom::Status VulkanDevice::init_device(const rhi::DeviceDesc& desc) {
     // Indirect draws whose instances start past 0 need drawIndirectFirstInstance.
     caps_.draw_indirect = context_->draw_indirect_first_instance();
     caps_.timestamps = context_->timestamp_valid_bits() > 0 && props.limits.timestampPeriod > 0.0f;
+    caps_.async_compute = context_->compute_queue() != context_->queue();
     caps_.polygon_mode_line = context_->fill_mode_non_solid();
     caps_.depth_clamp = context_->depth_clamp();
     caps_.max_texture_size = props.limits.maxImageDimension2D;
@@ -169,6 +170,8 @@ void VulkanDevice::destroy_everything() {
         frame.descriptors.reset();
         if (frame.timestamps) vkDestroyQueryPool(device, frame.timestamps, nullptr);
         if (frame.image_available) vkDestroySemaphore(device, frame.image_available, nullptr);
+        for (VkSemaphore semaphore : frame.queue_semaphores) vkDestroySemaphore(device, semaphore, nullptr);
+        frame.queue_semaphores.clear();
     }
     if (setup_pool_) vkDestroyCommandPool(device, setup_pool_, nullptr);
     if (frame_timeline_) vkDestroySemaphore(device, frame_timeline_, nullptr);

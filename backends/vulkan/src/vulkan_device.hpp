@@ -41,6 +41,10 @@ struct FrameSlot {
     std::vector<std::string> timer_labels;  ///< timer i uses queries 2i and 2i+1
     bool timers_pending = false;            ///< results not read yet
     VkSemaphore image_available = VK_NULL_HANDLE;
+    /// Binary semaphores between the frame's queue batches (CommandList::signal_queue), reused
+    /// once the frame has finished: every one signalled was waited by then (join_queues).
+    std::vector<VkSemaphore> queue_semaphores;
+    std::size_t used_queue_semaphores = 0;
 };
 
 /// Which command stream a texture state change belongs to (see Texture::frame_start_states).
@@ -150,6 +154,17 @@ public:
     /// Submits the frame's command buffer recorded so far and starts a new one, so that a
     /// readback in the middle of a frame sees the commands recorded before it.
     loom::Status split_frame();
+
+    // ---- queues (device_queues.cpp): the frame's commands as batches, each submitted to the
+    // graphics or the compute queue with the semaphores CommandList::signal_queue/wait_queue ask
+    // for, in recording order. Frames recorded into an application's command buffer run in
+    // order on its queue and need none of it.
+    /// set_queue: submits the batch so far and continues on `queue`.
+    loom::Status switch_queue(rhi::QueueType queue);
+    /// signal_queue: submits the batch so far with a new semaphore (signal number `index`).
+    loom::Status signal_queue(uint32_t index);
+    /// wait_queue: submits the batch so far; the next one waits for signal `index`.
+    loom::Status wait_queue(uint32_t index);
     [[nodiscard]] uint32_t min_uniform_alignment() const { return static_cast<uint32_t>(caps_.uniform_buffer_offset_alignment); }
     [[nodiscard]] uint32_t min_storage_alignment() const { return static_cast<uint32_t>(caps_.storage_buffer_offset_alignment); }
     [[nodiscard]] uint64_t max_uniform_range() const { return context_->properties().limits.maxUniformBufferRange; }
@@ -192,7 +207,12 @@ private:
     loom::Result<rhi::Image> read_subresource(Texture& texture, uint32_t mip, uint32_t layer);
     /// read_texture of a multisampled colour texture: resolves it into a temporary texture first.
     loom::Result<rhi::Image> read_resolved(rhi::TextureHandle texture);
-    loom::Status submit(std::span<const VkCommandBuffer> frame_commands, bool frame_part, VkSemaphore signal);
+    /// Submits the pending uploads and `frame_commands` (when `frame_part`, as the current frame's
+    /// latest submission) to `queue`, waiting for `waits` and signalling `signals`. The uploads
+    /// and the swapchain acquire wait go only with graphics submissions.
+    loom::Status submit(std::span<const VkCommandBuffer> frame_commands, bool frame_part,
+                        std::span<const VkSemaphore> signals, std::span<const VkSemaphore> waits = {},
+                        rhi::QueueType queue = rhi::QueueType::Graphics);
     void recycle_setup_buffers();
 
     // frames (device_frames.cpp)
@@ -205,6 +225,18 @@ private:
     void collect_timers(FrameSlot& slot);
     loom::Status acquire_backbuffer();
     loom::Status recreate_swapchain();
+
+    // queues (device_queues.cpp)
+    /// An unsignalled semaphore of the current frame slot.
+    loom::Result<VkSemaphore> queue_semaphore();
+    /// Ends the current command buffer and submits it to the batch's queue with its waits and
+    /// `signals`; then starts the next command buffer (on `next` queue).
+    loom::Status submit_batch(std::span<const VkSemaphore> signals, rhi::QueueType next);
+    /// Before the frame's last submission: back on the graphics queue, with every semaphore of
+    /// the frame waited and the compute queue's work joined into it.
+    loom::Status join_queues();
+    /// Forgets the frame's batches (a new frame starts on the graphics queue).
+    void reset_queues();
 
     std::unique_ptr<Window> window_;  // destroyed after the context (the surface needs it)
     std::unique_ptr<VulkanContext> context_;
@@ -259,6 +291,17 @@ private:
     uint32_t backbuffer_index_ = UINT32_MAX;
     std::vector<rhi::TextureHandle> backbuffers_;
     VkSemaphore pending_wait_ = VK_NULL_HANDLE;  ///< acquire semaphore the next frame submission waits on
+
+    // the frame's queue batches (device_queues.cpp)
+    rhi::QueueType batch_queue_ = rhi::QueueType::Graphics;  ///< the queue of the command buffer recording
+    std::vector<VkSemaphore> batch_waits_;     ///< what that command buffer's submission waits for
+    struct BatchSignal {
+        VkSemaphore semaphore = VK_NULL_HANDLE;
+        rhi::QueueType queue = rhi::QueueType::Graphics;
+        bool waited = false;
+    };
+    std::vector<BatchSignal> frame_signals_;   ///< per signal_queue of the frame
+    bool compute_used_ = false;                ///< a batch of this frame went to the compute queue
     bool swapchain_dirty_ = false;
 };
 

@@ -159,7 +159,10 @@ public:
     /// Plans `graph` with `options` (effective_options) and records every pass that runs into
     /// `commands`, a frame the caller began (Device::begin_frame) and will end. Errors name the
     /// pass (or the texture, import, or planning step) at fault; after one, the remaining
-    /// passes are not recorded and the command list is left balanced.
+    /// passes are not recorded and the command list is left balanced. A plan with async compute
+    /// passes records each pass on its queue (CommandList::set_queue) with the plan's
+    /// semaphores (Plan::queue_syncs) between them, and leaves `commands` on the graphics
+    /// queue; no timer or debug group of the caller may then be open around the call.
     Status execute(FrameGraph& graph, rhi::CommandList& commands, const PlanOptions& options);
     /// begin_frame, execute, end_frame. An error end_frame reports is returned with the frame.
     Status run_frame(FrameGraph& graph, const PlanOptions& options);

@@ -23,6 +23,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "loom/rhi/descriptions.hpp"
 #include "loom/rhi/format.hpp"
@@ -84,7 +85,8 @@ public:
     // ---- render passes ---------------------------------------------------------------------------
     /// The open render pass, or null.
     [[nodiscard]] const RenderPass* render_pass() const { return pass_ ? &*pass_ : nullptr; }
-    /// begin_render_pass `label`: no render pass is open (render passes do not nest).
+    /// begin_render_pass `label`: no render pass is open (render passes do not nest), and the
+    /// commands go to the graphics queue.
     [[nodiscard]] Status check_begin_render_pass(std::string_view label) const;
     /// Render pass `label`, of `shape` (rhi::validation::render_pass), has begun.
     void render_pass_begun(std::string_view label, validation::RenderPassShape shape);
@@ -147,6 +149,19 @@ public:
     /// Debug groups pushed and not popped in this frame.
     [[nodiscard]] uint32_t debug_group_depth() const { return debug_depth_; }
 
+    // ---- queues --------------------------------------------------------------------------------
+    /// The queue the commands now go to (each frame starts on Graphics).
+    [[nodiscard]] QueueType queue() const { return queue_; }
+    /// set_queue: outside render passes, no timer or debug group open; records the queue.
+    Status set_queue(QueueType queue);
+    /// signal_queue: outside render passes; the new signal of the current queue.
+    Result<QueueSignal> signal_queue();
+    /// wait_queue: outside render passes, a signal of this frame made on the other queue and
+    /// not waited for before; records the wait.
+    Status wait_queue(QueueSignal signal);
+    /// Signals made in this frame.
+    [[nodiscard]] uint32_t signal_count() const { return static_cast<uint32_t>(signal_waited_.size()); }
+
 private:
     /// Forgets everything bound and open (frames begin and end with nothing).
     void reset();
@@ -169,6 +184,9 @@ private:
     IndexBuffer index_buffer_;
     std::optional<std::string> open_timer_;
     uint32_t debug_depth_ = 0;
+    QueueType queue_ = QueueType::Graphics;
+    std::vector<QueueType> signal_queue_;  ///< per signal of the frame, its queue
+    std::vector<bool> signal_waited_;      ///< per signal of the frame, whether a wait used it
 };
 
 }  // namespace loom::rhi

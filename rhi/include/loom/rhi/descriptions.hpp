@@ -462,6 +462,23 @@ constexpr std::string_view resource_state_name(ResourceState state) {
     return "?";
 }
 
+/// The queues a frame's commands go to (CommandList::set_queue).
+enum class QueueType : uint8_t { Graphics, Compute };
+
+/// "graphics" or "compute".
+constexpr std::string_view queue_type_name(QueueType queue) {
+    return queue == QueueType::Graphics ? "graphics" : "compute";
+}
+
+/// A point in one queue's commands of the frame being recorded, which the other queue can wait
+/// for (CommandList::signal_queue, CommandList::wait_queue); valid until the frame ends.
+struct QueueSignal {
+    uint32_t index = UINT32_MAX;       ///< signals of the frame are numbered from 0
+    QueueType queue = QueueType::Graphics;  ///< the queue that signals
+
+    friend bool operator==(const QueueSignal&, const QueueSignal&) = default;
+};
+
 /// A texel position (x, y, and z for 3D textures).
 struct Origin3D {
     uint32_t x = 0, y = 0, z = 0;

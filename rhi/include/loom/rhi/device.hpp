@@ -96,6 +96,10 @@ struct Capabilities {
     uint32_t max_color_attachments = 0;
     uint64_t uniform_buffer_offset_alignment = 256;
     uint64_t storage_buffer_offset_alignment = 256;
+    /// The compute queue (CommandList::set_queue) is a queue of its own that runs beside the
+    /// graphics queue. Where false its commands run on the graphics queue in recording order
+    /// (GL; Vulkan devices with one queue, such as lavapipe), with the same results.
+    bool async_compute = false;
 
     /// The capabilities of one format.
     [[nodiscard]] const FormatCapabilities& format(Format f) const { return formats[static_cast<std::size_t>(f)]; }
@@ -217,6 +221,20 @@ public:
     virtual void push_debug_group(std::string_view label) = 0;
     /// Ends the debug group begun last.
     virtual void pop_debug_group() = 0;
+
+    /// Records the following commands for `queue` (a frame starts on Graphics). On the compute
+    /// queue go dispatches, copies, transitions, timers and debug groups, never render passes.
+    /// Where Capabilities::async_compute the two queues run side by side and only signal_queue
+    /// and wait_queue order them; elsewhere the compute queue's commands run on the graphics
+    /// queue in recording order. Switching queues needs no render pass, timer or debug group open.
+    virtual void set_queue(QueueType queue) = 0;
+    /// Marks the end of the commands recorded so far on the current queue: a wait_queue on the
+    /// other queue holds back its later commands until these have finished.
+    virtual QueueSignal signal_queue() = 0;
+    /// The current queue's commands recorded from now on wait until the commands before
+    /// `signal` (made on the other queue in this frame) have finished. A signal is waited at
+    /// most once. The end of a frame waits for both queues by itself.
+    virtual void wait_queue(QueueSignal signal) = 0;
 
     /// Convenience: push constants from a trivially copyable value.
     template <class T>

@@ -32,8 +32,9 @@ struct ContextOptions {
     std::function<loom::Result<VkSurfaceKHR>(VkInstance)> create_surface;
 };
 
-/// Owns VkInstance, the debug messenger, the surface (if any) and VkDevice with one queue
-/// that does graphics, compute and transfer (and presentation when there is a surface).
+/// Owns VkInstance, the debug messenger, the surface (if any) and VkDevice with a queue that
+/// does graphics, compute and transfer (and presentation when there is a surface), and a second
+/// queue of its family for async compute where the family has two.
 class VulkanContext {
 public:
     /// Creates instance and device. Fails with Unsupported when no Vulkan 1.3 device exists.
@@ -56,6 +57,10 @@ public:
     [[nodiscard]] VkQueue queue() const { return queue_; }
     /// The family of queue().
     [[nodiscard]] uint32_t queue_family() const { return queue_family_; }
+    /// The queue of CommandList::set_queue(QueueType::Compute): a second queue of queue()'s
+    /// family when the family has one (and LOOM_VK_ASYNC_COMPUTE is not "off"), else queue()
+    /// itself (lavapipe, adopted devices).
+    [[nodiscard]] VkQueue compute_queue() const { return compute_queue_; }
     /// The window surface (null headless).
     [[nodiscard]] VkSurfaceKHR surface() const { return surface_; }
     /// Properties and limits of the physical device.
@@ -111,6 +116,7 @@ private:
     VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
+    VkQueue compute_queue_ = VK_NULL_HANDLE;
     uint32_t queue_family_ = 0;
     uint32_t timestamp_valid_bits_ = 0;
     VkPhysicalDeviceProperties properties_{};
