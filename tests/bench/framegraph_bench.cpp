@@ -3,6 +3,7 @@
 // allocator needs on a corpus of random graphs relative to the lower bound (peak live bytes).
 // The Scale* cases grow one dimension to 1k, 10k and 100k: ports on a pass, connected
 // outputs and inputs, resources alive at once under a heap budget, passes written as JSON.
+// BM_EngineFrame plans the three engine frames of samples/plan/graphs with each allocator.
 //
 //   loom_framegraph_bench [--corpus=N] [google benchmark flags]
 //
@@ -117,6 +118,20 @@ void BM_PlanMixed(benchmark::State& state, const char* allocator, uint32_t buffe
     graph_options.buffer_percent = buffer_percent;
     graph_options.subresource_percent = subresource_percent;
     plan_repeatedly(state, testing::random_graph(7, graph_options), options_for(allocator), passes);
+}
+
+// The engine frames among the sample graphs (samples/plan/graphs: GTA V, DOOM 2016, Unreal's
+// deferred renderer), read once and planned at their 1920x1080 (docs/BENCHMARKS.md, "Engine
+// frames").
+void BM_EngineFrame(benchmark::State& state, const char* file, const char* allocator) {
+    auto loaded = load_graph_file(std::string(LOOM_SAMPLE_GRAPHS) + "/" + file);
+    if (!loaded) {
+        state.SkipWithError(loaded.error().message.c_str());
+        return;
+    }
+    PlanOptions options = options_for(allocator);
+    options.frame = loaded->frame;
+    plan_repeatedly(state, loaded->graph, options, static_cast<uint32_t>(loaded->graph.pass_count()));
 }
 
 // Building only, for reference.
@@ -341,6 +356,14 @@ BENCHMARK_CAPTURE(BM_PlanMixed, interval, "interval", 25, 20)->RangeMultiplier(1
 BENCHMARK_CAPTURE(BM_PlanMixed, heap, "heap", 25, 20)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK_CAPTURE(BM_PlanMixed, heap_buffers_only, "heap", 25, 0)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_PlanMixed, heap_subresources_only, "heap", 0, 20)->Arg(10000)->Unit(benchmark::kMillisecond);
+// The paper's allocator refuses plans with async compute passes (DOOM's and Unreal's frames).
+BENCHMARK_CAPTURE(BM_EngineFrame, gta5_paper, "gta5_frame.json", "paper")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrame, gta5_interval, "gta5_frame.json", "interval")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrame, gta5_heap, "gta5_frame.json", "heap")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrame, doom2016_interval, "doom2016_frame.json", "interval")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrame, doom2016_heap, "doom2016_frame.json", "heap")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrame, unreal_interval, "unreal_deferred_frame.json", "interval")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrame, unreal_heap, "unreal_deferred_frame.json", "heap")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Build)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK(BM_Replan)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BytesOverLowerBoundCorpus)->Iterations(1)->Unit(benchmark::kMillisecond);
