@@ -108,10 +108,19 @@ loom::Status VulkanDevice::submit(std::span<const VkCommandBuffer> frame_command
                                   std::span<const VkSemaphore> signals, std::span<const VkSemaphore> waits,
                                   rhi::QueueType queue) {
     const bool graphics = queue == rhi::QueueType::Graphics;
+    // Uploads go first, with the next submission to the graphics queue. Where the compute queue
+    // is a queue of its own, a compute submission while uploads are pending first sends them to
+    // the graphics queue and waits for them there; where it is the graphics queue, they simply
+    // go first in this submission.
+    std::vector<VkSemaphore> all_waits(waits.begin(), waits.end());
+    if (!graphics && setup_cmd_ && caps_.async_compute) {
+        auto uploaded = queue_semaphore();
+        if (!uploaded.ok()) return uploaded.take_error();
+        LOOM_TRY(submit({}, false, std::span<const VkSemaphore>(&*uploaded, 1), {}, rhi::QueueType::Graphics));
+        all_waits.push_back(*uploaded);
+    }
     std::vector<VkCommandBufferSubmitInfo> buffers;
-    // Uploads go first on the graphics queue, which every later frame batch follows (compute
-    // batches through the semaphores that order them after graphics work).
-    VkCommandBuffer setup = graphics ? setup_cmd_ : VK_NULL_HANDLE;
+    VkCommandBuffer setup = graphics || !caps_.async_compute ? setup_cmd_ : VK_NULL_HANDLE;
     if (setup) {
         if (setup_has_buffer_writes_) {
             // Buffer uploads become visible to everything that follows.
@@ -136,7 +145,7 @@ loom::Status VulkanDevice::submit(std::span<const VkCommandBuffer> frame_command
         wait_infos.push_back(semaphore_info(pending_wait_));
         pending_wait_ = VK_NULL_HANDLE;
     }
-    for (VkSemaphore w : waits) wait_infos.push_back(semaphore_info(w));
+    for (VkSemaphore w : all_waits) wait_infos.push_back(semaphore_info(w));
     for (VkSemaphore s : signals) {
         if (s) signal_infos.push_back(semaphore_info(s));
     }

@@ -208,8 +208,9 @@ private:
     /// read_texture of a multisampled colour texture: resolves it into a temporary texture first.
     loom::Result<rhi::Image> read_resolved(rhi::TextureHandle texture);
     /// Submits the pending uploads and `frame_commands` (when `frame_part`, as the current frame's
-    /// latest submission) to `queue`, waiting for `waits` and signalling `signals`. The uploads
-    /// and the swapchain acquire wait go only with graphics submissions.
+    /// latest submission) to `queue`, waiting for `waits` and signalling `signals`. Uploads go
+    /// before it (on a compute queue of its own, to the graphics queue first, waited for); the
+    /// swapchain acquire wait goes only with a graphics submission.
     loom::Status submit(std::span<const VkCommandBuffer> frame_commands, bool frame_part,
                         std::span<const VkSemaphore> signals, std::span<const VkSemaphore> waits = {},
                         rhi::QueueType queue = rhi::QueueType::Graphics);
