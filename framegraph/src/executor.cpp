@@ -446,16 +446,20 @@ Status Executor::Impl::run_passes(FrameGraph& graph, rhi::CommandList& commands,
     const auto pass_count = static_cast<uint32_t>(plan->order.size());
     const std::vector<QueueSync>& syncs = plan->queue_syncs;
     std::vector<rhi::QueueSignal> signals(syncs.size());
+    // Per position + 1 (0: the frame's start), the syncs signalled there; per position (the
+    // order's length: the frame's end), the syncs waited there.
+    std::vector<std::vector<uint32_t>> signalled(syncs.empty() ? 0 : pass_count + 1);
+    std::vector<std::vector<uint32_t>> waited(syncs.empty() ? 0 : pass_count + 1);
+    for (uint32_t i = 0; i < syncs.size(); ++i) {
+        signalled[syncs[i].signal_after == kFrameStart ? 0 : syncs[i].signal_after + 1].push_back(i);
+        waited[syncs[i].wait_before].push_back(i);
+    }
     auto to_rhi = [](Queue queue) { return queue == Queue::Graphics ? rhi::QueueType::Graphics : rhi::QueueType::Compute; };
     auto signal_after = [&](uint32_t position) {
-        for (std::size_t i = 0; i < syncs.size(); ++i) {
-            if (syncs[i].signal_after == position) signals[i] = commands.signal_queue();
-        }
+        for (uint32_t i : signalled[position == kFrameStart ? 0 : position + 1]) signals[i] = commands.signal_queue();
     };
     auto wait_before = [&](uint32_t position) {
-        for (std::size_t i = 0; i < syncs.size(); ++i) {
-            if (syncs[i].wait_before == position) commands.wait_queue(signals[i]);
-        }
+        for (uint32_t i : waited[position]) commands.wait_queue(signals[i]);
     };
     if (!syncs.empty()) {
         commands.set_queue(rhi::QueueType::Graphics);

@@ -277,6 +277,73 @@ TEST_P(ResourceExecution, AsyncComputePassesDrawWhatGraphicsQueuePassesDraw) {
     EXPECT_EQ(images[0].pixels, images[1].pixels);
 }
 
+// dst = 1 - src (colour), alpha 1: a compute pass reading a sampled texture and writing a storage image.
+const char* const kInvertComp = R"(#version 450
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0) uniform sampler2D src;
+layout(set = 0, binding = 1, rgba32f) uniform writeonly image2D dst;
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (p.x >= imageSize(dst).x || p.y >= imageSize(dst).y) return;
+    imageStore(dst, p, vec4(1.0 - texelFetch(src, p, 0).rgb, 1.0));
+}
+)";
+
+// Textures across the queues: a render pass paints, an async compute pass inverts it into a
+// storage image while the graphics queue paints another texture, and a render pass combines
+// the two. The same pixels as on one queue, on both backends.
+TEST_P(ResourceExecution, AsyncComputeTexturesAreTransitionedAcrossTheQueues) {
+    TestPrograms programs(device());
+    LOOM_ASSIGN_OR_FAIL(auto fill, programs.fill(Format::RGBA32Float));
+    LOOM_ASSIGN_OR_FAIL(auto combine, programs.combine(Format::RGBA32Float));
+    LOOM_ASSIGN_OR_FAIL(auto sampler, programs.sampler());
+    LOOM_ASSIGN_OR_FAIL(auto invert, programs.compute("invert.comp", kInvertComp));
+    const fg::TextureSpec spec = fg::TextureSpec::of(Format::RGBA32Float).with_size(16, 16);
+    std::vector<rhi::Image> images;
+    for (const fg::Queue queue : {fg::Queue::Graphics, fg::Queue::AsyncCompute}) {
+        SCOPED_TRACE(fg::queue_name(queue));
+        fg::FrameGraph graph;
+        ASSERT_TRUE(graph.add_pass(fill_pass("paint", "color", spec, fill, {{0.25f, 0.5f, 0.75f, 1}, {1, 0, 0, 1}, 8.0f})).ok());
+        auto invert_pass = fg::Pass("invert").set_kind(fg::PassKind::Compute).set_queue(queue).input("color").output("inverted", spec);
+        invert_pass.on_execute([invert, sampler](fg::PassContext& ctx) {
+            ctx.commands().set_pipeline(invert);
+            ctx.commands().set_bind_group(0, rhi::BindGroup{}
+                                                 .texture(0, ctx.texture("color"), sampler)
+                                                 .storage_texture(1, ctx.texture("inverted")));
+            ctx.commands().dispatch(2, 2);
+            return Status{};
+        });
+        ASSERT_TRUE(graph.add_pass(std::move(invert_pass)).ok());
+        ASSERT_TRUE(graph.add_pass(fill_pass("other", "color", spec, fill, {{0, 0, 0.5f, 0}, {0, 0, 0.5f, 0}, 8.0f})).ok());
+        ASSERT_TRUE(graph.add_pass(combine_pass("final", "a", "b", "out", spec, combine, sampler,
+                                                {{1, 1, 1, 1}, {1, 1, 1, 1}}))
+                        .ok());
+        ASSERT_TRUE(graph.connect(fg::port("paint", "color"), fg::port("invert", "color")).ok());
+        ASSERT_TRUE(graph.connect(fg::port("invert", "inverted"), fg::port("final", "a")).ok());
+        ASSERT_TRUE(graph.connect(fg::port("other", "color"), fg::port("final", "b")).ok());
+        ASSERT_TRUE(graph.mark_output(fg::port("final", "out")).ok());
+        fg::Executor executor(device());
+        fg::PlanOptions options;
+        options.frame = {16, 16};
+        options.allocator = "heap";
+        for (int frame = 0; frame < 3; ++frame) LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        const fg::Plan& plan = *executor.plan();
+        if (queue == fg::Queue::AsyncCompute) {
+            // invert (1) waits for paint (0); final (3) waits for invert; the inverted image
+            // moves to the graphics queue, and the painted colour is held while invert may run.
+            EXPECT_EQ(plan.queue_syncs, (std::vector<fg::QueueSync>{{fg::Queue::Graphics, fg::Queue::AsyncCompute, 0, 1},
+                                                                    {fg::Queue::AsyncCompute, fg::Queue::Graphics, 1, 3}}));
+            EXPECT_EQ(plan.resource_of("paint", "color")->occupancy, (fg::Lifetime{0, 2}));
+        }
+        LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(executor.texture("final", "out")));
+        EXPECT_EQ(image.load(3, 5), (std::array<double, 4>{0.75, 0.5, 0.25 + 0.5, 1}));
+        EXPECT_EQ(image.load(12, 5), (std::array<double, 4>{0, 1, 1 + 0.5, 1}));
+        images.push_back(std::move(image));
+    }
+    ASSERT_EQ(images.size(), 2u);
+    EXPECT_EQ(images[0].pixels, images[1].pixels);
+}
+
 // Queues belong to the executor: a pass that switches them fails the frame, named.
 TEST_P(ResourceExecution, PassesCannotSwitchQueues) {
     fg::FrameGraph graph;
