@@ -120,6 +120,18 @@ void BM_PlanMixed(benchmark::State& state, const char* allocator, uint32_t buffe
     plan_repeatedly(state, testing::random_graph(7, graph_options), options_for(allocator), passes);
 }
 
+// The cost of async compute in planning: the same graphs (a third of the passes compute
+// passes) with those passes on the async compute queue or on the graphics queue; the queues
+// phase (syncs, transfers, occupancies) runs only in the first. Compare the two per_pass times
+// in the same run.
+void BM_PlanAsync(benchmark::State& state, const char* allocator, bool async_queue) {
+    const auto passes = static_cast<uint32_t>(state.range(0));
+    testing::RandomGraphOptions graph_options = big_graph_options(passes);
+    graph_options.async_percent = 33;
+    graph_options.async_queue = async_queue;
+    plan_repeatedly(state, testing::random_graph(7, graph_options), options_for(allocator), passes);
+}
+
 // The engine frames among the sample graphs (samples/plan/graphs: GTA V, DOOM 2016, Unreal's
 // deferred renderer), read once and planned at their 1920x1080 (docs/BENCHMARKS.md, "Engine
 // frames").
@@ -354,6 +366,10 @@ BENCHMARK_CAPTURE(BM_Plan, interval, "interval")->RangeMultiplier(10)->Range(100
 BENCHMARK_CAPTURE(BM_Plan, heap, "heap")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK_CAPTURE(BM_PlanMixed, interval, "interval", 25, 20)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK_CAPTURE(BM_PlanMixed, heap, "heap", 25, 20)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_PlanAsync, interval_one_queue, "interval", false)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanAsync, interval_async, "interval", true)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanAsync, heap_one_queue, "heap", false)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanAsync, heap_async, "heap", true)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_PlanMixed, heap_buffers_only, "heap", 25, 0)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_PlanMixed, heap_subresources_only, "heap", 0, 20)->Arg(10000)->Unit(benchmark::kMillisecond);
 // The paper's allocator refuses plans with async compute passes (DOOM's and Unreal's frames).

@@ -181,7 +181,7 @@ FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options) {
         if (rng.percent(options.side_effect_percent)) pass.set_side_effect();
         // Drawn only when asked for, so that graphs without async passes stay what they were.
         if (options.async_percent != 0 && rng.percent(options.async_percent)) {
-            pass.set_kind(PassKind::Compute).set_queue(Queue::AsyncCompute);
+            pass.set_kind(PassKind::Compute).set_queue(options.async_queue ? Queue::AsyncCompute : Queue::Graphics);
         }
         if (i + 1 == options.passes || rng.percent(options.graph_output_percent)) outputs.push_back(pass.name() + ".o0");
         passes.push_back(std::move(pass));

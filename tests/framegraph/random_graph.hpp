@@ -27,6 +27,9 @@ struct RandomGraphOptions {
     /// Chance that a pass is a compute pass on the async compute queue (0: every pass is a
     /// graphics pass, as the benchmarks use).
     uint32_t async_percent = 0;
+    /// With async_percent: false keeps those passes compute passes on the graphics queue, so
+    /// that the same graph can be planned with and without async compute.
+    bool async_queue = true;
 };
 
 /// A random DAG: passes named p0, p1, ... in generation (topological) order, each with inputs
