@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "loom/rhi/checked_math.hpp"
+#include "text.hpp"
 
 namespace loom::fg {
 namespace {
@@ -165,7 +166,7 @@ std::string describe_buffer_size(const BufferSize& size) {
 std::string describe_buffer_usage(BufferUsage usage) {
     std::string out;
     for (const auto& [flag, name] : kUsageNames) {
-        if (rhi::has_all(usage, flag)) out += (out.empty() ? "" : "|") + std::string(name);
+        if (rhi::has_all(usage, flag)) detail::append(out, out.empty() ? "" : "|", name);
     }
     return out.empty() ? "none" : out;
 }

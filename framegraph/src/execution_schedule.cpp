@@ -1,6 +1,7 @@
 #include "loom/framegraph/execution_schedule.hpp"
 
 #include <algorithm>
+#include "text.hpp"
 
 namespace loom::fg {
 namespace {
@@ -50,9 +51,10 @@ std::vector<std::vector<uint32_t>> resource_uses(const Plan& plan) {
 std::string describe_slot(const TextureSlot& slot) {
     switch (slot.kind) {
         case TextureSlot::Kind::None: return "none";
-        case TextureSlot::Kind::Plan: return "t" + std::to_string(slot.index);
-        case TextureSlot::Kind::Import: return "import " + std::to_string(slot.index);
-        case TextureSlot::Kind::History: return "history " + std::to_string(slot.index);
+        // detail::concat, not "literal" + std::to_string: GCC 12 at -O3 warns falsely on that (text.hpp).
+        case TextureSlot::Kind::Plan: return detail::concat("t", slot.index);
+        case TextureSlot::Kind::Import: return detail::concat("import ", slot.index);
+        case TextureSlot::Kind::History: return detail::concat("history ", slot.index);
     }
     return "none";
 }
@@ -60,8 +62,8 @@ std::string describe_slot(const TextureSlot& slot) {
 std::string describe_slot(const BufferSlot& slot) {
     switch (slot.kind) {
         case BufferSlot::Kind::None: return "none";
-        case BufferSlot::Kind::Plan: return "b" + std::to_string(slot.index);
-        case BufferSlot::Kind::Import: return "buffer import " + std::to_string(slot.index);
+        case BufferSlot::Kind::Plan: return detail::concat("b", slot.index);
+        case BufferSlot::Kind::Import: return detail::concat("buffer import ", slot.index);
     }
     return "none";
 }

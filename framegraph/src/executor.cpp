@@ -6,11 +6,12 @@
 
 #include "frame_state.hpp"
 #include "loom/rhi/checked_math.hpp"
+#include "text.hpp"
 
 namespace loom::fg {
 namespace {
 
-std::string in_quotes(std::string_view name) { return "'" + std::string(name) + "'"; }
+std::string in_quotes(std::string_view name) { return detail::concat("'", name, "'"); }
 
 // "t3 [gbuffer.albedo, blur.out]", "b0 [cull.lights]": a plan object's name and the resources
 // it holds.

@@ -4,6 +4,7 @@
 
 #include "loom/framegraph/join.hpp"
 #include "quoted_name.hpp"
+#include "text.hpp"
 
 namespace loom::fg {
 
@@ -75,7 +76,7 @@ std::string printable_name(std::string_view name) {
 
 }  // namespace detail
 
-std::string quoted_name(std::string_view name) { return "'" + detail::printable_name(name) + "'"; }
+std::string quoted_name(std::string_view name) { return detail::concat("'", detail::printable_name(name), "'"); }
 
 namespace {
 

@@ -8,6 +8,7 @@
 
 #include "loom/framegraph/join.hpp"
 #include "plan_phases.hpp"
+#include "text.hpp"
 
 namespace loom::fg::detail {
 namespace {
@@ -122,13 +123,13 @@ Result<TextureAssignment> number_by_first_use(const Allocation& allocation, cons
         if (resources[first_user[object]].type == ResourceType::Buffer) {
             renumbered[object] = static_cast<uint32_t>(out.buffers.size());
             PlanBuffer buffer;
-            buffer.name = "b" + std::to_string(out.buffers.size());
+            buffer.name = concat("b", out.buffers.size());
             buffer.placement = placement;
             out.buffers.push_back(std::move(buffer));
         } else {
             renumbered[object] = static_cast<uint32_t>(out.textures.size());
             PlanTexture texture;
-            texture.name = "t" + std::to_string(out.textures.size());
+            texture.name = concat("t", out.textures.size());
             texture.placement = placement;
             out.textures.push_back(std::move(texture));
         }
