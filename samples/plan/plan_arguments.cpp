@@ -29,6 +29,7 @@ std::optional<fg::Extent2D> parse_frame(std::string_view text) {
 
 Result<Arguments> parse_arguments(std::span<const std::string> argv) {
     Arguments args;
+    bool allocator_given = false;
     for (std::size_t i = 0; i < argv.size(); ++i) {
         const std::string_view arg = argv[i];
         auto value = [&]() -> std::optional<std::string_view> {
@@ -37,12 +38,15 @@ Result<Arguments> parse_arguments(std::span<const std::string> argv) {
         };
         if (arg == "--json") {
             args.json = true;
+        } else if (arg == "--compare") {
+            args.compare = true;
         } else if (arg == "--allocator" || arg == "--sharing" || arg == "--frame" || arg == "--max-heap" ||
                    arg == "--dot") {
             auto v = value();
             if (!v) return bad(std::string(arg) + " needs a value");
             if (arg == "--allocator") {
                 args.options.allocator = std::string(*v);
+                allocator_given = true;
             } else if (arg == "--sharing") {
                 if (*v == "equal") {
                     args.options.sharing = fg::SpecSharing::Equal;
@@ -75,6 +79,8 @@ Result<Arguments> parse_arguments(std::span<const std::string> argv) {
         }
     }
     if (args.graph.empty() && !args.help) return bad("no graph file given; " + std::string(kUsage));
+    if (args.compare && allocator_given) return bad("--compare plans with every allocator; leave out --allocator");
+    if (args.compare && !args.dot.empty()) return bad("--compare prints figures, not one plan: leave out --dot");
     return args;
 }
 

@@ -14,8 +14,8 @@ namespace loom::plan {
 
 /// The one-line usage text (--help prints it; a missing graph file quotes it).
 inline constexpr std::string_view kUsage =
-    "usage: loom-plan GRAPH.json [--allocator paper|interval|heap] [--sharing equal|joinable] [--frame WxH] "
-    "[--max-heap BYTES] [--json] [--dot FILE]";
+    "usage: loom-plan GRAPH.json [--allocator paper|interval|heap | --compare] [--sharing equal|joinable] "
+    "[--frame WxH] [--max-heap BYTES] [--json] [--dot FILE]";
 
 /// What the command line asks for.
 struct Arguments {
@@ -25,6 +25,8 @@ struct Arguments {
     std::optional<fg::Extent2D> frame;
     bool json = false;
     bool help = false;
+    /// --compare: the memory figures of every allocator side by side instead of one plan.
+    bool compare = false;
     /// --dot's file; empty: no DOT output.
     std::string dot;
 };

@@ -36,6 +36,15 @@ TEST(PlanArguments, EveryOption) {
     EXPECT_TRUE(parse({"--help"}).ok());
 }
 
+TEST(PlanArguments, CompareTakesEveryAllocator) {
+    auto args = parse({"g.json", "--compare", "--frame", "1280x720"});
+    ASSERT_TRUE(args.ok()) << args.error().message;
+    EXPECT_TRUE(args->compare);
+    EXPECT_EQ(error_of({"g.json", "--compare", "--allocator", "heap"}),
+              "--compare plans with every allocator; leave out --allocator");
+    EXPECT_EQ(error_of({"g.json", "--compare", "--dot", "p.dot"}), "--compare prints figures, not one plan: leave out --dot");
+}
+
 TEST(PlanArguments, ErrorsNameTheArgument) {
     EXPECT_EQ(error_of({"g.json", "--frame"}), "--frame needs a value");
     EXPECT_EQ(error_of({"g.json", "--frame", "0x4294967297"}),

@@ -202,6 +202,31 @@ TEST(PlanTool, AsyncSsaoPrintsSyncsTransfersAndHeldLifetimes) {
     EXPECT_NE(paper.err.find("allocator 'paper'"), std::string::npos) << paper.err;
 }
 
+TEST(PlanTool, CompareShowsEveryAllocatorBesideTheNaiveFiguresAndTheBound) {
+    // The engine frames' figures, pinned one by one in engine_frames_test.cpp, side by side.
+    const ToolRun gta = run_tool(graph("gta5_frame.json") + " --compare");
+    ASSERT_EQ(gta.status, 0) << gta.err;
+    EXPECT_EQ(gta.out,
+              "memory at 1920x1080, sharing equal\n"
+              "               textures  buffers  bytes                 bytes / lower bound\n"
+              "  naive        28        2        198115584  188.9 MiB  2.290\n"
+              "  paper        20        2        118489344  113.0 MiB  1.370\n"
+              "  interval     20        2        118489344  113.0 MiB  1.370\n"
+              "  heap         28        2        86507520   82.5 MiB   1.000\n"
+              "  lower bound  20        2        86507520   82.5 MiB   1.000\n");
+    // paper refuses a frame with async compute passes, on its own row.
+    const ToolRun doom = run_tool(graph("doom2016_frame.json") + " --compare --json");
+    ASSERT_EQ(doom.status, 0) << doom.err;
+    const auto json = nlohmann::json::parse(doom.out);
+    EXPECT_EQ(json.at("allocators").at("paper"), nullptr);
+    EXPECT_EQ(json.at("allocators").at("heap").at("bytes"), json.at("lower_bound_bytes"));
+    EXPECT_EQ(json.at("lower_bound_bytes"), 349462784);
+    EXPECT_EQ(json.at("allocators").at("interval").at("bytes"), 379412992);
+    const ToolRun table = run_tool(graph("doom2016_frame.json") + " --compare");
+    EXPECT_NE(table.out.find("  paper        refuses: allocator 'paper' colours ports pass by pass"), std::string::npos)
+        << table.out;
+}
+
 TEST(PlanTool, WritesDot) {
     const std::filesystem::path dot = loom::test::output_dir() / "loom_plan" / "figure2.dot";
     std::filesystem::remove(dot);
