@@ -30,8 +30,15 @@ void LogRouter::receive(LogLevel level, std::string_view source, std::string_vie
         return;
     }
     if (!problem) return;
-    messages_->push_back("[" + std::string(log_level_name(level)) + "] " + std::string(source) + ": " +
-                         std::string(message));
+    // Appended piece by piece: GCC 12 at -O3 warns falsely about "literal" + std::string
+    // (-Wrestrict, GCC bug 105651), and warnings are errors.
+    std::string line = "[";
+    line += log_level_name(level);
+    line += "] ";
+    line += source;
+    line += ": ";
+    line += message;
+    messages_->push_back(std::move(line));
 }
 
 }  // namespace loom::compare

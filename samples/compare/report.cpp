@@ -100,8 +100,16 @@ std::string plan_line(const CaseResult& c) {
                        fg::format_bytes(plan_texture_bytes(*first->plan)) + "; created:";
     for (const BackendRun& run : c.runs) {
         if (!run.plan) continue;
-        line += " " + std::string(rhi::backend_name(run.backend)) + " " + std::to_string(run.stats.textures) + " (" +
-                fg::format_bytes(run.stats.texture_bytes) + "), plan " + plan_hash_text(*run.plan).substr(0, 8) + ";";
+        // Appended piece by piece (GCC 12 -O3 -Wrestrict false positive, bug 105651).
+        line += ' ';
+        line += rhi::backend_name(run.backend);
+        line += ' ';
+        line += std::to_string(run.stats.textures);
+        line += " (";
+        line += fg::format_bytes(run.stats.texture_bytes);
+        line += "), plan ";
+        line += plan_hash_text(*run.plan).substr(0, 8);
+        line += ';';
     }
     line.pop_back();
     return line;

@@ -233,7 +233,11 @@ void BM_BytesOverLowerBoundCorpus(benchmark::State& state) {
 
 TextureSpec scale_texture() { return TextureSpec::of(loom::rhi::Format::RGBA8Unorm).with_size(16, 16); }
 
-std::string numbered(const char* prefix, int64_t i) { return prefix + std::to_string(i); }
+std::string numbered(const char* prefix, int64_t i) {
+    std::string out = prefix;  // appended: GCC 12 -O3 -Wrestrict false positive (bug 105651)
+    out += std::to_string(i);
+    return out;
+}
 
 void plan_or_skip(benchmark::State& state, const FrameGraph& graph, const PlanOptions& options) {
     auto plan = build_plan(graph, options);

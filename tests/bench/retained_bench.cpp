@@ -251,9 +251,15 @@ std::string fixed(double value, int digits = 2) {
 }
 
 std::string count(uint64_t value) {
-    std::string digits = std::to_string(value);
-    for (int i = static_cast<int>(digits.size()) - 3; i > 0; i -= 3) digits.insert(static_cast<std::size_t>(i), ",");
-    return digits;
+    // Built forwards rather than by inserting commas (GCC 12 -O3 warns falsely about
+    // std::string::insert: -Wrestrict, bug 105651).
+    const std::string digits = std::to_string(value);
+    std::string out;
+    for (std::size_t i = 0; i < digits.size(); ++i) {
+        if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+        out += digits[i];
+    }
+    return out;
 }
 
 void print(const BackendResult& r, const Options& options, const test::ObjectScene& scene) {

@@ -82,8 +82,8 @@ Result<rhi::ShaderHandle> TestPrograms::vertex_shader() {
 Result<rhi::PipelineHandle> TestPrograms::make(const std::string& name, const std::string& fragment,
                                                std::vector<rhi::Format> colors, rhi::Format depth, bool depth_write) {
     std::string key = name;
-    for (rhi::Format f : colors) key += "/" + std::string(rhi::format_name(f));
-    key += "/" + std::string(rhi::format_name(depth));
+    for (rhi::Format f : colors) (key += '/') += rhi::format_name(f);
+    (key += '/') += rhi::format_name(depth);
     for (auto& [k, pipeline] : pipelines_) {
         if (k == key) return pipeline;
     }

@@ -109,8 +109,9 @@ TEST_F(CommandListStateTest, RenderPassesDoNotNest) {
     state.begin_frame();
     expect_error(state.end_render_pass(), ErrorCode::InvalidState, "end_render_pass: no render pass is open");
     open_pass("outer");
-    ASSERT_NE(state.render_pass(), nullptr);
-    EXPECT_EQ(state.render_pass()->label, "outer");
+    const CommandListState::RenderPass* open = state.render_pass();
+    ASSERT_NE(open, nullptr);
+    EXPECT_EQ(open->label, "outer");
     expect_error(state.check_begin_render_pass("inner"), ErrorCode::InvalidState,
                  "begin_render_pass 'inner': render pass 'outer' is still open; render passes do not nest");
     EXPECT_TRUE(state.end_render_pass().ok());

@@ -28,7 +28,7 @@ Capabilities capable_device() {
 
 TextureDesc texture(Format format, TextureUsage usage) {
     TextureDesc desc;
-    desc.name = "t";
+    desc.name = std::string(1, 't');  // not = "t": GCC 12 -O3 -Wrestrict false positive (bug 105651)
     desc.format = format;
     desc.width = desc.height = 16;
     desc.usage = usage;

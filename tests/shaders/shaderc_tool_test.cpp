@@ -40,7 +40,13 @@ RunResult run(const std::string& arguments) {
     return result;
 }
 
-std::string quoted(const fs::path& path) { return "\"" + path.string() + "\""; }
+std::string quoted(const fs::path& path) {
+    // Appended (GCC 12 -O3 warns falsely about "literal" + std::string: -Wrestrict, bug 105651).
+    std::string out = "\"";
+    out += path.string();
+    out += '"';
+    return out;
+}
 
 fs::path scratch_dir() {
     const fs::path dir = output_dir() / "shaderc_tool_test";
