@@ -106,7 +106,6 @@ QueuePlan plan_queues(const std::vector<PlanPass>& order, const std::vector<Plan
 
     const auto pass_count = static_cast<uint32_t>(order.size());
     const std::vector<std::vector<Use>> uses = uses_by_resource(order, resources.size());
-    out.queue_shared.assign(resources.size(), false);
     for (uint32_t r = 0; r < resources.size(); ++r) {
         if (uses[r].empty()) continue;
         if (read_on_both_queues(order, uses[r], resources[r].graph_output)) {

@@ -35,6 +35,13 @@ loom::Status VulkanDevice::submit_batch(std::span<const VkSemaphore> signals, Qu
     return begin_frame_commands();
 }
 
+loom::Result<VkSemaphore> VulkanDevice::submit_batch_signalling(QueueType next) {
+    auto semaphore = queue_semaphore();
+    if (!semaphore.ok()) return semaphore.take_error();
+    LOOM_TRY(submit_batch(std::span<const VkSemaphore>(&*semaphore, 1), next));
+    return *semaphore;
+}
+
 loom::Status VulkanDevice::switch_queue(QueueType queue) {
     if (external_frame_ || queue == batch_queue_) return {};
     // On a queue of its own, the frame's first compute batch waits for the graphics work recorded
@@ -44,9 +51,8 @@ loom::Status VulkanDevice::switch_queue(QueueType queue) {
     const bool after_graphics = caps_.async_compute && queue == QueueType::Compute && (!compute_used_ || setup_cmd_);
     if (queue == QueueType::Compute) compute_used_ = true;
     if (!after_graphics) return submit_batch({}, queue);
-    auto semaphore = queue_semaphore();
+    auto semaphore = submit_batch_signalling(queue);
     if (!semaphore.ok()) return semaphore.take_error();
-    LOOM_TRY(submit_batch(std::span<const VkSemaphore>(&*semaphore, 1), queue));
     batch_waits_.push_back(*semaphore);
     return {};
 }
@@ -57,10 +63,11 @@ loom::Status VulkanDevice::signal_queue(uint32_t index) {
         return Error{ErrorCode::Backend, "signal_queue: signal " + std::to_string(index) + " is not the frame's next (" +
                                              std::to_string(frame_signals_.size()) + ")"};
     }
-    auto semaphore = queue_semaphore();
+    const QueueType queue = batch_queue_;
+    auto semaphore = submit_batch_signalling(queue);
     if (!semaphore.ok()) return semaphore.take_error();
-    frame_signals_.push_back(BatchSignal{*semaphore, batch_queue_, false});
-    return submit_batch(std::span<const VkSemaphore>(&*semaphore, 1), batch_queue_);
+    frame_signals_.push_back(BatchSignal{*semaphore, queue, false});
+    return {};
 }
 
 loom::Status VulkanDevice::wait_queue(uint32_t index) {

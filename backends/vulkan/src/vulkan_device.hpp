@@ -233,6 +233,8 @@ private:
     /// Ends the current command buffer and submits it to the batch's queue with its waits and
     /// `signals`; then starts the next command buffer (on `next` queue).
     loom::Status submit_batch(std::span<const VkSemaphore> signals, rhi::QueueType next);
+    /// submit_batch signalling a new semaphore of the slot, which it returns.
+    loom::Result<VkSemaphore> submit_batch_signalling(rhi::QueueType next);
     /// Before the frame's last submission: back on the graphics queue, with every semaphore of
     /// the frame waited and the compute queue's work joined into it.
     loom::Status join_queues();
