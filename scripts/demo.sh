@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The README's main job: renders the flagship sample (samples/deferred, the paper's Figure 2
-# pipeline) headless on every compiled-in backend and writes its pictures under OUT:
-# OUT/deferred-<backend>/final.png, every intermediate texture, plan.json, plan.dot and, with
-# Graphviz installed, plan.svg. Usage: scripts/demo.sh BUILD_DIR OUT_DIR
+# pipeline) and the engine frame (samples/engine: prepass, hierarchical Z, light list, shadow
+# cascades, async SSAO, bloom) headless on every compiled-in backend and writes their pictures
+# under OUT: OUT/deferred-<backend>/ and OUT/engine-<backend>/ each hold final.png, every
+# intermediate texture, plan.json, plan.dot, summary.txt and, with Graphviz installed,
+# plan.svg. Usage: scripts/demo.sh BUILD_DIR OUT_DIR
 set -euo pipefail
 build=${1:?build directory}
 out=${2:?output directory}
@@ -17,15 +19,20 @@ if [[ ${#backends[@]} -eq 0 ]]; then
 fi
 
 sample="$build/samples/deferred/loom-deferred"
-if [[ ! -x "$sample" ]]; then
-  echo "demo: $sample was not built (LOOM_BUILD_SAMPLES=OFF?)" >&2
-  exit 1
-fi
+engine="$build/samples/engine/loom-engine"
+for program in "$sample" "$engine"; do
+  if [[ ! -x "$program" ]]; then
+    echo "demo: $program was not built (LOOM_BUILD_SAMPLES=OFF?)" >&2
+    exit 1
+  fi
+done
 
 for b in "${backends[@]}"; do
   "$sample" --backend "$b" --out "$out/deferred-$b"
+  "$engine" --backend "$b" --out "$out/engine-$b"
   if command -v dot >/dev/null 2>&1; then
     dot -Tsvg "$out/deferred-$b/plan.dot" -o "$out/deferred-$b/plan.svg"
+    dot -Tsvg "$out/engine-$b/plan.dot" -o "$out/engine-$b/plan.svg"
   fi
 done
-echo "demo: pictures written under $out/ (final.png, every intermediate, plan.json/.dot/.svg per backend)"
+echo "demo: pictures written under $out/deferred-*/ and $out/engine-*/ (final.png, every intermediate, plan.json/.dot/.svg per backend)"

@@ -302,6 +302,8 @@ loom::Status VulkanContext::create_logical_device() {
     enable.features.depthBiasClamp = supported.depthBiasClamp;
     enable.features.shaderStorageImageWriteWithoutFormat = supported.shaderStorageImageWriteWithoutFormat;
     enable.features.shaderStorageImageReadWithoutFormat = supported.shaderStorageImageReadWithoutFormat;
+    // Storage images of formats beyond Vulkan's base set (r8, rg32f, r16f, ...), as GL 4.5 allows.
+    enable.features.shaderStorageImageExtendedFormats = supported.shaderStorageImageExtendedFormats;
     enable.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
     enable.features.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
     enable.features.imageCubeArray = supported.imageCubeArray;

@@ -37,24 +37,7 @@ struct MaterialSample {
     vec3 emissive;
 };
 
-// m * vec4(p, 1) and m * vec4(v, 0), summed in one fixed order without fused multiply-adds
-// ("precise"). GL compiles SPIRV-Cross's GLSL and Vulkan the SPIR-V, and their front ends lower
-// a matrix product in different orders; written out like this both round alike, so positions,
-// depths and rasterised coverage are the same bits on both backends.
-vec4 transform_point(mat4 m, vec3 p) {
-    precise vec4 r = m[0] * p.x;
-    r += m[1] * p.y;
-    r += m[2] * p.z;
-    r += m[3];
-    return r;
-}
-
-vec3 transform_vector(mat3 m, vec3 v) {
-    precise vec3 r = m[0] * v.x;
-    r += m[1] * v.y;
-    r += m[2] * v.z;
-    return r;
-}
+// transform_point and transform_vector (the same bits on both backends) are in loom/common.glsl.
 
 #if defined(LOOM_OBJECT) && defined(LOOM_STAGE_VERTEX)
 // Provided by the object's vertex part.

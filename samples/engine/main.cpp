@@ -1,0 +1,293 @@
+// loom-engine: an engine-style frame on one frame graph, on GL or Vulkan (docs/engine.md):
+// depth prepass, hierarchical Z built level by level in compute, a tiled light list built in
+// compute for many point lights, four shadow cascades in one array texture, SSAO on the async
+// compute queue, forward+ shading with the sky, a bloom pyramid and tone mapping. Headless it
+// writes the picture, every intermediate (each mip level and layer), the plan as JSON and DOT
+// and a summary with the memory each allocator needs; with --window it shows the frame.
+#include <cinttypes>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "engine_frame.hpp"
+#include "engine_pictures.hpp"
+#include "loom/framegraph/export.hpp"
+#include "loom/framegraph/planner.hpp"
+#include "loom/image_io/image_io.hpp"
+#include "loom/rhi/device.hpp"
+#include "loom/sample_common/options.hpp"
+
+namespace {
+
+constexpr const char* kName = "loom-engine";
+
+int fail(const std::string& message) {
+    std::fprintf(stderr, "%s: %s\n", kName, message.c_str());
+    return EXIT_FAILURE;
+}
+int fail(const loom::Error& error) { return fail(error.to_string()); }
+
+struct Options {
+    loom::samples::CommonOptions common;
+    uint64_t frames = 1;
+    loom::engine::SceneSettings scene;
+    loom::engine::FrameSettings frame;
+};
+
+const char* kUsage =
+    "usage: loom-engine [options]\n"
+    "Renders an engine-style frame (depth prepass, hierarchical Z and a tiled light list in compute,\n"
+    "shadow cascades, SSAO on the async compute queue, forward+ shading, bloom, tone mapping) of a\n"
+    "courtyard lit by many point lights, with a glTF model in the middle when one is given.\n"
+    "Headless, it writes into --out DIR: final.png, one PNG per intermediate (each mip level and\n"
+    "layer), light_list.png (lights per tile), plan.json, plan.dot and summary.txt.\n\n";
+
+std::string extra_help() {
+    return "  --scene FILE|builtin  a glTF 2.0 file (.gltf, .glb) for the middle of the courtyard (default builtin)\n"
+           "  --lights N            point lights (default 128, at most 4096)\n"
+           "  --frames N            frames to render (default 1; with --window 0 runs until closed)\n"
+           "  --allocator NAME      interval (default), heap, or paper (needs --async off)\n"
+           "  --async on|off        SSAO on the async compute queue (default on; serial on one-queue devices)\n"
+           "  --shadow-size N       texels per side of each shadow cascade (default 1024)\n";
+}
+
+loom::Result<uint64_t> number(const std::string& name, const std::string& text, uint64_t max) {
+    char* end = nullptr;
+    const unsigned long long n = std::strtoull(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || text[0] == '-' || n > max) {
+        return loom::make_error(loom::ErrorCode::InvalidArgument, name + " expects a number up to " + std::to_string(max) + ", got '" + text + "'");
+    }
+    return static_cast<uint64_t>(n);
+}
+
+loom::Result<Options> parse(int argc, char** argv) {
+    loom::samples::CommonDefaults defaults;
+    defaults.width = 960;
+    defaults.height = 540;
+    defaults.out = "out/engine";
+    auto common = loom::samples::parse_common_options(argc, argv, defaults);
+    if (!common) return common.take_error();
+    Options options;
+    options.common = std::move(*common);
+    const auto& rest = options.common.rest;
+    for (std::size_t i = 0; i < rest.size(); ++i) {
+        std::string name = rest[i], value;
+        const bool inline_value = name.rfind("--", 0) == 0 && name.find('=') != std::string::npos;
+        if (inline_value) {
+            value = name.substr(name.find('=') + 1);
+            name = name.substr(0, name.find('='));
+        }
+        auto take = [&]() -> loom::Result<std::string> {
+            if (inline_value) return value;
+            if (i + 1 >= rest.size()) return loom::make_error(loom::ErrorCode::InvalidArgument, name + " needs a value");
+            return rest[++i];
+        };
+        auto v = take();
+        if (!v) {
+            if (name.rfind("--", 0) != 0 || (name != "--scene" && name != "--lights" && name != "--frames" && name != "--allocator" &&
+                                             name != "--async" && name != "--shadow-size")) {
+                return loom::make_error(loom::ErrorCode::InvalidArgument, "unknown argument '" + rest[i] + "'");
+            }
+            return v.take_error();
+        }
+        if (name == "--scene") {
+            if (v->empty()) return loom::make_error(loom::ErrorCode::InvalidArgument, "--scene needs a file or 'builtin'");
+            options.scene.model = *v == "builtin" ? std::filesystem::path() : std::filesystem::path(*v);
+        } else if (name == "--lights") {
+            auto n = number(name, *v, loom::engine::kMaxLights);
+            if (!n) return n.take_error();
+            if (*n == 0) return loom::make_error(loom::ErrorCode::InvalidArgument, "--lights expects at least 1 light");
+            options.scene.lights = static_cast<uint32_t>(*n);
+        } else if (name == "--frames") {
+            auto n = number(name, *v, UINT64_MAX);
+            if (!n) return n.take_error();
+            options.frames = *n;
+        } else if (name == "--allocator") {
+            options.frame.allocator = *v;
+        } else if (name == "--async") {
+            if (*v != "on" && *v != "off") return loom::make_error(loom::ErrorCode::InvalidArgument, "--async expects on or off, got '" + *v + "'");
+            options.frame.async_compute = *v == "on";
+        } else if (name == "--shadow-size") {
+            auto n = number(name, *v, 16384);
+            if (!n) return n.take_error();
+            options.frame.shadow_size = static_cast<uint32_t>(*n);
+        } else {
+            return loom::make_error(loom::ErrorCode::InvalidArgument, "unknown argument '" + rest[i] + "'");
+        }
+    }
+    if (!options.common.window && options.frames == 0) {
+        return loom::make_error(loom::ErrorCode::InvalidArgument, "--frames 0 only makes sense with --window");
+    }
+    if (options.common.width < loom::engine::kMinFrameSide || options.common.height < loom::engine::kMinFrameSide) {
+        return loom::make_error(loom::ErrorCode::InvalidArgument, "--size must be at least " + std::to_string(loom::engine::kMinFrameSide) +
+                                                                      "x" + std::to_string(loom::engine::kMinFrameSide));
+    }
+    return options;
+}
+
+loom::Status write_text(const std::filesystem::path& path, const std::string& text) {
+    std::ofstream file(path, std::ios::binary);
+    file << text;
+    if (!file) return loom::make_error(loom::ErrorCode::Io, "cannot write " + path.string());
+    return {};
+}
+
+/// What the plan is and needs: passes by kind and queue, and the bytes of every allocator
+/// beside the naive figure and the lower bound, planned for this device.
+std::string memory_report(loom::engine::EngineFrame& frame, loom::fg::Extent2D size) {
+    using loom::fg::format_bytes;
+    std::ostringstream out;
+    const auto plan = frame.executor().plan();
+    uint32_t compute = 0, async = 0;
+    for (const auto& pass : plan->order) {
+        if (pass.kind == loom::fg::PassKind::Compute) ++compute;
+        if (pass.queue == loom::fg::Queue::AsyncCompute) ++async;
+    }
+    char hash[32];
+    std::snprintf(hash, sizeof(hash), "%016" PRIx64, loom::fg::plan_hash(*plan));
+    out << "plan " << hash << ": " << plan->order.size() << " passes (" << compute << " compute, " << async
+        << " of them on the async queue), " << plan->resources.size() << " resources, " << plan->queue_syncs.size()
+        << " queue syncs\n";
+    out << "memory (" << size.width << "x" << size.height << "):\n";
+    out << "  allocator   textures  buffers        bytes   vs naive\n";
+    for (const char* allocator : {"interval", "heap", "paper"}) {
+        loom::fg::PlanOptions options = frame.executor().effective_options(frame.plan_options(size));
+        options.allocator = allocator;
+        auto planned = loom::fg::build_plan(frame.graph(), options);
+        char line[160];
+        if (!planned) {
+            out << "  " << allocator << "       refuses: " << planned.error().message << "\n";
+            continue;
+        }
+        const auto& s = planned->summary;
+        std::snprintf(line, sizeof(line), "  %-10s  %8u  %7u  %11s  %7.1f %%\n", allocator, s.textures, s.buffers, format_bytes(s.bytes).c_str(),
+                      100.0 * static_cast<double>(s.bytes) / static_cast<double>(std::max<uint64_t>(s.naive_bytes, 1)));
+        out << line;
+        if (std::string(allocator) == "interval") {
+            std::snprintf(line, sizeof(line), "  %-10s  %8u  %7u  %11s  %7.1f %%\n", "naive", s.naive_textures, s.naive_buffers,
+                          format_bytes(s.naive_bytes).c_str(), 100.0);
+            out << line;
+            std::snprintf(line, sizeof(line), "  %-10s  %8u  %7u  %11s  %7.1f %%\n", "lower bound", s.lower_bound_textures,
+                          s.lower_bound_buffers, format_bytes(s.lower_bound_bytes).c_str(),
+                          100.0 * static_cast<double>(s.lower_bound_bytes) / static_cast<double>(std::max<uint64_t>(s.naive_bytes, 1)));
+            out << line;
+        }
+    }
+    return out.str();
+}
+
+std::string summary(loom::engine::EngineFrame& frame, loom::rhi::Device& device, const Options& options, loom::fg::Extent2D size) {
+    using loom::fg::format_bytes;
+    std::ostringstream out;
+    const auto& caps = device.capabilities();
+    out << kName << ": " << loom::rhi::backend_name(device.backend()) << ", " << caps.device_name << ", " << size.width << "x"
+        << size.height << ", allocator " << frame.settings().allocator << ", async compute "
+        << (frame.settings().async_compute ? (caps.async_compute ? "on (two queues)" : "on (one queue: run in order)") : "off") << ", "
+        << options.frames << " frame(s)\n";
+    out << "scene: " << frame.scene().description << "; textures with mipmaps: " << format_bytes(frame.gpu_scene().texture_bytes()) << "\n";
+    out << memory_report(frame, size);
+    const loom::fg::ExecutionStats stats = frame.executor().stats();
+    out << "created: " << stats.textures << " textures for the plan's " << stats.plan_textures << ", " << stats.buffers
+        << " buffers; device total: " << stats.device.textures << " textures, " << stats.device.buffers << " buffers, "
+        << stats.device.pipelines << " pipelines, " << format_bytes(stats.device.total_bytes()) << "\n";
+    out << "timings of the latest frame (ms):\n  pass                   gpu       cpu\n";
+    for (const auto& timing : frame.executor().timings()) {
+        char line[128];
+        if (timing.gpu_ms) {
+            std::snprintf(line, sizeof(line), "  %-18s %8.3f  %8.3f\n", timing.pass.c_str(), *timing.gpu_ms, timing.cpu_ms);
+        } else {
+            std::snprintf(line, sizeof(line), "  %-18s %8s  %8.3f\n", timing.pass.c_str(), "n/a", timing.cpu_ms);
+        }
+        out << line;
+    }
+    return out.str();
+}
+
+int run_window(Options options) {
+    using namespace loom;
+    auto device = rhi::create_device(samples::device_desc(options.common, "loom engine"));
+    if (!device) return fail(device.error());
+    rhi::Device& dev = **device;
+    (void)dev.begin_frame();
+    auto desc = dev.texture_desc(dev.backbuffer());
+    if (auto ended = dev.end_frame(); !ended) return fail(ended.error());
+    if (!desc) return fail(desc.error());
+    options.frame.capture = false;
+    options.frame.target_format = desc->format;
+    auto scene = engine::make_engine_scene(options.scene);
+    if (!scene) return fail(scene.error());
+    auto frame = engine::EngineFrame::create(dev, *scene, options.frame);
+    if (!frame) return fail(frame.error());
+    uint64_t frames = 0;
+    fg::Extent2D size{};
+    while (dev.poll_window()) {
+        rhi::CommandList& commands = dev.begin_frame();
+        const rhi::Extent3D window = dev.window_size();
+        size = {std::max(window.width, engine::kMinFrameSide), std::max(window.height, engine::kMinFrameSide)};
+        Status recorded = window.width < engine::kMinFrameSide || window.height < engine::kMinFrameSide
+                              ? Status{}  // a minimised or tiny window: nothing to draw this frame
+                              : (*frame)->record(commands, dev.backbuffer(), {window.width, window.height});
+        Status ended = dev.end_frame();
+        if (!recorded) return fail(recorded.error());
+        if (!ended) return fail(ended.error());
+        if (options.frames != 0 && ++frames >= options.frames) break;
+    }
+    if (auto idle = dev.wait_idle(); !idle) return fail(idle.error());
+    if ((*frame)->executor().plan()) std::printf("%s", summary(**frame, dev, options, size).c_str());
+    return EXIT_SUCCESS;
+}
+
+int run_headless(const Options& options) {
+    using namespace loom;
+    auto device = rhi::create_device(samples::device_desc(options.common, "loom engine"));
+    if (!device) return fail(device.error());
+    rhi::Device& dev = **device;
+    auto scene = engine::make_engine_scene(options.scene);
+    if (!scene) return fail(scene.error());
+    auto frame = engine::EngineFrame::create(dev, *scene, options.frame);
+    if (!frame) return fail(frame.error());
+    const fg::Extent2D size{options.common.width, options.common.height};
+    for (uint64_t i = 0; i < options.frames; ++i) {
+        if (auto rendered = (*frame)->render(size); !rendered) return fail(rendered.error());
+    }
+    if (auto idle = dev.wait_idle(); !idle) return fail(idle.error());
+
+    auto images = engine::read_intermediates(dev, **frame);
+    if (!images) return fail(images.error());
+    const std::filesystem::path dir = options.common.out;
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    const rhi::Image& final_image = images->at("final");
+    for (const auto& [name, image] : *images) {
+        if (auto written = image_io::write_png(engine::viewable(name, image, final_image), dir / (name + ".png")); !written) {
+            return fail(written.error());
+        }
+    }
+    const auto plan = (*frame)->executor().plan();
+    if (auto status = write_text(dir / "plan.json", fg::plan_to_json(*plan)); !status) return fail(status.error());
+    if (auto status = write_text(dir / "plan.dot", fg::plan_to_dot(*plan)); !status) return fail(status.error());
+    const std::string text = summary(**frame, dev, options, size);
+    if (auto status = write_text(dir / "summary.txt", text); !status) return fail(status.error());
+    std::printf("%s", text.c_str());
+    std::printf("wrote %zu pictures, plan.json, plan.dot and summary.txt to %s\n", images->size(), dir.string().c_str());
+    return EXIT_SUCCESS;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    auto options = parse(argc, argv);
+    if (!options) return fail(options.error().message + " (see --help)");
+    if (options->common.help) {
+        loom::samples::CommonDefaults defaults;
+        defaults.width = 960;
+        defaults.height = 540;
+        defaults.out = "out/engine";
+        std::printf("%s%s%s", kUsage, loom::samples::common_options_help(defaults).c_str(), extra_help().c_str());
+        return EXIT_SUCCESS;
+    }
+    return options->common.window ? run_window(*options) : run_headless(*options);
+}
