@@ -121,4 +121,28 @@ rhi::Image viewable(const std::string& name, const rhi::Image& image, const rhi:
     return rhi::to_rgba8(image);
 }
 
+rhi::Image contact_sheet(const std::map<std::string, rhi::Image>& pictures, const std::vector<std::string>& names,
+                         uint32_t columns, fg::Extent2D cell) {
+    const auto count = static_cast<uint32_t>(names.size());
+    const uint32_t rows = (count + columns - 1) / columns;
+    rhi::Image sheet(cell.width * columns, cell.height * rows, rhi::Format::RGBA8Unorm);
+    for (uint32_t i = 0; i < count; ++i) {
+        const auto found = pictures.find(names[i]);
+        if (found == pictures.end()) continue;
+        const rhi::Image& picture = found->second;
+        const double scale = std::min(static_cast<double>(cell.width) / picture.width, static_cast<double>(cell.height) / picture.height);
+        const auto w = static_cast<uint32_t>(picture.width * scale), h = static_cast<uint32_t>(picture.height * scale);
+        const uint32_t x0 = (i % columns) * cell.width + (cell.width - w) / 2;
+        const uint32_t y0 = (i / columns) * cell.height + (cell.height - h) / 2;
+        for (uint32_t y = 0; y < h; ++y) {
+            for (uint32_t x = 0; x < w; ++x) {
+                const auto sx = std::min(static_cast<uint32_t>((x + 0.5) / scale), picture.width - 1);
+                const auto sy = std::min(static_cast<uint32_t>((y + 0.5) / scale), picture.height - 1);
+                sheet.store(x0 + x, y0 + y, picture.load(sx, sy));
+            }
+        }
+    }
+    return sheet;
+}
+
 }  // namespace loom::engine

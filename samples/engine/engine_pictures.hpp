@@ -4,6 +4,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "engine_frame.hpp"
 #include "loom/rhi/image.hpp"
@@ -20,5 +21,10 @@ Result<std::map<std::string, rhi::Image>> read_intermediates(rhi::Device& device
 /// hierarchical Z as grey from near to far (the sky white), HDR colours tone-mapped, the light
 /// list as a heat map over `final` (the frame's picture; tiles blocks of kTileSize pixels).
 rhi::Image viewable(const std::string& name, const rhi::Image& image, const rhi::Image& final);
+
+/// The pictures `names` (from `pictures`) on a grid of `columns`, each fitted into a cell of
+/// `cell` texels (aspect kept, nearest texel, black around): the README's overview.
+rhi::Image contact_sheet(const std::map<std::string, rhi::Image>& pictures, const std::vector<std::string>& names,
+                         uint32_t columns, fg::Extent2D cell);
 
 }  // namespace loom::engine

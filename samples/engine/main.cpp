@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -43,13 +44,15 @@ const char* kUsage =
     "shadow cascades, SSAO on the async compute queue, forward+ shading, bloom, tone mapping) of a\n"
     "courtyard lit by many point lights, with a glTF model in the middle when one is given.\n"
     "Headless, it writes into --out DIR: final.png, one PNG per intermediate (each mip level and\n"
-    "layer), light_list.png (lights per tile), plan.json, plan.dot and summary.txt.\n\n";
+    "layer), light_list.png (lights per tile), intermediates.png (six stages side by side),\n"
+    "plan.json, plan.dot and summary.txt.\n\n";
 
 std::string extra_help() {
     return "  --scene FILE|builtin  a glTF 2.0 file (.gltf, .glb) for the middle of the courtyard (default builtin)\n"
            "  --lights N            point lights (default 128, at most 4096)\n"
            "  --frames N            frames to render (default 1; with --window 0 runs until closed)\n"
-           "  --allocator NAME      interval (default), heap, or paper (needs --async off)\n"
+           "  --allocator NAME      heap (default: aliasing in bytes), interval (whole textures), or paper\n"
+           "                        (needs --async off)\n"
            "  --async on|off        SSAO on the async compute queue (default on; serial on one-queue devices)\n"
            "  --shadow-size N       texels per side of each shadow cascade (default 1024)\n";
 }
@@ -190,8 +193,10 @@ std::string summary(loom::engine::EngineFrame& frame, loom::rhi::Device& device,
     out << "scene: " << frame.scene().description << "; textures with mipmaps: " << format_bytes(frame.gpu_scene().texture_bytes()) << "\n";
     out << memory_report(frame, size);
     const loom::fg::ExecutionStats stats = frame.executor().stats();
-    out << "created: " << stats.textures << " textures for the plan's " << stats.plan_textures << ", " << stats.buffers
-        << " buffers; device total: " << stats.device.textures << " textures, " << stats.device.buffers << " buffers, "
+    out << "created: " << stats.textures << " textures for the plan's " << stats.plan_textures << " and " << stats.buffers
+        << " buffer(s) (" << (stats.placed_textures + stats.placed_buffers) << " placed in " << stats.heaps << " heap(s) of "
+        << format_bytes(stats.heap_bytes) << "; " << format_bytes(stats.texture_bytes + stats.buffer_bytes)
+        << " unplaced); device total: " << stats.device.textures << " textures, " << stats.device.buffers << " buffers, "
         << stats.device.pipelines << " pipelines, " << format_bytes(stats.device.total_bytes()) << "\n";
     out << "timings of the latest frame (ms):\n  pass                   gpu       cpu\n";
     for (const auto& timing : frame.executor().timings()) {
@@ -261,18 +266,24 @@ int run_headless(const Options& options) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     const rhi::Image& final_image = images->at("final");
+    std::map<std::string, rhi::Image> pictures;
     for (const auto& [name, image] : *images) {
-        if (auto written = image_io::write_png(engine::viewable(name, image, final_image), dir / (name + ".png")); !written) {
-            return fail(written.error());
-        }
+        pictures[name] = engine::viewable(name, image, final_image);
+        if (auto written = image_io::write_png(pictures[name], dir / (name + ".png")); !written) return fail(written.error());
     }
+    // Six stages of the frame side by side, each at half the frame's size.
+    const rhi::Image sheet = engine::contact_sheet(
+        pictures, {"depth", "hzb.mip4", "light_list", "shadow_cascades.layer1", "ssao", "bloom_up.mip0"}, 3,
+        {std::max(size.width / 2, 1u), std::max(size.height / 2, 1u)});
+    if (auto written = image_io::write_png(sheet, dir / "intermediates.png"); !written) return fail(written.error());
     const auto plan = (*frame)->executor().plan();
     if (auto status = write_text(dir / "plan.json", fg::plan_to_json(*plan)); !status) return fail(status.error());
     if (auto status = write_text(dir / "plan.dot", fg::plan_to_dot(*plan)); !status) return fail(status.error());
     const std::string text = summary(**frame, dev, options, size);
     if (auto status = write_text(dir / "summary.txt", text); !status) return fail(status.error());
     std::printf("%s", text.c_str());
-    std::printf("wrote %zu pictures, plan.json, plan.dot and summary.txt to %s\n", images->size(), dir.string().c_str());
+    std::printf("wrote %zu pictures, intermediates.png, plan.json, plan.dot and summary.txt to %s\n", images->size(),
+                dir.string().c_str());
     return EXIT_SUCCESS;
 }
 

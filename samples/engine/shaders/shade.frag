@@ -124,8 +124,14 @@ void main() {
     }
 
     float ao = texelFetch(ambient_occlusion, pixel, 0).r;
+    // Ambient: the hemisphere around the normal lights the diffuse part, the sky in the mirror
+    // direction (blurred towards the horizon colour by roughness) the specular part.
     vec3 hemisphere = mix(frame.ground_color.rgb, frame.sky_horizon.rgb, clamp(n.y * 0.5 + 0.5, 0.0, 1.0));
-    color += hemisphere * (diffuse_color + f0 * 0.5) * frame.lighting.x * ao * occlusion;
+    vec3 r = reflect(-v, n);
+    vec3 mirrored = r.y >= 0.0 ? mix(frame.sky_horizon.rgb, frame.sky_zenith.rgb, sqrt(r.y)) : frame.ground_color.rgb;
+    mirrored = mix(mirrored, hemisphere, roughness);
+    vec3 fresnel = f0 + (max(vec3(1.0 - roughness), f0) - f0) * pow(1.0 - max(dot(n, v), 0.0), 5.0);
+    color += (hemisphere * diffuse_color + mirrored * fresnel) * frame.lighting.x * ao * occlusion;
     color += emissive;
     out_color = vec4(color, 1.0);
 }
