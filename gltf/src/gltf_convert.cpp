@@ -137,6 +137,11 @@ private:
             material.metallic_factor = static_cast<float>(pbr.metallicFactor);
             material.roughness_factor = static_cast<float>(pbr.roughnessFactor);
             material.emissive_factor = to_vec3(source.emissiveFactor, glm::vec3(0.0f));
+            // KHR_materials_emissive_strength scales the factor past 1 (validated non-negative).
+            if (auto ext = source.extensions.find("KHR_materials_emissive_strength"); ext != source.extensions.end()) {
+                const tinygltf::Value& strength = ext->second.Get("emissiveStrength");
+                if (strength.IsNumber()) material.emissive_factor *= static_cast<float>(strength.GetNumberAsDouble());
+            }
             material.normal_scale = static_cast<float>(source.normalTexture.scale);
             material.occlusion_strength = static_cast<float>(source.occlusionTexture.strength);
             material.alpha_mode = source.alphaMode == "MASK"    ? AlphaMode::Mask

@@ -36,7 +36,7 @@ constexpr uint64_t kMaxInt = static_cast<uint64_t>(std::numeric_limits<int32_t>:
 // recursive conversion of those values.
 constexpr std::size_t kMaxJsonDepth = 256;
 
-constexpr std::array<std::string_view, 1> kSupportedExtensions = {"KHR_mesh_quantization"};
+constexpr std::array<std::string_view, 2> kSupportedExtensions = {"KHR_mesh_quantization", "KHR_materials_emissive_strength"};
 
 /// The top-level arrays of a glTF document that other objects refer to by index.
 enum class Collection : uint8_t {
@@ -392,7 +392,7 @@ private:
                 }
                 if (std::string_view(key) == "extensionsRequired" && !supported_extension) {
                     return parse_error(root / key / i, "required extension '" + name.get<std::string>() +
-                                                           "' is not supported (supported: KHR_mesh_quantization)");
+                                                           "' is not supported (supported: KHR_mesh_quantization, KHR_materials_emissive_strength)");
                 }
             }
         }
@@ -778,6 +778,19 @@ private:
             LOOM_TRY(check_texture_info(material, "occlusionTexture", where));
             LOOM_TRY(check_texture_info(material, "emissiveTexture", where));
             LOOM_TRY(number_array_member(material, "emissiveFactor", where, 3, unit));
+            // KHR_materials_emissive_strength: a non-negative multiplier of emissiveFactor (HDR emission).
+            auto extensions = object_member(material, "extensions", where, false);
+            if (!extensions) return extensions.take_error();
+            if (*extensions) {
+                const JsonPointer extensions_where = where / "extensions";
+                auto strength = object_member(**extensions, "KHR_materials_emissive_strength", extensions_where, false);
+                if (!strength) return strength.take_error();
+                if (*strength) {
+                    auto value = number_member(**strength, "emissiveStrength", extensions_where / "KHR_materials_emissive_strength",
+                                               false, Range{0.0});
+                    if (!value) return value.take_error();
+                }
+            }
             auto alpha_mode = string_member(material, "alphaMode", where, false);
             if (!alpha_mode) return alpha_mode.take_error();
             if (*alpha_mode && **alpha_mode != "OPAQUE" && **alpha_mode != "MASK" && **alpha_mode != "BLEND") {

@@ -41,7 +41,8 @@ Status DeferredPass::execute(fg::PassContext& context) {
         set.uniforms("LightingUniforms", lighting_uniforms(view_))
             .texture("gbuffer_position", context.texture("position"), *nearest)
             .texture("gbuffer_normal", context.texture("normal"), *nearest)
-            .texture("gbuffer_albedo", context.texture("albedo"), *nearest);
+            .texture("gbuffer_albedo", context.texture("albedo"), *nearest)
+            .texture("gbuffer_emission", context.texture("emission"), *nearest);
         if (parts_.shadows) {
             LOOM_TRY(detail::bind_shadow_receiver(set, view_.shadow, context.texture("shadow_map"),
                                                   context.extent("shadow_map").width, comparison));

@@ -11,14 +11,15 @@ GeometryPass::GeometryPass(const PassConfig& config, std::string name) : ShaderP
 }
 
 Status GeometryPass::execute(fg::PassContext& context) {
-    const std::string colors[] = {"position", "normal", "albedo"};
+    const std::string colors[] = {"position", "normal", "albedo", "emission"};
     auto state = attachment_state(context, colors, "depth");
     if (!state) return state.take_error();
     state->depth = rhi::DepthState{true, true, rhi::CompareOp::Less};
     // Zero normals mark texels nothing was drawn on (the deferred pass shows the sky there).
     context.begin_render_pass({{"position", {0.0, 0.0, 0.0, 0.0}},
                                {"normal", {0.0, 0.0, 0.0, 0.0}},
-                               {"albedo", {0.0, 0.0, 0.0, 0.0}}},
+                               {"albedo", {0.0, 0.0, 0.0, 0.0}},
+                               {"emission", {0.0, 0.0, 0.0, 0.0}}},
                               fg::DepthPort("depth", 1.0f));
     // The camera is a per-pass set: uploaded only in frames where it moved.
     Status drawn = draw_objects(context, *state, [&](Bindings& set) {

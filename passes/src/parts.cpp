@@ -19,17 +19,17 @@ constexpr PartDesc kParts[] = {
     {"g-buffer", 0, {}, "loom/parts/gbuffer.frag.glsl",
      [](fg::PortSet& ports, const Options& o) {
          const fg::TextureSpec color = color_spec(o.config);
-         ports.output("position", color).output("normal", color).output("albedo", color);
+         ports.output("position", color).output("normal", color).output("albedo", color).output("emission", color);
          ports.output("depth", depth_spec(o.config).with_scale(1.0f));
      }},
     {"shadow-caster", 1, "loom/parts/shadow_caster.vert.glsl", "loom/parts/shadow_caster.frag.glsl",
      [](fg::PortSet& ports, const Options& o) {
          ports.output("shadow_map", depth_spec(o.config).with_size(o.shadow_map_size, o.shadow_map_size));
      }},
-    {"deferred-render", 4, {}, "loom/parts/deferred_render.frag.glsl",
+    {"deferred-render", 5, {}, "loom/parts/deferred_render.frag.glsl",
      [](fg::PortSet& ports, const Options& o) {
          const fg::TextureSpec color = color_spec(o.config);
-         ports.input("position", color).input("normal", color).input("albedo", color).output("color", color);
+         ports.input("position", color).input("normal", color).input("albedo", color).input("emission", color).output("color", color);
      }},
     // The receiver asks for a depth map of any size: the shadow-map pass decides it.
     {"shadow-render", 2, {}, "loom/parts/shadow_render.frag.glsl",

@@ -85,7 +85,8 @@ Status DeferredPipeline::build() {
     if (!present) return present.take_error();
     present_ = *present;
 
-    // Listing 6, connection for connection, then the blur's second half and the present pass.
+    // Listing 6, connection for connection (and loom's emission map beside the paper's three),
+    // then the blur's second half and the present pass.
     using fg::port;
     const std::string lit = settings_.forward ? "forward" : "deferred";
     // The shadow map's last writer: the masked shadow pass adds to the standard one's in place.
@@ -99,6 +100,7 @@ Status DeferredPipeline::build() {
         LOOM_TRY(graph_.connect(port("geometry", "position"), port("deferred", "position")));
         LOOM_TRY(graph_.connect(port("geometry", "normal"), port("deferred", "normal")));
         LOOM_TRY(graph_.connect(port("geometry", "albedo"), port("deferred", "albedo")));
+        LOOM_TRY(graph_.connect(port("geometry", "emission"), port("deferred", "emission")));
     }
     // The transparent pass blends onto the lit pass's outputs in place; what follows reads its.
     std::string blended = lit;

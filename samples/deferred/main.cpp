@@ -291,9 +291,9 @@ loom::Status write_pictures(loom::rhi::Device& device, const loom::renderer::Def
     std::map<std::string, loom::rhi::Image> pictures;
     for (const auto& [name, image] : images) pictures[name] = loom::deferred::visualize(name, image, images, display);
     auto have = [&](const char* n) { return images.count(n) != 0; };
-    if (have("geometry.position") && have("geometry.normal") && have("geometry.albedo")) {
+    if (have("geometry.position") && have("geometry.normal") && have("geometry.albedo") && have("geometry.emission")) {
         pictures["geometry.material"] = loom::deferred::material_map(images["geometry.position"], images["geometry.normal"],
-                                                                     images["geometry.albedo"]);
+                                                                     images["geometry.emission"]);
         // The 2x2 mosaic halves each map: only for frames of at least 2x2.
         if (final_image->width >= 2 && final_image->height >= 2) {
             pictures["figure3-gbuffer"] = loom::deferred::mosaic(pictures["geometry.position"], pictures["geometry.normal"],

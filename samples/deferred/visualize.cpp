@@ -11,6 +11,9 @@ double srgb_encode(double linear) {
     return linear <= 0.0031308 ? linear * 12.92 : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
 }
 
+/// Rec. 709 relative luminance of a linear colour.
+double luminance(const std::array<double, 4>& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+
 double aces(double x) {
     return std::clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
 }
@@ -80,7 +83,7 @@ rhi::Image visualize(const std::string& name, const rhi::Image& image, const std
     });
 }
 
-rhi::Image material_map(const rhi::Image& position, const rhi::Image& normal, const rhi::Image& albedo) {
+rhi::Image material_map(const rhi::Image& position, const rhi::Image& normal, const rhi::Image& emission) {
     rhi::Image out(position.width, position.height, rhi::Format::RGBA8Unorm);
     for (uint32_t y = 0; y < out.height; ++y) {
         for (uint32_t x = 0; x < out.width; ++x) {
@@ -90,7 +93,7 @@ rhi::Image material_map(const rhi::Image& position, const rhi::Image& normal, co
                 continue;
             }
             out.store(x, y, {std::clamp(position.load(x, y)[3], 0.0, 1.0), std::clamp(n[3], 0.0, 1.0),
-                             std::clamp(albedo.load(x, y)[3] / 16.0, 0.0, 1.0), 1.0});
+                             std::clamp(luminance(emission.load(x, y)) / 16.0, 0.0, 1.0), 1.0});
         }
     }
     return out;

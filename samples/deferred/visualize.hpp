@@ -21,9 +21,10 @@ struct DisplaySettings {
 rhi::Image visualize(const std::string& name, const rhi::Image& image, const std::map<std::string, rhi::Image>& all,
                      const DisplaySettings& settings);
 
-/// The material map of Figure 3 (the paper's specular map): metallic in red, roughness in
-/// green, emission strength / 16 in blue, from the alpha channels of the G-buffer.
-rhi::Image material_map(const rhi::Image& position, const rhi::Image& normal, const rhi::Image& albedo);
+/// The material map of Figure 3 (the paper's specular map): metallic in red and roughness in
+/// green (the alpha channels of the position and normal maps), the emission map's luminance / 16
+/// in blue.
+rhi::Image material_map(const rhi::Image& position, const rhi::Image& normal, const rhi::Image& emission);
 
 /// Figure 3 as one picture: position, normal / albedo, material, at half size in a 2x2 grid.
 rhi::Image mosaic(const rhi::Image& top_left, const rhi::Image& top_right, const rhi::Image& bottom_left,

@@ -117,8 +117,44 @@ TEST_P(GltfMaterialTest, MetallicRoughnessOcclusionAndEmissiveTexturesFillTheGBu
     EXPECT_NEAR(at(frame, "geometry.normal", kCentre, kCentre).a, roughness, kHalf);
     const glm::dvec4 a = at(frame, "geometry.albedo", kCentre, kCentre);
     EXPECT_NEAR(a.r, albedo, kHalf);
-    // Emission is stored as a multiple of the (grey) albedo.
-    EXPECT_NEAR(a.a, emissive / albedo, 4 * kHalf);
+    // The emission map holds the emitted radiance itself (HDR: 2 x the texture here).
+    const glm::dvec4 e = at(frame, "geometry.emission", kCentre, kCentre);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(e[c], emissive, 2 * kHalf) << "channel " << c;
+}
+
+// Emission keeps its colour whatever the albedo: a black material glowing red and a white one
+// glowing cyan (with an HDR strength, as KHR_materials_emissive_strength gives) come out of the
+// G-buffer as they went in, and the deferred pipeline's lit colour equals the forward one's
+// there (same lighting code; the G-buffer's half floats the only difference).
+TEST_P(GltfMaterialTest, EmissionKeepsItsColourThroughTheGBuffer) {
+    struct Case {
+        glm::vec4 base;
+        glm::vec3 emission;
+    };
+    for (const Case& c : {Case{{0.0f, 0.0f, 0.0f, 1.0f}, {3.0f, 0.0f, 0.0f}}, Case{{1.0f, 1.0f, 1.0f, 1.0f}, {0.0f, 1.5f, 1.5f}}}) {
+        SCOPED_TRACE(testing::Message() << "emission " << c.emission.r << "," << c.emission.g << "," << c.emission.b);
+        SceneBuilder b;
+        scene::Material m = plain(c.base);
+        m.emissive_factor = c.emission;
+        b.quad(b.material(m));
+        b.camera();
+        const GltfFrame deferred = render(b);
+        const GltfFrame forward = render(b, true);
+        ASSERT_FALSE(deferred.images.empty());
+        ASSERT_FALSE(forward.images.empty());
+        const glm::dvec4 e = at(deferred, "geometry.emission", kCentre, kCentre);
+        for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(e[ch], c.emission[ch], kHalf) << "channel " << ch;
+        const glm::dvec4 lit_deferred = at(deferred, "deferred.color", kCentre, kCentre);
+        const glm::dvec4 lit_forward = at(forward, "forward.color", kCentre, kCentre);
+        for (int ch = 0; ch < 3; ++ch) {
+            EXPECT_NEAR(lit_deferred[ch], lit_forward[ch], 4 * kHalf * std::max(1.0, lit_forward[ch])) << "channel " << ch;
+        }
+        // The red glow is red: its green and blue come only from the (black) surface's reflection.
+        if (c.base.r == 0.0f) {
+            EXPECT_GT(lit_deferred.r, 2.5);
+            EXPECT_LT(lit_deferred.g, 0.5);
+        }
+    }
 }
 
 TEST_P(GltfMaterialTest, MaskDiscardsBelowTheCutoffAndOpaqueIgnoresAlpha) {

@@ -271,7 +271,7 @@ TEST(Composition, AStageWithoutPassCodeIsAnError) {
 TEST(Composition, DeferredPassHasTheUnionOfItsPartsPortsAndResources) {
     DeferredPass pass;
     EXPECT_EQ(port_names(pass),
-              (std::vector<std::string>{"position", "normal", "albedo", "color", "shadow_map", "high_pass"}));
+              (std::vector<std::string>{"position", "normal", "albedo", "emission", "color", "shadow_map", "high_pass"}));
     EXPECT_EQ(pass.find_port("color")->port_sets, (std::vector<std::string>{"deferred-render", "shadow-render"}));
     EXPECT_EQ(pass.find_port("shadow_map")->port_sets, (std::vector<std::string>{"shadow-render"}));
     EXPECT_EQ(pass.find_port("high_pass")->port_sets, (std::vector<std::string>{"high-pass-render"}));
@@ -280,22 +280,23 @@ TEST(Composition, DeferredPassHasTheUnionOfItsPartsPortsAndResources) {
 
     auto program = pass.own_program();
     ASSERT_TRUE(program.ok()) << program.error().to_string();
-    // Resources numbered part after part: deferred-render 0..3, shadow-render 4..5, high-pass 6.
+    // Resources numbered part after part: deferred-render 0..4, shadow-render 5..6, high-pass 7.
     auto slot = [&](const char* name) { return (*program)->find(name); };
     EXPECT_EQ(slot("LightingUniforms"), (ResourceSlot{0, 0, 176}));
     EXPECT_EQ(slot("gbuffer_position"), (ResourceSlot{0, 1, 0}));
     EXPECT_EQ(slot("gbuffer_normal"), (ResourceSlot{0, 2, 0}));
     EXPECT_EQ(slot("gbuffer_albedo"), (ResourceSlot{0, 3, 0}));
-    EXPECT_EQ(slot("ShadowUniforms"), (ResourceSlot{0, 4, 80}));
-    EXPECT_EQ(slot("shadow_map"), (ResourceSlot{0, 5, 0}));
-    EXPECT_EQ(slot("HighPassUniforms"), (ResourceSlot{0, 6, 16}));
+    EXPECT_EQ(slot("gbuffer_emission"), (ResourceSlot{0, 4, 0}));
+    EXPECT_EQ(slot("ShadowUniforms"), (ResourceSlot{0, 5, 80}));
+    EXPECT_EQ(slot("shadow_map"), (ResourceSlot{0, 6, 0}));
+    EXPECT_EQ(slot("HighPassUniforms"), (ResourceSlot{0, 7, 16}));
     EXPECT_TRUE(has_output_location((*program)->fragment(), 0));
     EXPECT_TRUE(has_output_location((*program)->fragment(), 1));
 }
 
 TEST(Composition, LeavingPartsOutLeavesOutTheirPortsAndCode) {
     DeferredPass pass(PassConfig{}, LightingParts{.shadows = false, .high_pass = false}, "plain");
-    EXPECT_EQ(port_names(pass), (std::vector<std::string>{"position", "normal", "albedo", "color"}));
+    EXPECT_EQ(port_names(pass), (std::vector<std::string>{"position", "normal", "albedo", "emission", "color"}));
     EXPECT_EQ(pass.find_port("color")->port_sets, (std::vector<std::string>{"deferred-render"}));
     auto program = pass.own_program();
     ASSERT_TRUE(program.ok()) << program.error().to_string();
@@ -305,7 +306,7 @@ TEST(Composition, LeavingPartsOutLeavesOutTheirPortsAndCode) {
     EXPECT_FALSE(has_output_location((*program)->fragment(), 1));
 
     DeferredPass shadowed(PassConfig{}, LightingParts{.shadows = true, .high_pass = false}, "shadowed");
-    EXPECT_EQ(port_names(shadowed), (std::vector<std::string>{"position", "normal", "albedo", "color", "shadow_map"}));
+    EXPECT_EQ(port_names(shadowed), (std::vector<std::string>{"position", "normal", "albedo", "emission", "color", "shadow_map"}));
 }
 
 /// Every standard pass composes and compiles, for its own program or for both mesh kinds, and

@@ -59,26 +59,27 @@ const deferred::SceneItem& item(const deferred::SceneContent& scene, const std::
 
 class FlagshipTest : public RenderTest {};
 
-TEST_P(FlagshipTest, PlanSharesFiveColourTexturesAndTheBackendCreatesExactlyThePlan) {
+TEST_P(FlagshipTest, PlanSharesSixColourTexturesAndTheBackendCreatesExactlyThePlan) {
     auto frame = render_flagship(device(), 160, 90);
     ASSERT_TRUE(frame.ok()) << frame.error().to_string();
     const fg::Plan& plan = frame->plan;
-    // 8 colour outputs (G-buffer 3, deferred 2, blur 2, composite 1) in 5 textures: the peak at
-    // the deferred pass (position, normal, albedo in; colour and high pass out).
-    EXPECT_EQ(resources_of_format(plan, Format::RGBA16Float), 8u);
-    EXPECT_EQ(textures_of_format(plan, Format::RGBA16Float), 5u);
+    // 9 colour outputs (G-buffer 4, deferred 2, blur 2, composite 1) in 6 textures: the peak at
+    // the deferred pass (position, normal, albedo, emission in; colour and high pass out). The
+    // paper's 7 outputs share 5; loom's G-buffer adds the emission map.
+    EXPECT_EQ(resources_of_format(plan, Format::RGBA16Float), 9u);
+    EXPECT_EQ(textures_of_format(plan, Format::RGBA16Float), 6u);
     // Depth apart, as in the paper: the shadow map and the G-buffer's own depth, two specs.
     EXPECT_EQ(textures_of_format(plan, Format::Depth32F), 2u);
     EXPECT_EQ(plan.resource_of("shadow", "shadow_map")->spec.extent, (fg::Extent2D{2048, 2048}));
     EXPECT_EQ(plan.resource_of("geometry", "depth")->spec.extent, (fg::Extent2D{160, 90}));
     EXPECT_EQ(textures_of_format(plan, Format::RGBA8Unorm), 1u);
-    EXPECT_EQ(plan.summary.textures, 8u);
-    EXPECT_EQ(plan.summary.naive_textures, 11u);
-    EXPECT_EQ(plan.summary.lower_bound_textures, 8u);
+    EXPECT_EQ(plan.summary.textures, 9u);
+    EXPECT_EQ(plan.summary.naive_textures, 12u);
+    EXPECT_EQ(plan.summary.lower_bound_textures, 9u);
     // The deferred pass reads the G-buffer and the shadow map, writes colour and high pass.
     const fg::PlanPass* deferred = plan.find_pass("deferred");
     ASSERT_NE(deferred, nullptr);
-    EXPECT_EQ(deferred->ports.size(), 6u);
+    EXPECT_EQ(deferred->ports.size(), 7u);
     // What the backend created is the plan: one texture per plan texture, nothing placed.
     EXPECT_EQ(frame->stats.textures, plan.textures.size());
     EXPECT_EQ(frame->stats.plan_textures, plan.textures.size());
@@ -88,12 +89,12 @@ TEST_P(FlagshipTest, PlanSharesFiveColourTexturesAndTheBackendCreatesExactlyTheP
     EXPECT_EQ(frame->stats.texture_bytes, bytes);
 }
 
-TEST_P(FlagshipTest, ThePaperAllocatorAlsoNeedsFiveColourTextures) {
+TEST_P(FlagshipTest, ThePaperAllocatorAlsoNeedsSixColourTextures) {
     renderer::PipelineSettings settings;
     settings.allocator = "paper";
     auto frame = render_flagship(device(), 96, 64, settings);
     ASSERT_TRUE(frame.ok()) << frame.error().to_string();
-    EXPECT_EQ(textures_of_format(frame->plan, Format::RGBA16Float), 5u);
+    EXPECT_EQ(textures_of_format(frame->plan, Format::RGBA16Float), 6u);
     EXPECT_EQ(frame->stats.textures, frame->plan.textures.size());
 }
 

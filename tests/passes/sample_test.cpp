@@ -40,7 +40,7 @@ int run_sample(const std::string& arguments, std::string& output) {
 }
 
 const char* const kPictures[] = {
-    "final",         "shadow.shadow_map", "geometry.position",  "geometry.normal", "geometry.albedo",
+    "final",         "shadow.shadow_map", "geometry.position",  "geometry.normal", "geometry.albedo", "geometry.emission",
     "geometry.depth", "geometry.material", "figure3-gbuffer",   "deferred.color",  "deferred.high_pass",
     "blur-h.color",  "blur-v.color",      "composite.final",    "present.target",
 };
@@ -59,7 +59,7 @@ TEST(DeferredSample, GlAndVulkanWriteTheSamePlanAndPictures) {
             << output;
         EXPECT_EQ(output.find("[error]"), std::string::npos) << output;
         EXPECT_EQ(output.find("[warning]"), std::string::npos) << output;
-        EXPECT_NE(output.find("RGBA16Float 256x144: 5 texture(s) for 8 output(s)"), std::string::npos) << output;
+        EXPECT_NE(output.find("RGBA16Float 256x144: 6 texture(s) for 9 output(s)"), std::string::npos) << output;
         for (const char* picture : kPictures) {
             EXPECT_TRUE(std::filesystem::exists(dir / (std::string(picture) + ".png"))) << backend << ": " << picture;
         }

@@ -337,6 +337,23 @@ TEST(SceneImport, SamplersMapToRhiSamplerDescriptions) {
     EXPECT_EQ(fallback.address_u, rhi::AddressMode::Repeat);
 }
 
+// KHR_materials_emissive_strength multiplies the emissive factor (HDR emission); without the
+// extension the factor stays as it is.
+TEST(SceneImport, EmissiveStrengthScalesTheEmissiveFactor) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    builder.add_quad(true, 0);
+    builder.json()["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+    builder.json()["materials"] = nlohmann::json::array(
+        {{{"emissiveFactor", {1.0, 0.5, 0.0}}, {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 6.0}}}}}},
+         {{"emissiveFactor", {1.0, 0.5, 0.0}}}});
+    ScopedLogCapture capture;
+    const Scene scene = load_ok(builder.write(dir, "strength", Layout::Embedded));
+    EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
+    EXPECT_EQ(scene.materials.at(0).emissive_factor, glm::vec3(6.0f, 3.0f, 0.0f));
+    EXPECT_EQ(scene.materials.at(1).emissive_factor, glm::vec3(1.0f, 0.5f, 0.0f));
+}
+
 TEST(SceneImport, MaterialFactorsTexturesAndUvSets) {
     const std::filesystem::path dir = synthetic_dir(current_test());
     GltfBuilder builder;

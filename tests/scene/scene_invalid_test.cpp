@@ -259,6 +259,15 @@ TEST_F(BrokenFile, UnsupportedRequiredExtension) {
         "/extensionsRequired/0", "required extension 'KHR_draco_mesh_compression' is not supported");
 }
 
+TEST_F(BrokenFile, NegativeEmissiveStrength) {
+    expect_error(
+        [](nlohmann::json& doc) {
+            doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+            doc["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = -2.0;
+        },
+        "/materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength", "must be >= 0.0, got -2.0");
+}
+
 TEST_F(BrokenFile, WrongAssetVersion) {
     expect_error([](nlohmann::json& doc) { doc["asset"]["version"] = "1.0"; }, "/asset/version",
                  "glTF version 1.0 is not supported");

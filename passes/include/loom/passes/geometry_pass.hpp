@@ -1,7 +1,8 @@
 #pragma once
 // The geometry pass: draws its objects into the G-buffer — position, normal and albedo maps,
-// with metallic, roughness and emission strength in their alpha channels (the paper's three
-// connected maps; packing in shaders/include/loom/passes/gbuffer.glsl) — and its own depth
+// with metallic and roughness in their alpha channels (the paper's three connected maps), and
+// an emission map with the emitted radiance in RGB (packing in
+// shaders/include/loom/passes/gbuffer.glsl) — and its own depth
 // texture (port "depth", transient: nothing reads it after the pass).
 
 #include <string>

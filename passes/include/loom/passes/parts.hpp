@@ -69,13 +69,13 @@ PassPart fullscreen_part();
 /// "camera": places object vertices in front of the camera (CameraUniforms) and interpolates
 /// the surface for the fragment stage; no ports.
 PassPart camera_part();
-/// "g-buffer": outputs position, normal, albedo (colour spec) and depth.
+/// "g-buffer": outputs position, normal, albedo, emission (colour spec) and depth.
 PassPart gbuffer_part(const PassConfig& config);
 /// "shadow-caster": depth of objects seen from the light (ShadowCasterUniforms); output
 /// shadow_map (Depth32F, map_size x map_size).
 PassPart shadow_caster_part(const PassConfig& config, uint32_t map_size);
-/// "deferred-render" (Listing 3): inputs position, normal, albedo; output color. Lights the
-/// G-buffer (LightingUniforms, gbuffer_position/normal/albedo).
+/// "deferred-render" (Listing 3): inputs position, normal, albedo, emission; output color.
+/// Lights the G-buffer (LightingUniforms, gbuffer_position/normal/albedo/emission).
 PassPart deferred_render_part(const PassConfig& config);
 /// "shadow-render" (Listing 4): input shadow_map, output color. Provides shadow_visibility()
 /// (ShadowUniforms, shadow_map).

@@ -2,7 +2,7 @@
 // The paper's Figure 2 pipeline on a loom frame graph (Listing 6, connection for connection):
 //
 //   shadow ──shadow_map──────────────┐
-//   geometry ──position/normal/albedo─┴─► deferred ──color──────────────► composite ──final──► present ──target
+//   geometry ─position/normal/albedo/emission─┴─► deferred ──color──────────────► composite ──final──► present ──target
 //                                          └─high_pass─► blur-h ─► blur-v ──bloom──┘
 //
 // The deferred pass is composed from the "deferred-render", "shadow-render" and

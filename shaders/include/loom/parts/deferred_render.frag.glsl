@@ -7,6 +7,7 @@
 layout(set = LOOM_SET, binding = LOOM_BINDING(1)) uniform sampler2D gbuffer_position;
 layout(set = LOOM_SET, binding = LOOM_BINDING(2)) uniform sampler2D gbuffer_normal;
 layout(set = LOOM_SET, binding = LOOM_BINDING(3)) uniform sampler2D gbuffer_albedo;
+layout(set = LOOM_SET, binding = LOOM_BINDING(4)) uniform sampler2D gbuffer_emission;
 
 layout(location = 0) out vec4 out_color;
 
@@ -15,6 +16,7 @@ void main() {
     vec4 position = texelFetch(gbuffer_position, texel, 0);
     vec4 normal = texelFetch(gbuffer_normal, texel, 0);
     vec4 albedo = texelFetch(gbuffer_albedo, texel, 0);
+    vec4 emission = texelFetch(gbuffer_emission, texel, 0);
     vec3 color;
     if (dot(normal.xyz, normal.xyz) < 0.25) {
         vec2 uv = gl_FragCoord.xy / vec2(textureSize(gbuffer_position, 0));  // (0,0) top-left
@@ -24,7 +26,7 @@ void main() {
 #ifdef LOOM_PART_SHADOW_RENDER
         visibility = shadow_visibility(position.xyz, normal.xyz);
 #endif
-        color = shade(position.xyz, normalize(normal.xyz), unpack_material(position, normal, albedo), visibility);
+        color = shade(position.xyz, normalize(normal.xyz), unpack_material(position, normal, albedo, emission), visibility);
     }
     out_color = vec4(color, 1.0);
 #ifdef LOOM_PART_HIGH_PASS_RENDER
