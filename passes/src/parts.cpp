@@ -38,6 +38,8 @@ constexpr PartDesc kParts[] = {
      }},
     {"high-pass-render", 1, {}, "loom/parts/high_pass_render.frag.glsl",
      [](fg::PortSet& ports, const Options& o) { ports.output("high_pass", color_spec(o.config)); }},
+    // No ports: the pass that draws the sky owns the attachments.
+    {"sky-render", 2, {}, "loom/parts/sky_render.frag.glsl", nullptr},
     {"forward-render", 1, {}, "loom/parts/forward_render.frag.glsl",
      [](fg::PortSet& ports, const Options& o) {
          ports.output("color", color_spec(o.config)).output("depth", depth_spec(o.config).with_scale(1.0f));
@@ -134,6 +136,8 @@ PassPart high_pass_render_part(const PassConfig& config) {
 }
 
 PassPart forward_render_part(const PassConfig& config) { return standard_part("forward-render", {.config = config}); }
+
+PassPart sky_render_part() { return standard_part("sky-render"); }
 
 PassPart gaussian_blur_part(const PassConfig& config) { return standard_part("gaussian-blur", {.config = config}); }
 

@@ -86,6 +86,9 @@ PassPart high_pass_render_part(const PassConfig& config);
 /// "forward-render": lights objects as they are drawn (LightingUniforms); outputs color and
 /// depth.
 PassPart forward_render_part(const PassConfig& config);
+/// "sky-render": the deferred pass's sky, full screen (LightingUniforms, SkyUniforms: the
+/// target's size); no ports. The forward pass draws it behind its objects.
+PassPart sky_render_part();
 /// "gaussian-blur": input previous_pass, output color (BlurUniforms, source).
 PassPart gaussian_blur_part(const PassConfig& config);
 /// "composite": inputs color and bloom, output final (CompositeUniforms, color, bloom).

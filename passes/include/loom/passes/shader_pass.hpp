@@ -192,7 +192,8 @@ public:
     [[nodiscard]] std::vector<CapturedTexture> captured() const;
 
     /// Destroys the GPU objects (they are made again on the next execute(), e.g. on another device).
-    void release_gpu();
+    /// Passes that keep helper programs release theirs too.
+    virtual void release_gpu();
     /// Bytes uploaded for the pass's own uniform sets (pass_uniforms) since the pass was made.
     [[nodiscard]] uint64_t pass_uniform_bytes() const { return pass_uniform_stats_.bytes; }
 
