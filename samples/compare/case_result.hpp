@@ -43,6 +43,13 @@ struct ImageMetrics {
     std::string diff_file;  ///< the heat map, relative to the output directory
 };
 
+/// How far the forward pipeline's picture may differ from the deferred one's: the deferred
+/// pass lights positions and normals read back from half-float G-buffer maps, the forward pass
+/// the unrounded ones, so most pixels differ by a level at most; at shadow edges and on
+/// specular highlights the rounding moves an edge by a pixel, which differs by more.
+inline constexpr double kPipelineThreshold = 2.0;      ///< levels (RGBA8)
+inline constexpr double kPipelineMaxDiffering = 0.005;  ///< of the pixels, above the threshold
+
 struct CaseResult {
     std::string scene;     ///< the scene file's name (SceneFile::name)
     std::string file;      ///< its path
@@ -56,6 +63,9 @@ struct CaseResult {
     std::vector<std::string> warnings;
     std::vector<BackendRun> runs;
     std::optional<ImageMetrics> image;
+    /// The forward case only: its picture against the deferred case's on the first backend
+    /// that rendered both (kPipelineThreshold, kPipelineMaxDiffering).
+    std::optional<ImageMetrics> against_deferred;
     /// Why the case failed; empty when it passed.
     std::vector<std::string> failures;
 

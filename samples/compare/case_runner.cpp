@@ -185,7 +185,52 @@ std::vector<CaseResult> CaseRunner::run(const SceneFile& file) {
             results[c].failures.push_back("pictures: " + written.error().to_string());
         }
     }
+    // The two pipelines against each other, when both ran.
+    std::optional<std::size_t> deferred, forward;
+    for (std::size_t c = 0; c < results.size(); ++c) {
+        if (options_.pipelines[c] == PipelineKind::Deferred) deferred = c;
+        if (options_.pipelines[c] == PipelineKind::Forward) forward = c;
+    }
+    if (deferred && forward) compare_pipelines(results[*deferred], images[*deferred], results[*forward], images[*forward]);
     return results;
+}
+
+void CaseRunner::compare_pipelines(const CaseResult& deferred, const std::vector<rhi::Image>& deferred_images,
+                                   CaseResult& forward, const std::vector<rhi::Image>& forward_images) {
+    rhi::ImageCompareOptions compare_options;
+    compare_options.threshold = kPipelineThreshold;
+    for (std::size_t b = 0; b < forward.runs.size(); ++b) {
+        if (!deferred.runs[b].rendered() || !forward.runs[b].rendered()) continue;
+        if (deferred_images[b].empty() || forward_images[b].empty()) continue;
+        const std::string backend(rhi::backend_name(forward.runs[b].backend));
+        auto comparison = rhi::compare_images(deferred_images[b], forward_images[b], compare_options);
+        if (!comparison) {
+            forward.failures.push_back("forward against deferred on " + backend + ": " + comparison.error().to_string());
+            continue;
+        }
+        const auto allowed =
+            static_cast<uint64_t>(std::floor(kPipelineMaxDiffering * static_cast<double>(comparison->pixel_count)));
+        if (comparison->pixels_above_threshold > allowed) {
+            forward.failures.push_back("forward differs from deferred on " + backend + ": " + comparison->summary() +
+                                       " (allowed: " + std::to_string(allowed) + " pixels above " +
+                                       std::to_string(static_cast<int>(kPipelineThreshold)) + ")");
+        }
+        if (forward.against_deferred) continue;
+        ImageMetrics metrics;
+        metrics.max_channel_diff = comparison->max_channel_diff;
+        metrics.pixels_above_threshold = comparison->pixels_above_threshold;
+        metrics.pixel_count = comparison->pixel_count;
+        metrics.psnr = comparison->psnr;
+        if (comparison->heatmap) {
+            const std::filesystem::path file = std::filesystem::path("cases") / forward.id / "vs-deferred.png";
+            if (Status written = image_io::write_png(*comparison->heatmap, options_.out / file); written) {
+                metrics.diff_file = file.generic_string();
+            } else {
+                forward.failures.push_back("pictures: " + written.error().to_string());
+            }
+        }
+        forward.against_deferred = metrics;
+    }
 }
 
 std::optional<rhi::Image> CaseRunner::compare(CaseResult& result, const std::vector<rhi::Image>& images) {

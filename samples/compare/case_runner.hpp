@@ -47,6 +47,10 @@ private:
     std::optional<rhi::Image> compare(CaseResult& result, const std::vector<rhi::Image>& images);
     Status write_pictures(CaseResult& result, const std::vector<rhi::Image>& images,
                           const std::optional<rhi::Image>& heatmap);
+    /// Compares the forward case's pictures with the deferred case's on every backend that
+    /// rendered both; records the first backend's metrics (and heat map) in `forward`.
+    void compare_pipelines(const CaseResult& deferred, const std::vector<rhi::Image>& deferred_images, CaseResult& forward,
+                           const std::vector<rhi::Image>& forward_images);
 
     Options options_;
     std::set<std::string> used_ids_;

@@ -14,6 +14,16 @@ namespace {
 
 using nlohmann::json;
 
+json metrics_json(const std::optional<ImageMetrics>& metrics) {
+    if (!metrics) return nullptr;
+    return {{"max_channel_diff", metrics->max_channel_diff},
+            {"pixels_above_threshold", metrics->pixels_above_threshold},
+            {"pixel_count", metrics->pixel_count},
+            {"psnr", std::isfinite(metrics->psnr) ? json(metrics->psnr) : json(nullptr)},
+            {"identical", metrics->max_channel_diff == 0.0},
+            {"diff", metrics->diff_file}};
+}
+
 json run_json(const BackendRun& run) {
     json out;
     out["backend"] = rhi::backend_name(run.backend);
@@ -48,16 +58,8 @@ json case_json(const CaseResult& c) {
     out["warnings"] = c.warnings;
     out["backends"] = json::array();
     for (const BackendRun& run : c.runs) out["backends"].push_back(run_json(run));
-    if (c.image) {
-        out["image"] = {{"max_channel_diff", c.image->max_channel_diff},
-                        {"pixels_above_threshold", c.image->pixels_above_threshold},
-                        {"pixel_count", c.image->pixel_count},
-                        {"psnr", std::isfinite(c.image->psnr) ? json(c.image->psnr) : json(nullptr)},
-                        {"identical", c.image->max_channel_diff == 0.0},
-                        {"diff", c.image->diff_file}};
-    } else {
-        out["image"] = nullptr;
-    }
+    out["image"] = metrics_json(c.image);
+    out["against_deferred"] = metrics_json(c.against_deferred);
     return out;
 }
 
@@ -222,11 +224,23 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
             html << "<figure><a href=\"" << escape(c->image->diff_file) << "\"><img src=\"" << escape(c->image->diff_file)
                  << "\" alt=\"difference\"></a><figcaption>difference (black: equal, bright: largest)</figcaption></figure>\n";
         }
+        if (c->against_deferred && !c->against_deferred->diff_file.empty()) {
+            html << "<figure><a href=\"" << escape(c->against_deferred->diff_file) << "\"><img src=\""
+                 << escape(c->against_deferred->diff_file)
+                 << "\" alt=\"forward against deferred\"></a><figcaption>forward against deferred</figcaption></figure>\n";
+        }
         html << "</div>\n";
         if (c->image) {
             html << "<p>Largest channel difference " << number(c->image->max_channel_diff, 0) << ", "
                  << c->image->pixels_above_threshold << " of " << c->image->pixel_count << " pixels above the threshold, PSNR "
                  << psnr_text(*c->image) << ".</p>\n";
+        }
+        if (c->against_deferred) {
+            html << "<p>Against the deferred pipeline: largest channel difference "
+                 << number(c->against_deferred->max_channel_diff, 0) << ", " << c->against_deferred->pixels_above_threshold
+                 << " of " << c->against_deferred->pixel_count << " pixels above " << number(kPipelineThreshold, 0)
+                 << " levels (at most " << number(kPipelineMaxDiffering * 100.0, 1) << "% may be), PSNR "
+                 << psnr_text(*c->against_deferred) << ".</p>\n";
         }
         if (!c->runs.empty()) html << "<p>" << escape(plan_line(*c)) << "</p>\n";
         std::vector<std::string> notes = c->warnings;

@@ -87,6 +87,16 @@ TEST(CompareOnData, EveryValidModelRendersAlikeOnEveryBackendThroughBothPipeline
             EXPECT_EQ(c["backends"][0]["plan"]["hash"], c["backends"][1]["plan"]["hash"]) << c["scene"];
             EXPECT_TRUE(std::filesystem::exists(dir / c["image"]["diff"].get<std::string>()));
         }
+        // The forward pipeline against the deferred one: within loom-compare's documented
+        // tolerance (2 levels at no more than 0.5 % of the pixels), with its heat map.
+        if (c["pipeline"] == "forward") {
+            const auto& against = c["against_deferred"];
+            ASSERT_TRUE(against.is_object()) << c["scene"];
+            EXPECT_LE(against["pixels_above_threshold"].get<double>(), 0.005 * against["pixel_count"].get<double>()) << c["scene"];
+            EXPECT_TRUE(std::filesystem::exists(dir / against["diff"].get<std::string>())) << c["scene"];
+        } else {
+            EXPECT_TRUE(c["against_deferred"].is_null()) << c["scene"];
+        }
         // Something was drawn: the sky behind the model changes by at most a level or two from
         // one pixel to the next, so the model's outline (and its shading and textures) are the
         // pixels that differ from their left or upper neighbour by more; a model covering over
