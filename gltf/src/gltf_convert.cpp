@@ -150,22 +150,25 @@ private:
             material.alpha_cutoff = static_cast<float>(source.alphaCutoff);
             material.double_sided = source.doubleSided;
 
-            auto base_color = texture_ref(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true,
+            auto base_color = texture_ref(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions, true,
                                           pbr_where / "baseColorTexture");
             if (!base_color) return base_color.take_error();
             material.base_color_texture = *base_color;
             auto metallic_roughness = texture_ref(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                                                  pbr.metallicRoughnessTexture.extensions,
                                                   false, pbr_where / "metallicRoughnessTexture");
             if (!metallic_roughness) return metallic_roughness.take_error();
             material.metallic_roughness_texture = *metallic_roughness;
-            auto normal = texture_ref(source.normalTexture.index, source.normalTexture.texCoord, false, where / "normalTexture");
+            auto normal = texture_ref(source.normalTexture.index, source.normalTexture.texCoord, source.normalTexture.extensions, false,
+                                      where / "normalTexture");
             if (!normal) return normal.take_error();
             material.normal_texture = *normal;
-            auto occlusion = texture_ref(source.occlusionTexture.index, source.occlusionTexture.texCoord, false,
+            auto occlusion = texture_ref(source.occlusionTexture.index, source.occlusionTexture.texCoord,
+                                         source.occlusionTexture.extensions, false,
                                          where / "occlusionTexture");
             if (!occlusion) return occlusion.take_error();
             material.occlusion_texture = *occlusion;
-            auto emissive = texture_ref(source.emissiveTexture.index, source.emissiveTexture.texCoord, true,
+            auto emissive = texture_ref(source.emissiveTexture.index, source.emissiveTexture.texCoord, source.emissiveTexture.extensions, true,
                                         where / "emissiveTexture");
             if (!emissive) return emissive.take_error();
             material.emissive_texture = *emissive;
@@ -174,9 +177,27 @@ private:
         return {};
     }
 
-    Result<std::optional<TextureRef>> texture_ref(int texture, int tex_coord, bool srgb, const JsonPointer& where) {
+    Result<std::optional<TextureRef>> texture_ref(int texture, int tex_coord, const tinygltf::ExtensionMap& extensions, bool srgb,
+                                                  const JsonPointer& where) {
         if (texture < 0) return std::optional<TextureRef>{};
         TextureRef ref;
+        // KHR_texture_transform (validated): the transform, and a UV set that replaces texCoord.
+        if (auto ext = extensions.find("KHR_texture_transform"); ext != extensions.end()) {
+            const tinygltf::Value& value = ext->second;
+            TextureTransform transform;
+            auto pair = [&](const char* key, glm::vec2& out) {
+                const tinygltf::Value& array = value.Get(key);
+                if (array.IsArray() && array.ArrayLen() == 2) {
+                    out = glm::vec2(static_cast<float>(array.Get(0).GetNumberAsDouble()),
+                                    static_cast<float>(array.Get(1).GetNumberAsDouble()));
+                }
+            };
+            pair("offset", transform.offset);
+            pair("scale", transform.scale);
+            if (value.Get("rotation").IsNumber()) transform.rotation = static_cast<float>(value.Get("rotation").GetNumberAsDouble());
+            if (value.Get("texCoord").IsInt()) tex_coord = value.Get("texCoord").GetNumberAsInt();
+            ref.transform = transform;
+        }
         if (tex_coord == 0 || tex_coord == 1) {
             ref.uv_set = static_cast<uint32_t>(tex_coord);
         } else {

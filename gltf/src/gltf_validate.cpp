@@ -36,7 +36,8 @@ constexpr uint64_t kMaxInt = static_cast<uint64_t>(std::numeric_limits<int32_t>:
 // recursive conversion of those values.
 constexpr std::size_t kMaxJsonDepth = 256;
 
-constexpr std::array<std::string_view, 2> kSupportedExtensions = {"KHR_mesh_quantization", "KHR_materials_emissive_strength"};
+constexpr std::array<std::string_view, 3> kSupportedExtensions = {"KHR_mesh_quantization", "KHR_materials_emissive_strength",
+                                                                   "KHR_texture_transform"};
 
 /// The top-level arrays of a glTF document that other objects refer to by index.
 enum class Collection : uint8_t {
@@ -392,7 +393,7 @@ private:
                 }
                 if (std::string_view(key) == "extensionsRequired" && !supported_extension) {
                     return parse_error(root / key / i, "required extension '" + name.get<std::string>() +
-                                                           "' is not supported (supported: KHR_mesh_quantization, KHR_materials_emissive_strength)");
+                                                           "' is not supported (supported: KHR_mesh_quantization, KHR_materials_emissive_strength, KHR_texture_transform)");
                 }
             }
         }
@@ -755,6 +756,22 @@ private:
         if (std::string_view(key) == "occlusionTexture") {
             auto strength = number_member(**texture_info, "strength", where, false, Range{0.0, 1.0});
             if (!strength) return strength.take_error();
+        }
+        // KHR_texture_transform: offset and scale of two numbers, a rotation, an optional UV set.
+        auto extensions = object_member(**texture_info, "extensions", where, false);
+        if (!extensions) return extensions.take_error();
+        if (*extensions) {
+            auto transform = object_member(**extensions, "KHR_texture_transform", where / "extensions", false);
+            if (!transform) return transform.take_error();
+            if (*transform) {
+                const JsonPointer transform_where = where / "extensions" / "KHR_texture_transform";
+                LOOM_TRY(number_array_member(**transform, "offset", transform_where, 2));
+                LOOM_TRY(number_array_member(**transform, "scale", transform_where, 2));
+                auto rotation = number_member(**transform, "rotation", transform_where, false);
+                if (!rotation) return rotation.take_error();
+                auto coordinates = integer_member(**transform, "texCoord", transform_where, false, 0, kMaxInt);
+                if (!coordinates) return coordinates.take_error();
+            }
         }
         return {};
     }

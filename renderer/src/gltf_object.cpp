@@ -23,8 +23,9 @@ struct GltfObjectUniforms {
     glm::vec4 alpha;      // mode, cutoff, mirror sign
     glm::ivec4 uv_sets;   // base colour, metallic-roughness, normal, occlusion
     glm::ivec4 textures;  // emissive UV set, texture bits
+    std::array<glm::vec4, 10> uv_transform;  // two rows per texture, in the order of kSamplers
 };
-static_assert(sizeof(GltfObjectUniforms) == 224);
+static_assert(sizeof(GltfObjectUniforms) == 384);
 
 // Bits of GltfObjectUniforms::textures.y (kGltf* in gltf_object.glsl), in the order of kSamplers.
 constexpr int kBaseColorBit = 1;
@@ -102,6 +103,11 @@ Status GltfObject::render(passes::DrawContext& context) const {
     std::array<int, 5> uv_sets{};
     int present = 0;
     for (std::size_t i = 0; i < refs.size(); ++i) {
+        // The identity unless the texture has a KHR_texture_transform.
+        std::array<glm::vec3, 2> rows = {glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)};
+        if (refs[i]->has_value() && (*refs[i])->transform) rows = (*refs[i])->transform->rows();
+        u.uv_transform[2 * i] = glm::vec4(rows[0], 0.0f);
+        u.uv_transform[2 * i + 1] = glm::vec4(rows[1], 0.0f);
         if (!refs[i]->has_value()) continue;
         present |= bits[i];
         uv_sets[i] = static_cast<int>((*refs[i])->uv_set);

@@ -92,6 +92,41 @@ TEST_P(GltfMaterialTest, FactorsVertexColoursAndTheSecondUvSetMultiply) {
     EXPECT_NEAR(right.g, 1.0, kHalf);
 }
 
+// KHR_texture_transform: the 2x2 texture above, scaled by a half and moved half a texture to the
+// right, shows its top-right texel (green) on the whole quad; rotated a quarter turn
+// (counter-clockwise in UV space) about the origin and moved back, the top-left quarter of the
+// quad samples what was the bottom-left texel (blue).
+TEST_P(GltfMaterialTest, TextureTransformMovesTheCoordinates) {
+    struct Case {
+        scene::TextureTransform transform;
+        std::array<int, 4> channels;  ///< the colour channel at full level in tl, tr, bl, br (3: white)
+    };
+    const double level = srgb_to_linear(128);
+    const double half_turn = 1.5707963267948966;
+    for (const Case& c : {Case{{{0.5f, 0.0f}, 0.0f, {0.5f, 0.5f}}, {1, 1, 1, 1}},
+                          Case{{{0.0f, 1.0f}, static_cast<float>(half_turn), {1.0f, 1.0f}}, {2, 0, 3, 1}}}) {
+        SCOPED_TRACE(testing::Message() << "rotation " << c.transform.rotation);
+        SceneBuilder b;
+        scene::Material m = plain();
+        m.base_color_texture = scene::TextureRef{b.texture(image_of(2, 2, rhi::Format::RGBA8Srgb,
+                                                                    {{128, 0, 0, 255}, {0, 128, 0, 255}, {0, 0, 128, 255}, {255, 255, 255, 255}}),
+                                                           nearest_sampler()),
+                                                 0, c.transform};
+        b.quad(b.material(m));
+        b.camera();
+        const GltfFrame frame = render(b);
+        ASSERT_FALSE(frame.images.empty());
+        const std::array<std::pair<uint32_t, uint32_t>, 4> quarters = {{{kLeft, kTop}, {kRight, kTop}, {kLeft, kBottom}, {kRight, kBottom}}};
+        for (std::size_t q = 0; q < 4; ++q) {
+            const glm::dvec4 albedo = at(frame, "geometry.albedo", quarters[q].first, quarters[q].second);
+            for (int ch = 0; ch < 3; ++ch) {
+                const double expected = c.channels[q] == 3 ? 1.0 : (c.channels[q] == ch ? level : 0.0);
+                EXPECT_NEAR(albedo[ch], expected, kHalf) << "quarter " << q << " channel " << ch;
+            }
+        }
+    }
+}
+
 TEST_P(GltfMaterialTest, MetallicRoughnessOcclusionAndEmissiveTexturesFillTheGBuffer) {
     SceneBuilder b;
     scene::Material m = plain(glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));

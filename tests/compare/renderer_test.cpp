@@ -87,7 +87,7 @@ TEST(GltfMeshKind, ComposesWithTheStandardPasses) {
     EXPECT_EQ(program->find("GltfObjectUniforms")->set, passes::kObjectSet);
     EXPECT_EQ(program->find("GltfObjectUniforms")->binding, 0u);
     EXPECT_EQ(program->find("gltf_emissive")->binding, 5u);
-    EXPECT_EQ(program->find("GltfObjectUniforms")->size, 224u);
+    EXPECT_EQ(program->find("GltfObjectUniforms")->size, 384u);
 }
 
 TEST(TransparentPass, NeedsBoundsToSortBy) {

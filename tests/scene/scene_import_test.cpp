@@ -273,11 +273,11 @@ TEST(SceneImport, UnsupportedUsedExtensionsAreIgnoredWithAWarning) {
     const std::filesystem::path dir = synthetic_dir(current_test());
     GltfBuilder builder;
     builder.add_quad(true);
-    builder.json()["extensionsUsed"] = {"KHR_mesh_quantization", "KHR_texture_transform"};
+    builder.json()["extensionsUsed"] = {"KHR_mesh_quantization", "KHR_materials_clearcoat"};
     ScopedLogCapture capture;
     const Scene scene = load_ok(builder.write(dir, "extensions", Layout::External));
     ASSERT_EQ(scene.warnings.size(), 1u);
-    EXPECT_NE(scene.warnings[0].find("/extensionsUsed/1: extension 'KHR_texture_transform' is not supported"),
+    EXPECT_NE(scene.warnings[0].find("/extensionsUsed/1: extension 'KHR_materials_clearcoat' is not supported"),
               std::string::npos)
         << scene.warnings[0];
     EXPECT_EQ(scene.draw_items.size(), 1u);
@@ -335,6 +335,42 @@ TEST(SceneImport, SamplersMapToRhiSamplerDescriptions) {
     EXPECT_EQ(fallback.min_filter, rhi::Filter::Linear);
     EXPECT_EQ(fallback.mipmap_filter, rhi::Filter::Linear);
     EXPECT_EQ(fallback.address_u, rhi::AddressMode::Repeat);
+}
+
+// KHR_texture_transform on a texture reference: offset, rotation, scale, and a texCoord that
+// replaces the reference's own.
+TEST(SceneImport, TextureTransformIsRead) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    builder.add_quad(true, 0);
+    builder.json()["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = builder.add_floats({0, 0, 1, 0, 1, 1, 0, 1}, "VEC2");
+    rhi::Image pixel(1, 1, rhi::Format::RGBA8Unorm);
+    ASSERT_TRUE(image_io::write_png(pixel, dir / "pixel.png").ok());
+    builder.json()["images"] = nlohmann::json::array({{{"uri", "pixel.png"}}});
+    builder.json()["textures"] = nlohmann::json::array({{{"source", 0}}});
+    builder.json()["extensionsUsed"] = {"KHR_texture_transform"};
+    nlohmann::json transform = {{"offset", {0.25, 0.5}}, {"rotation", 0.5}, {"scale", {2.0, 4.0}}, {"texCoord", 1}};
+    nlohmann::json material_json;
+    material_json["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}, {"extensions", {{"KHR_texture_transform", transform}}}};
+    material_json["emissiveTexture"] = {{"index", 0}};
+    builder.json()["materials"] = nlohmann::json::array({material_json});
+    ScopedLogCapture capture;
+    const Scene scene = load_ok(builder.write(dir, "transform", Layout::Embedded));
+    EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
+    const scene::Material& material = scene.materials.at(0);
+    ASSERT_TRUE(material.base_color_texture.has_value());
+    EXPECT_EQ(material.base_color_texture->uv_set, 1u);
+    ASSERT_TRUE(material.base_color_texture->transform.has_value());
+    EXPECT_EQ(*material.base_color_texture->transform, (scene::TextureTransform{{0.25f, 0.5f}, 0.5f, {2.0f, 4.0f}}));
+    const auto rows = material.base_color_texture->transform->rows();
+    EXPECT_NEAR(rows[0].x, 2.0 * std::cos(0.5), 1e-6);
+    EXPECT_NEAR(rows[0].y, 4.0 * std::sin(0.5), 1e-6);
+    EXPECT_EQ(rows[0].z, 0.25f);
+    EXPECT_NEAR(rows[1].x, -2.0 * std::sin(0.5), 1e-6);
+    EXPECT_NEAR(rows[1].y, 4.0 * std::cos(0.5), 1e-6);
+    EXPECT_EQ(rows[1].z, 0.5f);
+    ASSERT_TRUE(material.emissive_texture.has_value());
+    EXPECT_FALSE(material.emissive_texture->transform.has_value());
 }
 
 // KHR_materials_emissive_strength multiplies the emissive factor (HDR emission); without the

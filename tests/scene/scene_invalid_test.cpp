@@ -259,6 +259,14 @@ TEST_F(BrokenFile, UnsupportedRequiredExtension) {
         "/extensionsRequired/0", "required extension 'KHR_draco_mesh_compression' is not supported");
 }
 
+TEST_F(BrokenFile, TextureTransformWithThreeOffsets) {
+    expect_error(
+        [](nlohmann::json& doc) {
+            doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"]["offset"] = {1, 2, 3};
+        },
+        "/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform/offset", "");
+}
+
 TEST_F(BrokenFile, NegativeEmissiveStrength) {
     expect_error(
         [](nlohmann::json& doc) {

@@ -1,6 +1,8 @@
 #pragma once
 // PBR metallic-roughness materials (the glTF 2.0 core model) and the textures they sample.
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -18,10 +20,29 @@ enum class AlphaMode : uint8_t {
     Blend,   ///< alpha blends the surface over what lies behind it
 };
 
+/// How a texture's coordinates are moved before sampling (glTF KHR_texture_transform):
+/// uv' = translation(offset) * rotation(rotation) * scale(scale) * uv.
+struct TextureTransform {
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;  ///< radians, counter-clockwise in UV space
+    glm::vec2 scale{1.0f};
+
+    /// The two rows of the 2x3 matrix that applies the transform: uv' = (dot(row0, (u, v, 1)),
+    /// dot(row1, (u, v, 1))).
+    [[nodiscard]] std::array<glm::vec3, 2> rows() const {
+        const float c = std::cos(rotation), s = std::sin(rotation);
+        return {glm::vec3(c * scale.x, s * scale.y, offset.x), glm::vec3(-s * scale.x, c * scale.y, offset.y)};
+    }
+
+    friend bool operator==(const TextureTransform&, const TextureTransform&) = default;
+};
+
 /// A material's use of a texture: which texture and which UV set (0 = Vertex::uv0, 1 = uv1).
 struct TextureRef {
     uint32_t texture = 0;  ///< index into Scene::textures
     uint32_t uv_set = 0;
+    /// Absent: the coordinates as they are.
+    std::optional<TextureTransform> transform = std::nullopt;
 
     friend bool operator==(const TextureRef&, const TextureRef&) = default;
 };

@@ -35,6 +35,12 @@ vec2 gltf_uv(SurfaceInput surface, int uv_set) {
     return surface.uv;
 }
 
+// The coordinates texture `index` (kGltf*Index) samples: its UV set, moved by its transform.
+vec2 gltf_texture_uv(SurfaceInput surface, int index, int uv_set) {
+    vec3 uv = vec3(gltf_uv(surface, uv_set), 1.0);
+    return vec2(dot(gltf.uv_transform[2 * index].xyz, uv), dot(gltf.uv_transform[2 * index + 1].xyz, uv));
+}
+
 bool gltf_has(int texture_bit) {
     return (gltf.textures.y & texture_bit) != 0;
 }
@@ -59,22 +65,22 @@ MaterialSample gltf_object_material(inout SurfaceInput surface) {
     // Every texture is sampled before the mask's discard, in uniform control flow (the bits are
     // uniforms), so that implicit derivatives stay defined.
     vec4 base = gltf.base_color_factor * surface.color;
-    if (gltf_has(kGltfBaseColor)) base *= texture(gltf_base_color, gltf_uv(surface, gltf.uv_sets.x));
+    if (gltf_has(kGltfBaseColor)) base *= texture(gltf_base_color, gltf_texture_uv(surface, kGltfBaseColorIndex, gltf.uv_sets.x));
     float metallic = gltf.factors.x;
     float roughness = gltf.factors.y;
     if (gltf_has(kGltfMetallicRoughness)) {
-        vec4 mr = texture(gltf_metallic_roughness, gltf_uv(surface, gltf.uv_sets.y));
+        vec4 mr = texture(gltf_metallic_roughness, gltf_texture_uv(surface, kGltfMetallicRoughnessIndex, gltf.uv_sets.y));
         roughness *= mr.g;
         metallic *= mr.b;
     }
     vec3 n = surface.world_normal;
-    if (gltf_has(kGltfNormal)) n = gltf_mapped_normal(n, texture(gltf_normal, gltf_uv(surface, gltf.uv_sets.z)).xyz);
+    if (gltf_has(kGltfNormal)) n = gltf_mapped_normal(n, texture(gltf_normal, gltf_texture_uv(surface, kGltfNormalIndex, gltf.uv_sets.z)).xyz);
     float occlusion = 1.0;
     if (gltf_has(kGltfOcclusion)) {
-        occlusion = 1.0 + gltf.factors.w * (texture(gltf_occlusion, gltf_uv(surface, gltf.uv_sets.w)).r - 1.0);
+        occlusion = 1.0 + gltf.factors.w * (texture(gltf_occlusion, gltf_texture_uv(surface, kGltfOcclusionIndex, gltf.uv_sets.w)).r - 1.0);
     }
     vec3 emissive = gltf.emissive_factor.rgb;
-    if (gltf_has(kGltfEmissive)) emissive *= texture(gltf_emissive, gltf_uv(surface, gltf.textures.x)).rgb;
+    if (gltf_has(kGltfEmissive)) emissive *= texture(gltf_emissive, gltf_texture_uv(surface, kGltfEmissiveIndex, gltf.textures.x)).rgb;
 
     gltf_alpha = 1.0;
     if (gltf.alpha.x == kGltfAlphaMask) {

@@ -14,7 +14,19 @@ layout(set = LOOM_SET, binding = LOOM_BINDING(0)) uniform GltfObjectUniforms {
                               // z -1 when the model matrix mirrors, else +1
     ivec4 uv_sets;            // UV set (0 or 1) of base colour, metallic-roughness, normal, occlusion
     ivec4 textures;           // x UV set of emissive, y which textures are bound (kGltf* bits)
+    // Per texture (base colour, metallic-roughness, normal, occlusion, emissive) the two rows
+    // of its KHR_texture_transform matrix: uv' = (dot(row0.xyz, (u, v, 1)), dot(row1.xyz, ...)).
+    // The identity gives back u and v exactly (products by 1 and 0), so untransformed textures
+    // sample as before.
+    vec4 uv_transform[10];
 } gltf;
+
+// Indices of the textures in gltf.uv_transform (two rows each).
+const int kGltfBaseColorIndex = 0;
+const int kGltfMetallicRoughnessIndex = 1;
+const int kGltfNormalIndex = 2;
+const int kGltfOcclusionIndex = 3;
+const int kGltfEmissiveIndex = 4;
 
 // Bits of gltf.textures.y.
 const int kGltfBaseColor = 1;
