@@ -106,6 +106,16 @@ Result<std::vector<T>> AccessorReader::read(int index, uint32_t components) cons
         return error(where, "accessor has an unexpected type or component type");
     }
     if (accessor.count > max_elements_) return error(where, "accessor count exceeds the importer's limit");
+    const int sparse_views[] = {accessor.sparse.isSparse ? accessor.sparse.indices.bufferView : -1,
+                                accessor.sparse.isSparse ? accessor.sparse.values.bufferView : -1};
+    for (const int view : {accessor.bufferView, sparse_views[0], sparse_views[1]}) {
+        if (view < 0 || static_cast<std::size_t>(view) >= model_.bufferViews.size()) continue;
+        const int buffer = model_.bufferViews[static_cast<std::size_t>(view)].buffer;
+        if (buffer >= 0 && unavailable_buffers_.count(static_cast<uint64_t>(buffer)) != 0) {
+            return error(where, "reads buffer view " + std::to_string(view) + " of buffer " + std::to_string(buffer) +
+                                    ", whose data is unavailable (no uri outside a GLB, or a URI with a scheme)");
+        }
+    }
     const std::optional<uint64_t> value_count = checked_mul(accessor.count, components);
     if (!value_count) return error(where, "accessor count overflows");
     const uint32_t element = size * components;  // scalars and vectors only: no column padding

@@ -4,6 +4,7 @@
 // data actually loaded (the validator checked the declared sizes; this checks the real ones).
 
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -18,8 +19,10 @@ namespace loom::gltf::detail {
 /// Reads accessors of one model; errors name the file and the accessor's JSON pointer.
 class AccessorReader {
 public:
-    AccessorReader(const tinygltf::Model& model, std::string file_label, uint64_t max_elements)
-        : model_(model), file_label_(std::move(file_label)), max_elements_(max_elements) {}
+    AccessorReader(const tinygltf::Model& model, std::string file_label, uint64_t max_elements,
+                   const std::set<uint64_t>& unavailable_buffers)
+        : model_(model), file_label_(std::move(file_label)), max_elements_(max_elements),
+          unavailable_buffers_(unavailable_buffers) {}
 
     /// Accessor `index` as floats, `components` per element (the accessor's type must have
     /// exactly that many): normalised integers mapped to [0,1] / [-1,1] as glTF defines,
@@ -42,6 +45,7 @@ private:
     const tinygltf::Model& model_;
     std::string file_label_;
     uint64_t max_elements_;
+    const std::set<uint64_t>& unavailable_buffers_;  ///< buffers without data (see ValidationOutput)
 };
 
 }  // namespace loom::gltf::detail

@@ -85,4 +85,12 @@ struct ElementType {
     return column_bytes * type.columns;
 }
 
+/// Bytes the last element of an accessor needs: the element without the padding after its
+/// last matrix column (nothing follows it), e.g. 6 for a MAT2 of bytes, 11 for a MAT3.
+[[nodiscard]] constexpr uint32_t last_element_size(const ElementType& type, int component) {
+    if (type.columns == 0) return element_size(type, component);
+    const uint32_t rows = type.components / type.columns;
+    return element_size(type, component) / type.columns * (type.columns - 1) + rows * component_size(component);
+}
+
 }  // namespace loom::gltf::detail

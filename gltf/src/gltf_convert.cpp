@@ -102,9 +102,9 @@ rhi::AddressMode address_of(int gltf_wrap) {
 class Converter {
 public:
     Converter(const tinygltf::Model& model, const std::string& file_label, const LoadOptions& options,
-              std::vector<std::string>& warnings)
-        : model_(model), file_label_(file_label), options_(options), warnings_(warnings),
-          reader_(model, file_label, options.max_accessor_elements) {}
+              const std::set<uint64_t>& unavailable_buffers, std::vector<std::string>& warnings)
+        : model_(model), file_label_(file_label), options_(options), unavailable_buffers_(unavailable_buffers),
+          warnings_(warnings), reader_(model, file_label, options.max_accessor_elements, unavailable_buffers) {}
 
     Result<Scene> run() {
         scene_.source = file_label_;
@@ -234,6 +234,11 @@ private:
         const tinygltf::Image* source = element(model_.images, image);
         if (source == nullptr) return error(where, "image " + std::to_string(image) + " does not exist");
         const JsonPointer image_where = JsonPointer{} / "images" / static_cast<uint64_t>(image);
+        if (const tinygltf::BufferView* view = element(model_.bufferViews, source->bufferView);
+            view != nullptr && view->buffer >= 0 && unavailable_buffers_.count(static_cast<uint64_t>(view->buffer)) != 0) {
+            return error(image_where, "reads buffer view " + std::to_string(source->bufferView) + " of buffer " +
+                                          std::to_string(view->buffer) + ", whose data is unavailable");
+        }
         auto decoded = decode_image(source->image, srgb ? rhi::Format::RGBA8Srgb : rhi::Format::RGBA8Unorm,
                                     options_.max_image_dimension);
         if (!decoded) return error(image_where, decoded.error().message);
@@ -391,6 +396,12 @@ private:
             if (!indices) return indices.take_error();
             sequence = std::move(*indices);
             for (std::size_t i = 0; i < sequence.size(); ++i) {
+                // The largest value of the index type restarts strips on GPUs; glTF forbids it.
+                const uint64_t restart = (uint64_t{1} << (8 * component_size(model_.accessors[static_cast<std::size_t>(source.indices)].componentType))) - 1;
+                if (sequence[i] == restart) {
+                    return error(where / "indices", "index " + std::to_string(sequence[i]) + " (element " + std::to_string(i) +
+                                                        ") is the primitive restart value, which glTF index data must not contain");
+                }
                 if (sequence[i] >= vertex_count) {
                     return error(where / "indices", "index " + std::to_string(sequence[i]) + " (element " + std::to_string(i) +
                                                         ") is past the vertex count " + std::to_string(vertex_count));
@@ -572,6 +583,7 @@ private:
     const tinygltf::Model& model_;
     const std::string& file_label_;
     const LoadOptions& options_;
+    const std::set<uint64_t>& unavailable_buffers_;  // buffers without data (see ValidationOutput)
     std::vector<std::string>& warnings_;
     AccessorReader reader_;
     Scene scene_;
@@ -583,8 +595,8 @@ private:
 }  // namespace
 
 Result<Scene> convert_model(const tinygltf::Model& model, const std::string& file_label, const LoadOptions& options,
-                            std::vector<std::string>& warnings) {
-    Converter converter(model, file_label, options, warnings);
+                            const std::set<uint64_t>& unavailable_buffers, std::vector<std::string>& warnings) {
+    Converter converter(model, file_label, options, unavailable_buffers, warnings);
     return converter.run();
 }
 

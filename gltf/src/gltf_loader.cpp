@@ -7,6 +7,7 @@
 #include <exception>
 #include <fstream>
 #include <new>
+#include <span>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -118,6 +119,23 @@ bool keep_encoded_image(tinygltf::Image* image, const int, std::string* err, std
     return true;
 }
 
+// Gives buffers the names under which the file store serves their data, and index accessors
+// without a bufferView a zero-filled one (buffers and views appended, so indices stay valid).
+void apply_rewrites(nlohmann::json& root, const detail::ValidationOutput& validated) {
+    for (const auto& [index, rewrite] : validated.buffer_rewrites) {
+        nlohmann::json& buffer = root["buffers"][index];
+        buffer["uri"] = rewrite.first;
+        buffer["byteLength"] = rewrite.second;
+    }
+    for (const auto& [accessor_index, file] : validated.zero_index_accessors) {
+        const auto& [name, length] = file;
+        nlohmann::json& accessor = root["accessors"][accessor_index];
+        root["buffers"].push_back({{"uri", name}, {"byteLength", length}});
+        root["bufferViews"].push_back({{"buffer", root["buffers"].size() - 1}, {"byteLength", length}});
+        accessor["bufferView"] = root["bufferViews"].size() - 1;
+    }
+}
+
 Result<Scene> load_file(const std::filesystem::path& path, const LoadOptions& options) {
     const std::string file_label = path.string();
     auto bytes = read_file(path, file_label);
@@ -126,12 +144,12 @@ Result<Scene> load_file(const std::filesystem::path& path, const LoadOptions& op
     // The container: GLB (by magic, and any *.glb must be one) or plain JSON.
     const bool is_glb = detail::has_glb_magic(*bytes) || has_glb_extension(path);
     std::string_view json_text(reinterpret_cast<const char*>(bytes->data()), bytes->size());
-    std::optional<uint64_t> bin_size;
+    std::optional<std::span<const unsigned char>> bin;
     if (is_glb) {
         auto chunks = detail::parse_glb(*bytes);
         if (!chunks) return parse_error(file_label, chunks.error().message);
         json_text = chunks->json;
-        if (chunks->bin) bin_size = chunks->bin->size();
+        bin = chunks->bin;
     }
 
     // The JSON itself.
@@ -157,13 +175,17 @@ Result<Scene> load_file(const std::filesystem::path& path, const LoadOptions& op
     input.base_dir = path.parent_path();
     input.tinygltf_base_dir = path.parent_path().string();
     input.is_glb = is_glb;
-    input.glb_bin_size = bin_size;
+    input.glb_bin = bin;
     input.options = &options;
     auto validated = detail::validate_document(root, input);
     if (!validated) return validated.take_error();
+    // tinygltf parses the validated document as JSON text, GLB files too (their BIN chunk is
+    // served as a file), with the stand-ins the validator made for what tinygltf cannot take.
+    apply_rewrites(root, *validated);
+    const std::string document = root.dump();
     root = nlohmann::json();  // free it before tinygltf builds its own copy
-
-    // tinygltf parses the validated document.
+    bytes->clear();
+    bytes->shrink_to_fit();
     FileStore store{&validated->files};
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks(tinygltf::FsCallbacks{&store_file_exists, &store_expand_path, &store_read_file, &store_write_file,
@@ -172,23 +194,16 @@ Result<Scene> load_file(const std::filesystem::path& path, const LoadOptions& op
     tinygltf::Model model;
     std::string err;
     std::string warn;
-    bool loaded = false;
-    if (is_glb) {
-        loaded = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes->data(), static_cast<unsigned int>(bytes->size()),
-                                             input.tinygltf_base_dir);
-    } else {
-        loaded = loader.LoadASCIIFromString(&model, &err, &warn, json_text.data(),
-                                            static_cast<unsigned int>(json_text.size()), input.tinygltf_base_dir);
-    }
+    if (document.size() > UINT_MAX) return parse_error(file_label, "the JSON document is too large");
+    const bool loaded = loader.LoadASCIIFromString(&model, &err, &warn, document.data(),
+                                                   static_cast<unsigned int>(document.size()), input.tinygltf_base_dir);
     if (!loaded) {
         return parse_error(file_label, "tinygltf: " + (err.empty() ? std::string("loading failed") : one_line(err)));
     }
     std::vector<std::string> warnings = std::move(validated->warnings);
     if (!warn.empty()) warnings.push_back(located_message(file_label, "", "tinygltf: " + one_line(warn)));
-    bytes->clear();
-    bytes->shrink_to_fit();
 
-    auto scene = detail::convert_model(model, file_label, options, warnings);
+    auto scene = detail::convert_model(model, file_label, options, validated->unavailable_buffers, warnings);
     if (!scene) return scene.take_error();
     scene->warnings = std::move(warnings);
     for (const std::string& warning : scene->warnings) log_warning("gltf", warning);

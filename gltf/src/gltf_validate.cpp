@@ -75,6 +75,7 @@ struct ViewInfo {
     uint64_t byte_offset = 0;
     uint64_t byte_length = 0;
     std::optional<uint64_t> byte_stride;
+    std::optional<uint64_t> target;  ///< 34962 ARRAY_BUFFER or 34963 ELEMENT_ARRAY_BUFFER
 };
 
 struct AccessorInfo {
@@ -83,7 +84,27 @@ struct AccessorInfo {
     bool normalized = false;
     uint64_t count = 0;
     std::optional<uint64_t> buffer_view;
+    uint64_t byte_offset = 0;
+    bool has_bounds = false;  ///< both min and max are present
 };
+
+constexpr uint64_t kArrayBuffer = 34962;
+constexpr uint64_t kElementArrayBuffer = 34963;
+
+// glTF attribute semantics: the core ones (indexed ones as <NAME>_<decimal without leading
+// zeros>) or application-specific ones starting with an underscore.
+bool is_valid_semantic(std::string_view semantic, bool morph_target) {
+    if (!semantic.empty() && semantic.front() == '_') return true;
+    if (semantic == "POSITION" || semantic == "NORMAL" || semantic == "TANGENT") return true;
+    for (const std::string_view prefix : {"TEXCOORD_", "COLOR_", "JOINTS_", "WEIGHTS_"}) {
+        if (semantic.substr(0, prefix.size()) != prefix) continue;
+        if (morph_target && (prefix == "JOINTS_" || prefix == "WEIGHTS_")) return false;
+        const std::string_view digits = semantic.substr(prefix.size());
+        if (digits.empty() || (digits.size() > 1 && digits.front() == '0')) return false;
+        return std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+    }
+    return false;
+}
 
 std::string short_dump(const json& value) {
     std::string text = value.dump();
@@ -168,6 +189,15 @@ private:
     }
     Result<const json*> array_member(const json& object, std::string_view key, const JsonPointer& where, bool required) const {
         return member(object, key, where, required, json::value_t::array, "an array");
+    }
+
+    // An array that, when present, has at least one element (glTF's minItems: 1).
+    Result<const json*> non_empty_array_member(const json& object, std::string_view key, const JsonPointer& where,
+                                               bool required) const {
+        auto array = array_member(object, key, where, required);
+        if (!array) return array.take_error();
+        if (*array != nullptr && (*array)->empty()) return parse_error(where / key, "must not be empty (omit it instead)");
+        return array;
     }
 
     Result<std::optional<std::string>> string_member(const json& object, std::string_view key, const JsonPointer& where,
@@ -410,6 +440,7 @@ private:
             auto array = array_member(root_, info(collection).key, root, false);
             if (!array) return array.take_error();
             if (*array == nullptr) continue;
+            if ((*array)->empty()) return parse_error(root / info(collection).key, "must not be empty (omit it instead)");
             for (std::size_t i = 0; i < (*array)->size(); ++i) {
                 if (!(**array)[i].is_object()) {
                     return parse_error(root / info(collection).key / i, "must be an object, got " + short_dump((**array)[i]));
@@ -423,6 +454,21 @@ private:
     }
 
     // ---- resources ---------------------------------------------------------------------------
+
+    // The name tinygltf asks the file callbacks for when a buffer's uri is `name` (plain ASCII).
+    std::string store_key(const std::string& name) const {
+        std::string key = input_.tinygltf_base_dir;
+        if (!key.empty() && key.back() != '/') key += '/';
+        return key + name;
+    }
+
+    // A buffer without data: tinygltf gets a one-byte stand-in, the converter the index.
+    void mark_unavailable(uint64_t index) {
+        const std::string name = "__loom_unavailable_buffer_" + std::to_string(index) + ".bin";
+        output_.files.emplace(store_key(name), std::vector<unsigned char>(1, 0));
+        output_.buffer_rewrites[index] = {name, 1};
+        output_.unavailable_buffers.insert(index);
+    }
 
     // Reads the file a relative URI names; stores it for tinygltf under the name tinygltf will
     // ask for, cut to `keep_bytes` when given. Returns the file's full size.
@@ -481,16 +527,25 @@ private:
             const uint64_t declared = **byte_length;
             auto uri = string_member(buffer, "uri", where, false);
             if (!uri) return uri.take_error();
-            if (!*uri) {
-                if (!input_.is_glb || index != 0) {
-                    return parse_error(where, "buffer has no uri (only the first buffer of a GLB file may use its BIN chunk)");
-                }
-                if (!input_.glb_bin_size) return parse_error(where, "buffer has no uri and the GLB file has no BIN chunk");
-                if (*input_.glb_bin_size < declared) {
+            if (!*uri && input_.is_glb && index == 0) {
+                if (!input_.glb_bin) return parse_error(where, "buffer has no uri and the GLB file has no BIN chunk");
+                if (input_.glb_bin->size() < declared) {
                     return parse_error(where / "byteLength", "byteLength " + std::to_string(declared) +
                                                                  " exceeds the GLB BIN chunk's " +
-                                                                 std::to_string(*input_.glb_bin_size) + " bytes");
+                                                                 std::to_string(input_.glb_bin->size()) + " bytes");
                 }
+                // tinygltf reads the document as JSON text: the BIN chunk becomes a file.
+                const std::string name = "__loom_glb_bin_chunk.bin";
+                output_.files.emplace(store_key(name), std::vector<unsigned char>(input_.glb_bin->begin(),
+                                                                                  input_.glb_bin->begin() + static_cast<std::ptrdiff_t>(declared)));
+                output_.buffer_rewrites[index] = {name, declared};
+            } else if (!*uri || (!is_data_uri(**uri) && has_uri_scheme(**uri))) {
+                // Legal (a placeholder, or data elsewhere) as long as nothing reads it.
+                warn(!*uri ? where : where / "uri",
+                     !*uri ? "buffer has no uri (and is not a GLB's BIN chunk): its data is unavailable"
+                           : "URI '" + **uri + "' has a scheme; only relative file paths and data URIs are fetched, so "
+                             "the buffer's data is unavailable");
+                mark_unavailable(index);
             } else if (is_data_uri(**uri)) {
                 auto size = check_data_uri(**uri, where / "uri");
                 if (!size) return size.take_error();
@@ -529,6 +584,21 @@ private:
                 return parse_error(where / "byteStride", "must be a multiple of 4, got " + std::to_string(**stride));
             }
             result.byte_stride = *stride;
+            auto target = integer_member(view, "target", where, false, 0, kMaxInt);
+            if (!target) return target.take_error();
+            if (*target && **target != kArrayBuffer && **target != kElementArrayBuffer) {
+                return parse_error(where / "target", std::to_string(**target) + " is not 34962 (ARRAY_BUFFER) or 34963 "
+                                                                                "(ELEMENT_ARRAY_BUFFER)");
+            }
+            result.target = *target;
+            if (*stride && *target && **target == kElementArrayBuffer) {
+                return parse_error(where / "byteStride", "an index buffer view (target 34963) must not have a byteStride");
+            }
+            if (*stride && **stride > result.byte_length) {
+                return parse_error(where / "byteStride", "byteStride " + std::to_string(**stride) +
+                                                             " exceeds the view's byteLength " +
+                                                             std::to_string(result.byte_length));
+            }
             const uint64_t buffer_length = buffer_lengths_[result.buffer];
             if (!range_fits(result.byte_offset, result.byte_length, buffer_length)) {
                 return parse_error(where, "byteOffset " + std::to_string(result.byte_offset) + " + byteLength " +
@@ -588,9 +658,11 @@ private:
             for (const char* key : {"min", "max"}) {
                 LOOM_TRY(number_array_member(accessor, key, where, result.type.components));
             }
+            result.has_bounds = find(accessor, "min") != nullptr && find(accessor, "max") != nullptr;
             auto offset = integer_member(accessor, "byteOffset", where, false);
             if (!offset) return offset.take_error();
             const uint64_t byte_offset = offset->value_or(0);
+            result.byte_offset = byte_offset;
             auto view = reference_member(accessor, "bufferView", where, Collection::BufferViews, false);
             if (!view) return view.take_error();
             result.buffer_view = *view;
@@ -604,12 +676,20 @@ private:
                                                                  ") is not a multiple of its component size " +
                                                                  std::to_string(size));
                 }
+                // Matrix columns start at multiples of 4 bytes, so the matrix must too.
+                if (result.type.columns != 0 && size < 4 && byte_offset % 4 != 0) {
+                    return parse_error(where / "byteOffset", "a matrix accessor of " + std::to_string(size) +
+                                                                 "-byte components must start at a multiple of 4 bytes, got " +
+                                                                 std::to_string(byte_offset));
+                }
                 const uint64_t stride = view_info.byte_stride.value_or(element);
                 if (stride < element) {
                     return parse_error(where, "element size " + std::to_string(element) + " exceeds the byteStride " +
                                                   std::to_string(stride) + " of buffer view " + std::to_string(**view));
                 }
-                LOOM_TRY(check_in_view(**view, byte_offset, strided_span(result.count, stride, element), where,
+                // The last element needs no padding after its last column.
+                const auto span = strided_span(result.count, stride, last_element_size(result.type, result.component_type));
+                LOOM_TRY(check_in_view(**view, byte_offset, span, where,
                                        "accessor (" + std::to_string(result.count) + " elements of " +
                                            std::to_string(element) + " bytes, stride " + std::to_string(stride) + ")"));
             } else if (offset->has_value()) {
@@ -851,12 +931,32 @@ private:
     Status check_primitive(const json& primitive, const JsonPointer& where) {
         auto attributes = object_member(primitive, "attributes", where, true);
         if (!attributes) return attributes.take_error();
+        if ((*attributes)->empty()) return parse_error(where / "attributes", "must not be empty");
+        // Counts are compared with POSITION's (else with the first attribute's).
         std::optional<std::pair<std::string, uint64_t>> first_count;
+        if (const json* position = find(**attributes, "POSITION")) {
+            auto accessor = reference_value(*position, where / "attributes" / "POSITION", Collection::Accessors);
+            if (!accessor) return accessor.take_error();
+            first_count = {"POSITION", accessors_[*accessor].count};
+        }
         for (const auto& [semantic, value] : (*attributes)->items()) {
             const JsonPointer attribute_where = where / "attributes" / semantic;
             auto accessor = reference_value(value, attribute_where, Collection::Accessors);
             if (!accessor) return accessor.take_error();
             const AccessorInfo& accessor_info = accessors_[*accessor];
+            if (!is_valid_semantic(semantic, false)) {
+                return parse_error(attribute_where, "'" + semantic + "' is not a glTF attribute semantic (application-"
+                                                    "specific attributes must start with an underscore)");
+            }
+            if (accessor_info.component_type == component_type::kUnsignedInt) {
+                return parse_error(attribute_where, "accessor " + std::to_string(*accessor) +
+                                                        " is UNSIGNED_INT, which no vertex attribute may use");
+            }
+            if (semantic == "POSITION" && !accessor_info.has_bounds) {
+                return parse_error(attribute_where, "POSITION accessor " + std::to_string(*accessor) +
+                                                        " must have 'min' and 'max'");
+            }
+            LOOM_TRY(check_vertex_view(*accessor, attribute_where));
             if (!attribute_format_allowed(semantic, accessor_info)) {
                 return parse_error(attribute_where, "accessor " + std::to_string(*accessor) + " is " +
                                                         describe(accessor_info) + ", which " + semantic + " cannot use" +
@@ -883,6 +983,14 @@ private:
                                                           "; indices must be SCALAR UNSIGNED_BYTE, UNSIGNED_SHORT or "
                                                           "UNSIGNED_INT");
             }
+            if (accessor.buffer_view) LOOM_TRY(use_view(*accessor.buffer_view, kElementArrayBuffer, where / "indices"));
+            if (!accessor.buffer_view) {
+                // All zeros by the specification; tinygltf needs a view, so one is made for it.
+                const std::string name = "__loom_zero_indices_" + std::to_string(**indices) + ".bin";
+                const uint64_t bytes = accessor.count * component_size(c);
+                output_.files.emplace(store_key(name), std::vector<unsigned char>(static_cast<std::size_t>(bytes), 0));
+                output_.zero_index_accessors[**indices] = {name, bytes};
+            }
             if (accessor.buffer_view && views_[*accessor.buffer_view].byte_stride) {
                 return parse_error(where / "indices", "accessor " + std::to_string(**indices) + " uses buffer view " +
                                                           std::to_string(*accessor.buffer_view) +
@@ -893,18 +1001,68 @@ private:
         if (!material) return material.take_error();
         auto mode = integer_member(primitive, "mode", where, false, 0, 6);
         if (!mode) return mode.take_error();
-        auto targets = array_member(primitive, "targets", where, false);
+        auto targets = non_empty_array_member(primitive, "targets", where, false);
         if (!targets) return targets.take_error();
         if (*targets) {
             for (std::size_t t = 0; t < (*targets)->size(); ++t) {
                 const json& target = (**targets)[t];
                 if (!target.is_object()) return parse_error(where / "targets" / t, "must be an object");
                 for (const auto& [semantic, value] : target.items()) {
-                    auto accessor = reference_value(value, where / "targets" / t / semantic, Collection::Accessors);
+                    const JsonPointer target_where = where / "targets" / t / semantic;
+                    auto accessor = reference_value(value, target_where, Collection::Accessors);
                     if (!accessor) return accessor.take_error();
+                    if (!is_valid_semantic(semantic, true)) {
+                        return parse_error(target_where, "'" + semantic + "' is not a morph target attribute semantic");
+                    }
+                    const json* base = find(**attributes, semantic);
+                    if (base == nullptr) {
+                        return parse_error(target_where, "the primitive has no " + semantic + " attribute for this target to morph");
+                    }
+                    const AccessorInfo& target_accessor = accessors_[*accessor];
+                    if (semantic == "POSITION" && !target_accessor.has_bounds) {
+                        return parse_error(target_where, "POSITION accessor " + std::to_string(*accessor) +
+                                                             " must have 'min' and 'max'");
+                    }
+                    if (first_count && target_accessor.count != first_count->second) {
+                        return parse_error(target_where, "accessor " + std::to_string(*accessor) + " has " +
+                                                             std::to_string(target_accessor.count) + " elements, the primitive's vertices " +
+                                                             std::to_string(first_count->second));
+                    }
+                    LOOM_TRY(check_vertex_view(*accessor, target_where));
                 }
             }
             if (!(*targets)->empty()) warn(where / "targets", "morph targets are not imported (the base shape is used)");
+        }
+        return {};
+    }
+
+    // A buffer view serves vertices or indices, never both (its target, when given, says which).
+    Status use_view(uint64_t view, uint64_t usage, const JsonPointer& where) {
+        const auto [it, inserted] = view_usage_.emplace(view, views_[view].target.value_or(usage));
+        if (it->second != usage) {
+            const auto name = [](uint64_t u) { return u == kArrayBuffer ? std::string("vertex") : std::string("index"); };
+            return parse_error(where, "buffer view " + std::to_string(view) + " holds " + name(it->second) +
+                                          " data and cannot also be used for " + name(usage) + " data");
+        }
+        return {};
+    }
+
+    // Vertex attribute data: 4-byte aligned, and a view several attributes share needs a stride.
+    Status check_vertex_view(uint64_t accessor_index, const JsonPointer& where) {
+        const AccessorInfo& accessor = accessors_[accessor_index];
+        if (!accessor.buffer_view) return {};
+        const uint64_t view = *accessor.buffer_view;
+        LOOM_TRY(use_view(view, kArrayBuffer, where));
+        if ((views_[view].byte_offset + accessor.byte_offset) % 4 != 0) {
+            return parse_error(where, "accessor " + std::to_string(accessor_index) + " starts at byte " +
+                                          std::to_string(views_[view].byte_offset + accessor.byte_offset) +
+                                          " of its buffer; vertex attribute data must be aligned to 4 bytes");
+        }
+        std::set<uint64_t>& users = vertex_view_accessors_[view];
+        users.insert(accessor_index);
+        if (users.size() > 1 && !views_[view].byte_stride) {
+            return parse_error(where, "buffer view " + std::to_string(view) + " is used by several vertex attribute "
+                                                                            "accessors and must define byteStride");
         }
         return {};
     }
@@ -919,7 +1077,24 @@ private:
                 if (!primitive.is_object()) return parse_error(where / "primitives" / p, "must be an object");
                 LOOM_TRY(check_primitive(primitive, where / "primitives" / p));
             }
+            // Every primitive of a mesh has the same number of morph targets; weights, one each.
+            auto target_count = [](const json& primitive) -> std::size_t {
+                const auto targets = primitive.find("targets");
+                return targets == primitive.end() ? 0 : targets->size();
+            };
+            const std::size_t targets = target_count((**primitives)[0]);
+            for (std::size_t p = 1; p < (*primitives)->size(); ++p) {
+                if (target_count((**primitives)[p]) != targets) {
+                    return parse_error(where / "primitives" / p / "targets",
+                                       "has " + std::to_string(target_count((**primitives)[p])) + " morph targets, primitive 0 " +
+                                           std::to_string(targets) + " (all primitives of a mesh need the same number)");
+                }
+            }
             LOOM_TRY(number_array_member(mesh, "weights", where, 0));
+            if (const json* weights = find(mesh, "weights"); weights != nullptr && weights->size() != targets) {
+                return parse_error(where / "weights", "has " + std::to_string(weights->size()) + " weights for " +
+                                                          std::to_string(targets) + " morph targets");
+            }
             return {};
         });
     }
@@ -978,7 +1153,7 @@ private:
             if (!matrices) return matrices.take_error();
             auto skeleton = reference_member(skin, "skeleton", where, Collection::Nodes, false);
             if (!skeleton) return skeleton.take_error();
-            auto joints = array_member(skin, "joints", where, true);
+            auto joints = non_empty_array_member(skin, "joints", where, true);
             if (!joints) return joints.take_error();
             for (std::size_t j = 0; j < (*joints)->size(); ++j) {
                 auto joint = reference_value((**joints)[j], where / "joints" / j, Collection::Nodes);
@@ -996,7 +1171,7 @@ private:
         const std::size_t node_count = count(Collection::Nodes);
         parents_.assign(node_count, std::nullopt);
         if (Status status = for_each(Collection::Nodes, [&](const json& node, const JsonPointer& where, std::size_t index) -> Status {
-            auto children = array_member(node, "children", where, false);
+            auto children = non_empty_array_member(node, "children", where, false);
             if (!children) return children.take_error();
             if (*children) {
                 for (std::size_t k = 0; k < (*children)->size(); ++k) {
@@ -1067,7 +1242,7 @@ private:
 
     Status check_scenes() {
         return for_each(Collection::Scenes, [&](const json& scene, const JsonPointer& where, std::size_t) -> Status {
-            auto nodes = array_member(scene, "nodes", where, false);
+            auto nodes = non_empty_array_member(scene, "nodes", where, false);
             if (!nodes) return nodes.take_error();
             if (*nodes == nullptr) return {};
             std::set<uint64_t> seen;
@@ -1089,7 +1264,7 @@ private:
 
     Status check_animations() {
         if (Status status = for_each(Collection::Animations, [&](const json& animation, const JsonPointer& where, std::size_t) -> Status {
-            auto samplers = array_member(animation, "samplers", where, true);
+            auto samplers = non_empty_array_member(animation, "samplers", where, true);
             if (!samplers) return samplers.take_error();
             for (std::size_t s = 0; s < (*samplers)->size(); ++s) {
                 const json& sampler = (**samplers)[s];
@@ -1100,7 +1275,7 @@ private:
                     if (!accessor) return accessor.take_error();
                 }
             }
-            auto channels = array_member(animation, "channels", where, true);
+            auto channels = non_empty_array_member(animation, "channels", where, true);
             if (!channels) return channels.take_error();
             for (std::size_t c = 0; c < (*channels)->size(); ++c) {
                 const json& channel = (**channels)[c];
@@ -1137,6 +1312,8 @@ private:
     std::vector<ViewInfo> views_;
     std::vector<AccessorInfo> accessors_;
     std::vector<std::optional<uint64_t>> parents_;
+    std::map<uint64_t, uint64_t> view_usage_;                   // buffer view -> kArrayBuffer / kElementArrayBuffer
+    std::map<uint64_t, std::set<uint64_t>> vertex_view_accessors_;  // buffer view -> vertex attribute accessors
 };
 
 }  // namespace

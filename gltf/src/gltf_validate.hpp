@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -26,7 +28,7 @@ struct ValidationInput {
     std::filesystem::path base_dir;        ///< where relative URIs are resolved
     std::string tinygltf_base_dir;         ///< the base directory string given to tinygltf
     bool is_glb = false;
-    std::optional<uint64_t> glb_bin_size;  ///< size of the GLB BIN chunk, if there is one
+    std::optional<std::span<const unsigned char>> glb_bin;  ///< the GLB BIN chunk, if there is one
     const LoadOptions* options = nullptr;
 };
 
@@ -37,6 +39,17 @@ struct ValidationOutput {
     std::map<std::string, std::vector<unsigned char>> files;
     /// Non-fatal findings, already formatted "<file>: <pointer>: <what>".
     std::vector<std::string> warnings;
+    /// Buffers without data (no uri outside a GLB, or a URI the importer does not fetch): legal
+    /// while nothing reads them; the converter rejects any accessor that does.
+    std::set<uint64_t> unavailable_buffers;
+    /// Every buffer's "uri" as tinygltf must see it: tinygltf is given the document as JSON
+    /// text (also for GLB files), so the GLB BIN chunk and unavailable buffers are served as
+    /// files under these names; keyed by buffer index, with the byteLength to declare.
+    std::map<uint64_t, std::pair<std::string, uint64_t>> buffer_rewrites;
+    /// Index accessors without a bufferView (all zeros by the specification, which tinygltf
+    /// rejects): each gets a zero-filled buffer and view, served as a file under this name
+    /// (with its byte length), keyed by accessor index.
+    std::map<uint64_t, std::pair<std::string, uint64_t>> zero_index_accessors;
 };
 
 /// Validates the parsed document. The error is ErrorCode::Io for files that cannot be read,

@@ -80,6 +80,7 @@ CaseResult CaseRunner::expect_error(const SceneFile& file) {
     router.route(nullptr);
     for (const std::string& message : messages) result.failures.push_back("logged while loading: " + message);
     if (scene) {
+        result.warnings = scene->warnings;  // the JSON report lists them: what the importer let through
         result.failures.push_back("loaded without an error (" + std::to_string(scene->draw_items.size()) +
                                   " draw items); an invalid file must be rejected");
         return result;

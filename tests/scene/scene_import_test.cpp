@@ -137,6 +137,8 @@ TEST(SceneImport, FloatVec4ColoursAndInterleavedViews) {
                                             0, 1, 0, 0, 0, 1, 1};
     const int view = builder.add_view(interleaved, 28);
     const int positions = builder.add_accessor(view, kFloat, 3, "VEC3");
+    builder.json()["accessors"][positions]["min"] = {0, 0, 0};  // glTF requires POSITION bounds
+    builder.json()["accessors"][positions]["max"] = {1, 1, 0};
     const int colors = builder.add_accessor(view, kFloat, 3, "VEC4", 12);
     const nlohmann::json primitive = {{"attributes", {{"POSITION", positions}, {"COLOR_0", colors}}}};
     builder.set_scene({builder.add_node({{"mesh", builder.add_mesh(nlohmann::json::array({primitive}))}})});
@@ -158,6 +160,8 @@ TEST(SceneImport, MeshQuantizationAttributes) {
     // coordinates as plain unsigned bytes.
     const int positions = builder.add_accessor(builder.add_view(std::vector<int16_t>{0, 0, 0, 0, 100, 0, 0, 0, 0, -100, 0, 0}, 8),
                                                kShort, 3, "VEC3");
+    builder.json()["accessors"][positions]["min"] = {0, -100, 0};  // glTF requires POSITION bounds
+    builder.json()["accessors"][positions]["max"] = {100, 0, 0};
     const int normals = builder.add_accessor(builder.add_view(std::vector<int8_t>{0, 0, 127, 0, 0, 0, -128, 0, 0, -127, 0, 0}, 4),
                                              kByte, 3, "VEC3", 0, true);
     const int uvs = builder.add_accessor(builder.add_view(std::vector<uint8_t>{0, 0, 0, 0, 2, 0, 0, 0, 0, 3, 0, 0}, 4),
@@ -197,6 +201,8 @@ TEST(SceneImport, SparseAccessorWithoutABufferView) {
     builder.json()["accessors"].push_back({{"componentType", kFloat},
                                            {"count", 4},
                                            {"type", "VEC3"},
+                                           {"min", {0, 0, 0}},  // glTF requires POSITION bounds
+                                           {"max", {1, 1, 0}},
                                            {"sparse",
                                             {{"count", 3},
                                              {"indices", {{"bufferView", indices}, {"componentType", kUnsignedShort}}},

@@ -334,6 +334,8 @@ TEST_F(BrokenFile, AttributeProblems) {
         [](nlohmann::json& doc) {
             doc["accessors"][1]["type"] = "VEC2";
             doc["accessors"][1]["count"] = 4;
+            doc["accessors"][1].erase("min");  // bounds of the VEC3 it was
+            doc["accessors"][1].erase("max");
         },
         "/meshes/0/primitives/0/attributes/NORMAL", "accessor 1 is VEC2 FLOAT, which NORMAL cannot use");
     expect_error([](nlohmann::json& doc) { doc["accessors"][2]["componentType"] = 5124; }, "/accessors/2/componentType",
@@ -436,7 +438,9 @@ TEST_F(BrokenFile, BufferWithoutUriOutsideAGlb) {
     const std::filesystem::path path =
         builder_.write(dir_, "no_uri", Layout::External, [](nlohmann::json& doc) { doc["buffers"][0].erase("uri"); });
     const Error error = expect_load_error(path);
-    EXPECT_NE(error.message.find("/buffers/0: buffer has no uri"), std::string::npos) << error.message;
+    // Such a buffer is legal until something reads it: the first reader is the error.
+    EXPECT_NE(error.message.find("/images/0: reads buffer view"), std::string::npos) << error.message;
+    EXPECT_NE(error.message.find("whose data is unavailable"), std::string::npos) << error.message;
 }
 
 TEST_F(BrokenFile, UndecodableImage) {

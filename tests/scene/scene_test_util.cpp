@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "scene_test_util.hpp"
 
 #include <fstream>
@@ -58,7 +59,25 @@ int GltfBuilder::add_accessor(int view, int component_type, uint64_t count, cons
 int GltfBuilder::add_floats(const std::vector<float>& values, const std::string& type) {
     const uint64_t components = type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : 4;
     const int view = add_view(values);
-    return add_accessor(view, kFloat, values.size() / components, type);
+    const int accessor = add_accessor(view, kFloat, values.size() / components, type);
+    // Bounds as glTF requires them for POSITION (harmless elsewhere): the exact extremes.
+    nlohmann::json min = nlohmann::json::array();
+    nlohmann::json max = nlohmann::json::array();
+    for (uint64_t c = 0; c < components && values.size() >= components; ++c) {
+        float low = values[c];
+        float high = values[c];
+        for (std::size_t i = c; i < values.size(); i += components) {
+            low = std::min(low, values[i]);
+            high = std::max(high, values[i]);
+        }
+        min.push_back(low);
+        max.push_back(high);
+    }
+    if (!min.empty()) {
+        doc_["accessors"][static_cast<std::size_t>(accessor)]["min"] = min;
+        doc_["accessors"][static_cast<std::size_t>(accessor)]["max"] = max;
+    }
+    return accessor;
 }
 
 int GltfBuilder::add_indices(const std::vector<uint32_t>& indices, int component_type) {
