@@ -412,5 +412,39 @@ TEST(MemoryOrderCorpus, NeverWorseThanDeclaredAndEveryConstraintHolds) {
     EXPECT_GT(better, kGraphs / 10);
 }
 
+// The engine frames of samples/plan/graphs (docs/BENCHMARKS.md, "Pass order"): GTA V and Unreal
+// reach the exact optimum in memory order; DOOM's peak is held by async compute and stays.
+TEST(MemoryOrderEngineFrames, GtaAndUnrealReachTheOptimumDoomKeepsItsOrder) {
+    struct Expected {
+        const char* file;
+        uint64_t declared;
+        uint64_t memory;
+        uint64_t exact;  // over lifetimes
+    };
+    for (const Expected& frame : {Expected{"gta5_frame.json", 86507520, 73662464, 73662464},
+                                  Expected{"unreal_deferred_frame.json", 141962752, 119537664, 119537664},
+                                  Expected{"doom2016_frame.json", 349462784, 349462784, 331768064}}) {
+        SCOPED_TRACE(frame.file);
+        auto file = load_graph_file(std::string(LOOM_SAMPLE_GRAPHS) + "/" + frame.file);
+        ASSERT_TRUE(file.ok()) << file.error().to_string();
+        PlanOptions options = with_order(PassOrder::Declared);
+        options.frame = file->frame;
+        const Plan declared = must_plan(file->graph, options);
+        options.order = PassOrder::Memory;
+        const Plan memory = must_plan(file->graph, options);
+        EXPECT_EQ(declared.summary.lower_bound_bytes, frame.declared);
+        EXPECT_EQ(memory.summary.lower_bound_bytes, frame.memory);
+        auto problem = detail::order_problem_of(file->graph, options);
+        ASSERT_TRUE(problem.ok());
+        auto exact = detail::exact_memory_order(*problem, 1'000'000, frame.declared);
+        ASSERT_TRUE(exact.has_value());
+        EXPECT_EQ(exact->peak, frame.exact);
+        EXPECT_EQ(detail::order_cost(*problem, detail::memory_order(*problem)).peak, frame.exact);
+        // Every pass still runs, the graph output last.
+        EXPECT_EQ(memory.order.size(), declared.order.size());
+        EXPECT_EQ(memory.order.back().name, declared.order.back().name);
+    }
+}
+
 }  // namespace
 }  // namespace loom::fg
