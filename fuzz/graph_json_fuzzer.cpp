@@ -1,5 +1,5 @@
-// Fuzz harness: graph JSON -> load -> join -> plan with every allocator and sharing mode, and
-// every export of the plan. Any input must give a plan or a clean error: no crash, hang, leak
+// Fuzz harness: graph JSON -> load -> join -> plan with every allocator and sharing mode (in the
+// file's pass order, and in memory order), and every export of the plan. Any input must give a plan or a clean error: no crash, hang, leak
 // or undefined behaviour (docs/fuzzing.md).
 #include <cstddef>
 #include <cstdint>
@@ -15,12 +15,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const char* allocator;
         loom::fg::SpecSharing sharing;
         uint64_t max_heap_bytes;
+        bool memory_order;
     };
     static constexpr Variant kVariants[] = {
-        {"paper", loom::fg::SpecSharing::Equal, 0},        {"paper", loom::fg::SpecSharing::Joinable, 0},
-        {"interval", loom::fg::SpecSharing::Equal, 0},     {"interval", loom::fg::SpecSharing::Joinable, 0},
-        {"heap", loom::fg::SpecSharing::Equal, 0},         {"heap", loom::fg::SpecSharing::Joinable, 1},
-        {"heap", loom::fg::SpecSharing::Equal, 1 << 20},
+        {"paper", loom::fg::SpecSharing::Equal, 0, false},     {"paper", loom::fg::SpecSharing::Joinable, 0, false},
+        {"interval", loom::fg::SpecSharing::Equal, 0, false},  {"interval", loom::fg::SpecSharing::Joinable, 0, false},
+        {"heap", loom::fg::SpecSharing::Equal, 0, false},      {"heap", loom::fg::SpecSharing::Joinable, 1, false},
+        {"heap", loom::fg::SpecSharing::Equal, 1 << 20, false}, {"interval", loom::fg::SpecSharing::Equal, 0, true},
+        {"heap", loom::fg::SpecSharing::Equal, 0, true},
     };
     for (const Variant& variant : kVariants) {
         loom::fg::PlanOptions options;
@@ -28,6 +30,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         options.sharing = variant.sharing;
         options.max_heap_bytes = variant.max_heap_bytes;
         options.frame = file->frame;
+        options.order = variant.memory_order ? loom::fg::PassOrder::Memory : file->order;
         auto plan = loom::fg::build_plan(file->graph, options);
         if (!plan) continue;
         (void)loom::fg::plan_to_json(*plan);

@@ -440,6 +440,7 @@ void write_plan_json(std::ostream& stream, const Plan& plan, int indent) {
     out.begin_array();
     for (const OwnershipTransfer& t : plan.ownership_transfers) write_transfer(out, plan, t);
     out.end_array();
+    out.member("pass_order", pass_order_name(plan.pass_order));
     out.key("passes");
     out.begin_array();
     for (const PlanPass& pass : plan.order) write_pass(out, plan, pass);

@@ -159,6 +159,21 @@ Status FrameGraph::set_side_effect(std::string_view name, bool side_effect) {
     return {};
 }
 
+Status FrameGraph::require_order(std::string_view earlier, std::string_view later) {
+    const std::string what = "require_order " + quoted_name(earlier) + " before " + quoted_name(later) + ": ";
+    auto first = find_pass(earlier);
+    if (!first) return graph_error(what + "unknown pass " + quoted_name(earlier));
+    auto second = find_pass(later);
+    if (!second) return graph_error(what + "unknown pass " + quoted_name(later));
+    if (*first == *second) return graph_error(what + "a pass cannot run before itself");
+    const std::pair<PassId, PassId> requirement{*first, *second};
+    if (std::find(order_requirements_.begin(), order_requirements_.end(), requirement) == order_requirements_.end()) {
+        order_requirements_.push_back(requirement);
+        ++revision_;
+    }
+    return {};
+}
+
 Status FrameGraph::validate() const {
     auto dependencies = detail::analyze(*this);
     if (!dependencies) return dependencies.take_error();

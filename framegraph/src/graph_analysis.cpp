@@ -4,6 +4,7 @@
 #include <functional>
 #include <queue>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace loom::fg::detail {
 namespace {
@@ -15,9 +16,9 @@ void sort_unique(std::vector<uint32_t>& values) {
     values.erase(std::unique(values.begin(), values.end()), values.end());
 }
 
-// Why one pass must run before another: the connection between them, or the texture the
-// first reads before the second modifies it in place. Indexed once, so that naming every edge
-// of a long cycle does not scan every connection per edge.
+// Why one pass must run before another: the connection between them, the texture the first
+// reads before the second modifies it in place, or the application's require_order. Indexed
+// once, so that naming every edge of a long cycle does not scan every connection per edge.
 class EdgeReasons {
 public:
     explicit EdgeReasons(const FrameGraph& graph) : graph_(graph), into_(graph.pass_count()) {
@@ -26,6 +27,9 @@ public:
             const Connection& c = connections[i];
             first_feeding_.try_emplace(pair_key(c.from.pass, c.to.pass), i);
             into_[c.to.pass].push_back(i);
+        }
+        for (const auto& [earlier, later] : graph.order_requirements()) {
+            required_.insert(pair_key(earlier.index, later.index));
         }
     }
 
@@ -45,6 +49,9 @@ public:
                 }
             }
         }
+        if (required_.contains(pair_key(from, to))) {
+            return "require_order puts " + graph_.pass(PassId{from}).name() + " before " + graph_.pass(PassId{to}).name();
+        }
         return "dependency";
     }
 
@@ -54,6 +61,7 @@ private:
     const FrameGraph& graph_;
     std::unordered_map<uint64_t, uint32_t> first_feeding_;  // (from, to) -> first connection between them
     std::vector<std::vector<uint32_t>> into_;               // per pass, the connections into it, in order
+    std::unordered_set<uint64_t> required_;                 // (earlier, later) of require_order
 };
 
 // Finds a cycle among the passes Kahn's algorithm could not order (each has a predecessor
@@ -155,6 +163,8 @@ Result<Dependencies> analyze(const FrameGraph& graph) {
             }
         }
     }
+    // The application's order requirements order like connections, without feeding anything.
+    for (const auto& [earlier, later] : graph.order_requirements()) out.successors[earlier.index].push_back(later.index);
     for (auto& list : out.successors) sort_unique(list);
     for (auto& list : out.producers) sort_unique(list);
 

@@ -11,7 +11,8 @@ namespace loom::fg::detail {
 
 struct Dependencies {
     /// Per pass, the passes that must run after it (sorted, unique): readers of its textures,
-    /// and passes that modify in place a texture it reads before the modification.
+    /// passes that modify in place a texture it reads before the modification, and the passes
+    /// FrameGraph::require_order puts after it.
     std::vector<std::vector<uint32_t>> successors;
     /// Per pass, the passes whose textures it reads (sorted, unique). Culling follows these.
     std::vector<std::vector<uint32_t>> producers;

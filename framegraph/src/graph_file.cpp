@@ -41,7 +41,8 @@ public:
     Result<GraphFile> read(const json& root) {
         GraphFile file;
         if (!root.is_object()) return fail("", "the top level must be an object");
-        LOOM_TRY(only_keys(root, "", {"frame", "passes", "connections", "outputs", "description"}));
+        LOOM_TRY(only_keys(root, "", {"frame", "passes", "connections", "outputs", "description", "order",
+                                      "order_constraints"}));
         if (root.contains("description") && !root["description"].is_string()) {
             return fail("/description", "must be a string (what the graph is, where it comes from)");
         }
@@ -55,6 +56,14 @@ public:
             auto height = positive(frame, "/frame", "height", true, kMaxTextureExtent);
             if (!height) return height.take_error();
             file.frame = {**width, **height};
+        }
+
+        if (root.contains("order")) {
+            const json& order = root["order"];
+            std::optional<PassOrder> parsed;
+            if (order.is_string()) parsed = parse_pass_order(order.get<std::string>());
+            if (!parsed) return fail("/order", "must be one of declared, memory, not " + excerpt(order));
+            file.order = *parsed;
         }
 
         if (!root.contains("passes")) return fail("", "missing \"passes\"");
@@ -95,6 +104,24 @@ public:
                 if (!marked) return at(path, marked.take_error());
             }
         }
+        if (root.contains("order_constraints")) {
+            const json& constraints = root["order_constraints"];
+            constexpr const char* kPair = "[\"earlier pass\", \"later pass\"]";
+            if (!constraints.is_array()) return fail("/order_constraints", std::string("must be an array of ") + kPair);
+            for (std::size_t i = 0; i < constraints.size(); ++i) {
+                const std::string path = "/order_constraints/" + std::to_string(i);
+                const json& pair = constraints[i];
+                if (!pair.is_array() || pair.size() != 2) return fail(path, std::string("must be ") + kPair);
+                for (std::size_t side = 0; side < 2; ++side) {
+                    if (!pair[side].is_string()) {
+                        return fail(path + "/" + std::to_string(side), "must be a pass name, not " + excerpt(pair[side]));
+                    }
+                }
+                auto required = file.graph.require_order(pair[0].get<std::string>(), pair[1].get<std::string>());
+                if (!required) return at(path, required.take_error());
+            }
+        }
+
         file.source = std::string(source_);
         file.pointers = std::move(pointers_);
         return file;
@@ -154,7 +181,9 @@ private:
 
     Result<Pass> read_pass(const json& object, const std::string& path) {
         if (!object.is_object()) return fail(path, "a pass must be an object");
-        LOOM_TRY(only_keys(object, path, {"name", "kind", "queue", "inputs", "outputs", "inouts", "parts", "side_effect"}));
+        LOOM_TRY(only_keys(object, path,
+                           {"name", "kind", "queue", "inputs", "outputs", "inouts", "parts", "side_effect",
+                            "keep_declared_order"}));
         if (!object.contains("name") || !object["name"].is_string() || object["name"].get<std::string>().empty()) {
             return fail(path + "/name", "a pass needs a non-empty string name");
         }
@@ -164,6 +193,9 @@ private:
         auto side_effect = boolean(object, path, "side_effect");
         if (!side_effect) return side_effect.take_error();
         pass.set_side_effect(*side_effect);
+        auto pinned = boolean(object, path, "keep_declared_order");
+        if (!pinned) return pinned.take_error();
+        pass.keep_declared_order(*pinned);
         if (object.contains("kind")) {
             const json& kind = object["kind"];
             static constexpr std::array<PassKind, 3> kKinds{PassKind::Graphics, PassKind::Compute, PassKind::Copy};

@@ -82,6 +82,20 @@ std::string_view spec_sharing_name(SpecSharing sharing) {
     return "unknown";
 }
 
+std::string_view pass_order_name(PassOrder order) {
+    switch (order) {
+        case PassOrder::Declared: return "declared";
+        case PassOrder::Memory: return "memory";
+    }
+    return "unknown";
+}
+
+std::optional<PassOrder> parse_pass_order(std::string_view name) {
+    if (name == "declared") return PassOrder::Declared;
+    if (name == "memory") return PassOrder::Memory;
+    return std::nullopt;
+}
+
 const PlanPass* Plan::find_pass(std::string_view name) const {
     for (const PlanPass& pass : order) {
         if (pass.name == name) return &pass;
@@ -129,6 +143,9 @@ uint64_t plan_hash(const Plan& plan) {
     h.add(plan.frame.width);
     h.add(plan.frame.height);
     h.add(plan.sharing);
+    // Only a non-default order mode is hashed, so that declared-order plans keep the hashes
+    // they had before the mode existed (logs and documents quote them).
+    if (plan.pass_order != PassOrder::Declared) h.add(plan.pass_order);
     h.add(plan.order.size());
     for (const PlanPass& pass : plan.order) {
         h.add(pass.name);

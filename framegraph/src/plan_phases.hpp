@@ -6,6 +6,8 @@
 //   join          the port groups, each with the join of its specs     plan_resources.cpp
 //   resolve       the logical resources: resolved specs, usages,       plan_resources.cpp
 //                 lifetimes, bytes; each running pass's ports, edges
+//   order         under PassOrder::Memory, another order of the same   plan_order.cpp,
+//                 passes for a lower peak; the resources renumbered    planner.cpp
 //   queues        semaphores and ownership transfers between the       plan_queues.cpp
 //                 graphics and async compute queues; occupancies
 //   spec classes  which resources may share a texture; the peaks       plan_allocation.cpp
@@ -50,6 +52,9 @@ struct Schedule {
 /// Schedule: Kahn's algorithm over the kept passes; of the passes ready at once, the one
 /// declared first runs first.
 Schedule schedule_passes(const Dependencies& dependencies, const std::vector<bool>& kept);
+
+/// The schedule that runs `declared`'s passes in `order` (indices into declared.order).
+Schedule reorder_schedule(const Schedule& declared, const std::vector<uint32_t>& order);
 
 /// A connected group of ports: an output (or an unconnected inout) and everything it feeds,
 /// directly or through inouts. One logical resource when its producer runs.
@@ -102,6 +107,8 @@ struct ResolvedResources {
     std::vector<std::vector<uint32_t>> resource_of_port;
     /// The resources of the graph outputs, in marking order, each once.
     std::vector<uint32_t> graph_output_resources;
+    /// Per resource, the port that starts it.
+    std::vector<PortAddress> starts;
 };
 
 /// Resolve: a resource for each group whose producer runs, except an optional output no running
@@ -112,6 +119,11 @@ struct ResolvedResources {
 /// resolve error naming its running ports, or the memory model's.
 Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::vector<JoinedGroup>& groups,
                                             const Schedule& schedule, Extent2D frame, MemoryModel& memory);
+
+/// The same resources for another order of the same passes: lifetimes (and occupancies) from
+/// `schedule`, renumbered in order of their producers' positions, then by port, as
+/// resolve_resources numbers them.
+ResolvedResources reorder_resources(const ResolvedResources& resolved, const Schedule& schedule);
 
 /// The passes that run, in order, each port with its resource and the usage its role needs
 /// (Plan::order). The resources come from resolve_resources, which checked every port's usage.

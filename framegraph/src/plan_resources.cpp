@@ -365,6 +365,7 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::
             resolved.resource_of_port[address.pass][address.port] = r;
         }
         resolved.resources.push_back(std::move(pending[r].resource));
+        resolved.starts.push_back(pending[r].start);
     }
     std::vector<bool> listed(resolved.resources.size(), false);
     for (const PortAddress& out : graph.outputs()) {
@@ -375,6 +376,45 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::
         }
     }
     return resolved;
+}
+
+ResolvedResources reorder_resources(const ResolvedResources& resolved, const Schedule& schedule) {
+    const std::vector<uint32_t>& position = schedule.position;
+    const auto resource_count = static_cast<uint32_t>(resolved.resources.size());
+    std::vector<uint32_t> last(resource_count, 0);
+    for (uint32_t pass = 0; pass < resolved.resource_of_port.size(); ++pass) {
+        if (position[pass] == kNotScheduled) continue;
+        for (uint32_t r : resolved.resource_of_port[pass]) {
+            if (r != kNoResource) last[r] = std::max(last[r], position[pass]);
+        }
+    }
+    std::vector<uint32_t> by_start(resource_count);
+    for (uint32_t r = 0; r < resource_count; ++r) by_start[r] = r;
+    std::stable_sort(by_start.begin(), by_start.end(), [&](uint32_t a, uint32_t b) {
+        const PortAddress& x = resolved.starts[a];
+        const PortAddress& y = resolved.starts[b];
+        return std::pair(position[x.pass], x.port) < std::pair(position[y.pass], y.port);
+    });
+    const auto last_position = static_cast<uint32_t>(schedule.order.size() - 1);
+    std::vector<uint32_t> renumbered(resource_count);
+    ResolvedResources out;
+    out.resources.reserve(resource_count);
+    for (uint32_t r : by_start) {
+        renumbered[r] = static_cast<uint32_t>(out.resources.size());
+        PlanResource resource = resolved.resources[r];
+        resource.lifetime = {position[resolved.starts[r].pass], resource.graph_output ? last_position : last[r]};
+        resource.occupancy = resource.lifetime;
+        out.resources.push_back(std::move(resource));
+        out.starts.push_back(resolved.starts[r]);
+    }
+    out.resource_of_port = resolved.resource_of_port;
+    for (std::vector<uint32_t>& ports : out.resource_of_port) {
+        for (uint32_t& r : ports) {
+            if (r != kNoResource) r = renumbered[r];
+        }
+    }
+    for (uint32_t r : resolved.graph_output_resources) out.graph_output_resources.push_back(renumbered[r]);
+    return out;
 }
 
 std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& schedule,

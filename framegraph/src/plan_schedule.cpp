@@ -65,4 +65,16 @@ Schedule schedule_passes(const Dependencies& dependencies, const std::vector<boo
     return schedule;
 }
 
+Schedule reorder_schedule(const Schedule& declared, const std::vector<uint32_t>& order) {
+    Schedule schedule;
+    schedule.position.assign(declared.position.size(), kNotScheduled);
+    schedule.order.reserve(order.size());
+    for (uint32_t at : order) {
+        const uint32_t pass = declared.order[at];
+        schedule.position[pass] = static_cast<uint32_t>(schedule.order.size());
+        schedule.order.push_back(pass);
+    }
+    return schedule;
+}
+
 }  // namespace loom::fg::detail

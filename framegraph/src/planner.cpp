@@ -5,9 +5,64 @@
 #include "graph_analysis.hpp"
 #include "loom/framegraph/allocator.hpp"
 #include "loom/framegraph/graph.hpp"
+#include "plan_order.hpp"
 #include "plan_phases.hpp"
 
 namespace loom::fg {
+namespace {
+
+// The cost of running `resolved`'s passes in `schedule`'s order with their queues: occupancies
+// from the queues phase.
+detail::OrderCost held_cost(const FrameGraph& graph, const detail::Dependencies& dependencies,
+                            const detail::Schedule& schedule, const detail::ResolvedResources& resolved) {
+    const std::vector<PlanPass> order = detail::plan_passes(graph, schedule, resolved);
+    detail::QueuePlan queues = detail::plan_queues(order, resolved.resources, dependencies, schedule);
+    std::vector<PlanResource> held = resolved.resources;
+    for (uint32_t r = 0; r < held.size(); ++r) held[r].occupancy = queues.occupancy[r];
+    return detail::held_cost(held, static_cast<uint32_t>(schedule.order.size()));
+}
+
+// Order: under PassOrder::Memory the heuristic's order replaces the declared one when it costs
+// less. It weighs lifetimes; with async compute passes the occupancies of both orders decide,
+// so that the memory order never holds more bytes at its peak than the declared one.
+void choose_order(const FrameGraph& graph, const detail::Dependencies& dependencies, detail::Schedule& schedule,
+                  detail::ResolvedResources& resolved) {
+    const detail::OrderProblem problem = detail::make_order_problem(graph, dependencies, schedule, resolved);
+    const std::vector<uint32_t> order = detail::memory_order(problem);
+    bool declared = true;
+    for (uint32_t at = 0; at < order.size() && declared; ++at) declared = order[at] == at;
+    if (declared) return;
+    detail::Schedule candidate = detail::reorder_schedule(schedule, order);
+    detail::ResolvedResources reordered = detail::reorder_resources(resolved, candidate);
+    const bool any_async = std::any_of(schedule.order.begin(), schedule.order.end(), [&](uint32_t pass) {
+        return graph.pass(PassId{pass}).queue() != Queue::Graphics;
+    });
+    if (any_async &&
+        !(held_cost(graph, dependencies, candidate, reordered) < held_cost(graph, dependencies, schedule, resolved))) {
+        return;
+    }
+    schedule = std::move(candidate);
+    resolved = std::move(reordered);
+}
+
+}  // namespace
+
+namespace detail {
+
+Result<OrderProblem> order_problem_of(const FrameGraph& graph, const PlanOptions& options) {
+    std::shared_ptr<MemoryModel> memory = options.memory_model;
+    if (!memory) memory = std::make_shared<DefaultMemoryModel>();
+    auto dependencies = analyze(graph);
+    if (!dependencies) return dependencies.take_error();
+    auto kept = cull_passes(graph, *dependencies);
+    if (!kept) return kept.take_error();
+    const Schedule schedule = schedule_passes(*dependencies, *kept);
+    auto resolved = resolve_resources(graph, join_port_groups(graph, options.frame), schedule, options.frame, *memory);
+    if (!resolved) return resolved.take_error();
+    return make_order_problem(graph, *dependencies, schedule, *resolved);
+}
+
+}  // namespace detail
 
 // The phases in order, each a function of plain data (plan_phases.hpp); what they decide is
 // put together into the plan here.
@@ -25,16 +80,18 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
     if (!dependencies) return dependencies.take_error();
     auto kept = detail::cull_passes(graph, *dependencies);
     if (!kept) return kept.take_error();
-    const detail::Schedule schedule = detail::schedule_passes(*dependencies, *kept);
+    detail::Schedule schedule = detail::schedule_passes(*dependencies, *kept);
     const auto positions = static_cast<uint32_t>(schedule.order.size());
     auto resolved = detail::resolve_resources(graph, detail::join_port_groups(graph, options.frame), schedule,
                                               options.frame, *memory);
     if (!resolved) return resolved.take_error();
+    if (options.order == PassOrder::Memory) choose_order(graph, *dependencies, schedule, *resolved);
 
     Plan plan;
     plan.allocator = std::string((*allocator)->name());
     plan.frame = options.frame;
     plan.sharing = options.sharing;
+    plan.pass_order = options.order;
     plan.order = detail::plan_passes(graph, schedule, *resolved);
     detail::QueuePlan queues = detail::plan_queues(plan.order, resolved->resources, *dependencies, schedule);
     if (!queues.syncs.empty() && plan.allocator == "paper") {

@@ -1,11 +1,12 @@
 // loom-plan GRAPH.json [--allocator paper|interval|heap | --compare] [--sharing equal|joinable]
-//                      [--frame WxH] [--max-heap BYTES] [--json] [--dot FILE]
+//                      [--frame WxH] [--max-heap BYTES] [--order declared|memory] [--json] [--dot FILE]
 //
 // Plans a frame graph described in JSON and prints the plan: a readable table by default, or
 // one JSON object with --json. --dot also writes the plan as a Graphviz graph. --compare plans
 // with every allocator instead and prints their memory side by side with the naive figures and
-// the lower bound. Exit status 0 on success, 1 for a bad graph or file, 2 for bad arguments;
-// errors are one line on stderr.
+// the lower bound. --order picks the pass order (the graph file's "order" by default). Exit
+// status 0 on success, 1 for a bad graph or file, 2 for bad arguments; errors are one line on
+// stderr.
 
 #include <algorithm>
 #include <cstdio>
@@ -63,7 +64,8 @@ int compare(const loom::fg::GraphFile& file, loom::fg::PlanOptions options, bool
         return std::string(text);
     };
     if (json) {
-        std::cout << "{\"frame\": [" << options.frame.width << ", " << options.frame.height << "], \"lower_bound_bytes\": "
+        std::cout << "{\"frame\": [" << options.frame.width << ", " << options.frame.height << "], \"order\": \""
+                  << loom::fg::pass_order_name(options.order) << "\", \"lower_bound_bytes\": "
                   << graph.lower_bound_bytes << ", \"naive_bytes\": " << graph.naive_bytes << ", \"allocators\": {";
         for (std::size_t i = 0; i < rows.size(); ++i) {
             std::cout << (i ? ", " : "") << "\"" << rows[i].name << "\": ";
@@ -78,7 +80,9 @@ int compare(const loom::fg::GraphFile& file, loom::fg::PlanOptions options, bool
         return std::cout.good() ? 0 : 1;
     }
     std::cout << "memory at " << options.frame.width << "x" << options.frame.height << ", sharing "
-              << loom::fg::spec_sharing_name(options.sharing) << "\n";
+              << loom::fg::spec_sharing_name(options.sharing);
+    if (options.order != loom::fg::PassOrder::Declared) std::cout << ", order " << loom::fg::pass_order_name(options.order);
+    std::cout << "\n";
     std::vector<std::vector<std::string>> table{{"", "textures", "buffers", "bytes", "", "bytes / lower bound"}};
     auto figures = [&](std::string name, uint32_t textures, uint32_t buffers, uint64_t bytes) {
         table.push_back({std::move(name), std::to_string(textures), std::to_string(buffers), std::to_string(bytes),
@@ -128,6 +132,7 @@ int main(int argc, char** argv) {
     auto file = loom::fg::load_graph_file(args.graph);
     if (!file) return fail(1, file.error().to_string());
     args.options.frame = args.frame.value_or(file->frame);
+    args.options.order = args.order.value_or(file->order);
     if (args.compare) return compare(*file, args.options, args.json);
 
     auto plan = loom::fg::build_plan(file->graph, args.options);

@@ -41,7 +41,7 @@ Result<Arguments> parse_arguments(std::span<const std::string> argv) {
         } else if (arg == "--compare") {
             args.compare = true;
         } else if (arg == "--allocator" || arg == "--sharing" || arg == "--frame" || arg == "--max-heap" ||
-                   arg == "--dot") {
+                   arg == "--order" || arg == "--dot") {
             auto v = value();
             if (!v) return bad(std::string(arg) + " needs a value");
             if (arg == "--allocator") {
@@ -61,6 +61,9 @@ Result<Arguments> parse_arguments(std::span<const std::string> argv) {
                     return bad("--frame must be WxH (e.g. 1920x1080) with each side in 1.." +
                                std::to_string(fg::kMaxTextureExtent) + ", not '" + std::string(*v) + "'");
                 }
+            } else if (arg == "--order") {
+                args.order = fg::parse_pass_order(*v);
+                if (!args.order) return bad("--order must be declared or memory, not '" + std::string(*v) + "'");
             } else if (arg == "--max-heap") {
                 if (!parse_number(*v, args.options.max_heap_bytes)) {
                     return bad("--max-heap must be a byte count, not '" + std::string(*v) + "'");

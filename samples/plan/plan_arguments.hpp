@@ -15,7 +15,7 @@ namespace loom::plan {
 /// The one-line usage text (--help prints it; a missing graph file quotes it).
 inline constexpr std::string_view kUsage =
     "usage: loom-plan GRAPH.json [--allocator paper|interval|heap | --compare] [--sharing equal|joinable] "
-    "[--frame WxH] [--max-heap BYTES] [--json] [--dot FILE]";
+    "[--frame WxH] [--max-heap BYTES] [--order declared|memory] [--json] [--dot FILE]";
 
 /// What the command line asks for.
 struct Arguments {
@@ -23,6 +23,8 @@ struct Arguments {
     fg::PlanOptions options;
     /// --frame; the graph file's frame size when absent.
     std::optional<fg::Extent2D> frame;
+    /// --order; the graph file's "order" when absent.
+    std::optional<fg::PassOrder> order;
     bool json = false;
     bool help = false;
     /// --compare: the memory figures of every allocator side by side instead of one plan.

@@ -4,6 +4,8 @@
 // The Scale* cases grow one dimension to 1k, 10k and 100k: ports on a pass, connected
 // outputs and inputs, resources alive at once under a heap budget, passes written as JSON.
 // BM_EngineFrame plans the three engine frames of samples/plan/graphs with each allocator.
+// BM_PlanOrder and BM_EngineFrameOrder plan the same graphs in declared and in memory order
+// (PassOrder): the cost of the memory order's search (docs/BENCHMARKS.md, "Pass order").
 //
 //   loom_framegraph_bench [--corpus=N] [google benchmark flags]
 //
@@ -42,10 +44,11 @@ testing::RandomGraphOptions big_graph_options(uint32_t passes) {
     return options;
 }
 
-PlanOptions options_for(const char* allocator) {
+PlanOptions options_for(const char* allocator, PassOrder order = PassOrder::Declared) {
     PlanOptions options;
     options.frame = {1920, 1080};
     options.allocator = allocator;
+    options.order = order;
     return options;
 }
 
@@ -97,6 +100,7 @@ void plan_repeatedly(benchmark::State& state, const FrameGraph& graph, const Pla
         state.counters["mean_live"] = mean_live(*plan);
         state.counters["bytes_over_bound"] = static_cast<double>(summary.bytes) / static_cast<double>(summary.lower_bound_bytes);
         state.counters["bytes_over_naive"] = static_cast<double>(summary.bytes) / static_cast<double>(summary.naive_bytes);
+        state.counters["lower_bound_MiB"] = static_cast<double>(summary.lower_bound_bytes) / (1024.0 * 1024.0);
     }
     state.counters["per_pass"] = benchmark::Counter(passes, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
     state.SetComplexityN(passes);
@@ -106,6 +110,13 @@ void plan_repeatedly(benchmark::State& state, const FrameGraph& graph, const Pla
 void BM_Plan(benchmark::State& state, const char* allocator) {
     const auto passes = static_cast<uint32_t>(state.range(0));
     plan_repeatedly(state, testing::random_graph(7, big_graph_options(passes)), options_for(allocator), passes);
+}
+
+// Planning in declared or in memory order: compare the two per_pass times (and lower bounds) in
+// the same run.
+void BM_PlanOrder(benchmark::State& state, const char* allocator, PassOrder order) {
+    const auto passes = static_cast<uint32_t>(state.range(0));
+    plan_repeatedly(state, testing::random_graph(7, big_graph_options(passes)), options_for(allocator, order), passes);
 }
 
 // Planning graphs of the same shape with buffers and subresource ranges: a quarter of the
@@ -135,15 +146,19 @@ void BM_PlanAsync(benchmark::State& state, const char* allocator, bool async_que
 // The engine frames among the sample graphs (samples/plan/graphs: GTA V, DOOM 2016, Unreal's
 // deferred renderer), read once and planned at their 1920x1080 (docs/BENCHMARKS.md, "Engine
 // frames").
-void BM_EngineFrame(benchmark::State& state, const char* file, const char* allocator) {
+void BM_EngineFrameOrder(benchmark::State& state, const char* file, const char* allocator, PassOrder order) {
     auto loaded = load_graph_file(std::string(LOOM_SAMPLE_GRAPHS) + "/" + file);
     if (!loaded) {
         state.SkipWithError(loaded.error().message.c_str());
         return;
     }
-    PlanOptions options = options_for(allocator);
+    PlanOptions options = options_for(allocator, order);
     options.frame = loaded->frame;
     plan_repeatedly(state, loaded->graph, options, static_cast<uint32_t>(loaded->graph.pass_count()));
+}
+
+void BM_EngineFrame(benchmark::State& state, const char* file, const char* allocator) {
+    BM_EngineFrameOrder(state, file, allocator, PassOrder::Declared);
 }
 
 // Building only, for reference.
@@ -384,6 +399,13 @@ BENCHMARK_CAPTURE(BM_EngineFrame, doom2016_interval, "doom2016_frame.json", "int
 BENCHMARK_CAPTURE(BM_EngineFrame, doom2016_heap, "doom2016_frame.json", "heap")->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_EngineFrame, unreal_interval, "unreal_deferred_frame.json", "interval")->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_EngineFrame, unreal_heap, "unreal_deferred_frame.json", "heap")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_PlanOrder, interval_declared, "interval", PassOrder::Declared)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanOrder, interval_memory, "interval", PassOrder::Memory)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanOrder, heap_declared, "heap", PassOrder::Declared)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanOrder, heap_memory, "heap", PassOrder::Memory)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_EngineFrameOrder, gta5_heap_memory, "gta5_frame.json", "heap", PassOrder::Memory)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrameOrder, doom2016_heap_memory, "doom2016_frame.json", "heap", PassOrder::Memory)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrameOrder, unreal_heap_memory, "unreal_deferred_frame.json", "heap", PassOrder::Memory)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Build)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK(BM_Replan)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BytesOverLowerBoundCorpus)->Iterations(1)->Unit(benchmark::kMillisecond);

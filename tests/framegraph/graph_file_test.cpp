@@ -126,7 +126,9 @@ TEST(GraphFile, ErrorsCarryTheJsonPath) {
     const Case cases[] = {
         {R"({"passes": [{"name": "a"}, {"name": "b"}, {"name": "c", "outputs": [{"name": "x", "format": "RGBA17F"}]}]})",
          R"(g.json: /passes/2/outputs/0/format: unknown format "RGBA17F")"},
-        {R"({"passes": [], "extra": 1})", "g.json: /extra: unknown key (expected one of: frame, passes, connections, outputs, description)"},
+        {R"({"passes": [], "extra": 1})",
+         "g.json: /extra: unknown key (expected one of: frame, passes, connections, outputs, description, order, "
+         "order_constraints)"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x", "colour": 1}]}]})",
          "g.json: /passes/0/outputs/0/colour: unknown key (expected one of: name, type, format, channels, bits, kind, "
          "srgb, depth, stencil, size, scale, samples, mips, layers, cube, range, optional, usage)"},
@@ -160,6 +162,17 @@ TEST(GraphFile, ErrorsCarryTheJsonPath) {
          R"(g.json: /connections/0: must be ["pass.port", "pass.port"])"},
         {R"({"passes": [{"name": "a", "outputs": [{"name": "x"}]}], "connections": [["a.x", "bx"]]})",
          R"(g.json: /connections/0/1: "bx" is not of the form "pass.port")"},
+        // The pass order and its constraints.
+        {R"({"passes": [], "order": "fastest"})", R"(g.json: /order: must be one of declared, memory, not "fastest")"},
+        {R"({"passes": [], "order": 1})", R"(g.json: /order: must be one of declared, memory, not 1)"},
+        {R"({"passes": [{"name": "a", "keep_declared_order": 1}]})",
+         R"(g.json: /passes/0/keep_declared_order: must be true or false, not 1)"},
+        {R"({"passes": [], "order_constraints": {}})",
+         R"(g.json: /order_constraints: must be an array of ["earlier pass", "later pass"])"},
+        {R"({"passes": [{"name": "a"}], "order_constraints": [["a"]]})",
+         R"(g.json: /order_constraints/0: must be ["earlier pass", "later pass"])"},
+        {R"({"passes": [{"name": "a"}], "order_constraints": [["a", 2]]})",
+         R"(g.json: /order_constraints/0/1: must be a pass name, not 2)"},
     };
     for (const Case& c : cases) {
         const Error error = parse_error(c.text);
@@ -359,6 +372,40 @@ TEST(GraphFile, GraphErrorsKeepTheirCodeAndGainAPath) {
     const Error output = parse_error(R"({"passes": [{"name": "a", "inputs": [{"name": "x"}]}], "outputs": ["a.x"]})");
     EXPECT_EQ(output.code, ErrorCode::Graph);
     EXPECT_NE(output.message.find("g.json: /outputs/0: mark_output a.x"), std::string::npos);
+}
+
+TEST(GraphFile, ThePassOrderItsPinsAndItsRequirements) {
+    auto file = parse_graph_json(R"({"order": "memory",
+      "passes": [{"name": "a", "outputs": [{"name": "out"}], "keep_declared_order": true},
+                 {"name": "b", "outputs": [{"name": "out"}], "side_effect": true}],
+      "order_constraints": [["b", "a"]], "outputs": ["a.out"]})",
+                                 "g.json");
+    ASSERT_TRUE(file.ok()) << file.error().to_string();
+    EXPECT_EQ(file->order, PassOrder::Memory);
+    EXPECT_TRUE(file->graph.pass(PassId{0}).keeps_declared_order());
+    EXPECT_FALSE(file->graph.pass(PassId{1}).keeps_declared_order());
+    ASSERT_EQ(file->graph.order_requirements().size(), 1u);
+    EXPECT_EQ(file->graph.order_requirements()[0], (std::pair{PassId{1}, PassId{0}}));
+    auto declared = parse_graph_json(R"({"passes": [], "order": "declared"})");
+    ASSERT_TRUE(declared.ok());
+    EXPECT_EQ(declared->order, PassOrder::Declared);
+    auto unsaid = parse_graph_json(R"({"passes": []})");
+    ASSERT_TRUE(unsaid.ok());
+    EXPECT_EQ(unsaid->order, PassOrder::Declared);
+
+    // A requirement naming an unknown pass is a graph error at its pointer.
+    const Error unknown = parse_error(R"({"passes": [{"name": "a"}], "order_constraints": [["a", "z"]]})");
+    EXPECT_EQ(unknown.code, ErrorCode::Graph);
+    EXPECT_EQ(unknown.message, "g.json: /order_constraints/0: require_order 'a' before 'z': unknown pass 'z'");
+    // One against the data flow is a cycle, blamed where its passes are declared.
+    const Error cycle = planning_error(R"({"passes": [
+        {"name": "a", "outputs": [{"name": "out", "format": "RGBA8"}]},
+        {"name": "b", "inputs": [{"name": "in"}], "outputs": [{"name": "out", "format": "RGBA8"}]}],
+      "connections": [["a.out", "b.in"]], "outputs": ["b.out"], "order_constraints": [["b", "a"]]})");
+    EXPECT_EQ(cycle.code, ErrorCode::Graph);
+    EXPECT_EQ(cycle.message,
+              "g.json: /passes/0: cycle: a -> b -> a (a.out feeds b.in; require_order puts b before a) (see also "
+              "/passes/1)");
 }
 
 TEST(GraphFile, PlanningErrorsNameTheFileAndTheJsonPointerOfWhatTheyBlame) {

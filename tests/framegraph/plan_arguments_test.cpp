@@ -22,7 +22,7 @@ std::string error_of(std::vector<std::string> words) {
 
 TEST(PlanArguments, EveryOption) {
     auto args = parse({"g.json", "--allocator", "heap", "--sharing", "joinable", "--frame", "640x480", "--max-heap",
-                       "1048576", "--json", "--dot", "plan.dot"});
+                       "1048576", "--order", "memory", "--json", "--dot", "plan.dot"});
     ASSERT_TRUE(args.ok()) << args.error().message;
     EXPECT_EQ(args->graph, "g.json");
     EXPECT_EQ(args->options.allocator, "heap");
@@ -31,9 +31,13 @@ TEST(PlanArguments, EveryOption) {
     EXPECT_EQ(args->frame->width, 640u);
     EXPECT_EQ(args->frame->height, 480u);
     EXPECT_EQ(args->options.max_heap_bytes, 1048576u);
+    EXPECT_EQ(args->order, fg::PassOrder::Memory);
     EXPECT_TRUE(args->json);
     EXPECT_EQ(args->dot, "plan.dot");
     EXPECT_TRUE(parse({"--help"}).ok());
+    // Without --order the graph file decides.
+    EXPECT_EQ(parse({"g.json"})->order, std::nullopt);
+    EXPECT_EQ(parse({"g.json", "--order", "declared"})->order, fg::PassOrder::Declared);
 }
 
 TEST(PlanArguments, CompareTakesEveryAllocator) {
@@ -52,6 +56,8 @@ TEST(PlanArguments, ErrorsNameTheArgument) {
                   ", not '0x4294967297'");
     EXPECT_EQ(error_of({"g.json", "--max-heap", "-1"}), "--max-heap must be a byte count, not '-1'");
     EXPECT_EQ(error_of({"g.json", "--sharing", "some"}), "--sharing must be equal or joinable, not 'some'");
+    EXPECT_EQ(error_of({"g.json", "--order", "fast"}), "--order must be declared or memory, not 'fast'");
+    EXPECT_EQ(error_of({"g.json", "--order"}), "--order needs a value");
     EXPECT_EQ(error_of({"g.json", "--verbose"}), "unknown option '--verbose'");
     EXPECT_EQ(error_of({"a.json", "b.json"}), "more than one graph file given ('a.json', 'b.json')");
     EXPECT_EQ(error_of({}), "no graph file given; " + std::string(kUsage));

@@ -20,6 +20,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "loom/framegraph/pass.hpp"
@@ -101,6 +102,15 @@ public:
     /// Marks a pass as having side effects (never culled), or clears the mark.
     Status set_side_effect(std::string_view pass, bool side_effect = true);
 
+    /// Requires `earlier` to run before `later` in every order although no texture connects
+    /// them (both write what the application presents, say). It orders them like a connection
+    /// does: across queues with a semaphore; a requirement that closes a cycle is an error of
+    /// planning naming it. It does not keep a pass from being culled; a requirement on a culled
+    /// pass is dropped. Errors (ErrorCode::Graph): an unknown pass, the same pass twice.
+    Status require_order(std::string_view earlier, std::string_view later);
+    /// The pairs (earlier, later) given to require_order, in the order given, each once.
+    [[nodiscard]] const std::vector<std::pair<PassId, PassId>>& order_requirements() const { return order_requirements_; }
+
     /// Number of passes added.
     [[nodiscard]] uint32_t pass_count() const { return static_cast<uint32_t>(passes_.size()); }
     /// The pass with id `id`.
@@ -148,6 +158,7 @@ private:
     std::vector<Connection> connections_;
     std::vector<PortAddress> outputs_;
     std::vector<bool> marked_output_;                  // per flat port: in outputs_
+    std::vector<std::pair<PassId, PassId>> order_requirements_;  // (earlier, later)
 
     uint64_t revision_ = 0;
     uint64_t plans_built_ = 0;

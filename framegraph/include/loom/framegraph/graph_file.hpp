@@ -29,6 +29,14 @@
 //       {"name": "cull", "kind": "compute",
 //        "outputs": [{"name": "lights", "type": "buffer", "size": {"per_tile": 1024, "tile": [16, 16]}}]}
 //
+// The order of the passes (PlanOptions::order; loom-plan's --order overrides it) is the top-level
+// "order": "declared" (the default) or "memory"; "order_constraints" lists pairs of pass names
+// [earlier, later] (FrameGraph::require_order), and a pass's "keep_declared_order": true pins it
+// (Pass::keep_declared_order):
+//
+//     "order": "memory", "order_constraints": [["tonemap", "ui"]],
+//     "passes": [..., {"name": "ui", "keep_declared_order": true, ...}]
+//
 // Unknown keys and bad values are ErrorCode::Parse errors with the JSON pointer (RFC 6901), e.g.
 // `graph.json: /passes/2/outputs/0/format: unknown format "RGBA17F"`.
 //
@@ -58,6 +66,8 @@ inline constexpr std::size_t kMaxGraphFileDepth = 64;
 struct GraphFile {
     FrameGraph graph;
     Extent2D frame{1920, 1080};
+    /// The pass order the file asks for ("order"; default declared).
+    PassOrder order = PassOrder::Declared;
     /// What the text was called in parse_graph_json (the file name for load_graph_file).
     std::string source;
     /// Where each pass ("pass") and port ("pass.port") is declared in the text, as a JSON

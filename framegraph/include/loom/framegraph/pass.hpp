@@ -279,6 +279,17 @@ public:
     /// True when the pass is never culled.
     [[nodiscard]] bool side_effect() const { return side_effect_; }
 
+    /// Pins the pass: in every pass order (PassOrder) it keeps its place relative to the other
+    /// pinned passes and to the side-effect passes as in the declared order, e.g. a UI overlay
+    /// stays after tone mapping even where nothing connects them. Without pins only the
+    /// dependencies (and FrameGraph::require_order) order passes under PassOrder::Memory.
+    Pass& keep_declared_order(bool keep = true) {
+        keep_declared_order_ = keep;
+        return *this;
+    }
+    /// True when the pass is pinned by keep_declared_order().
+    [[nodiscard]] bool keeps_declared_order() const { return keep_declared_order_; }
+
     /// The work the pass records every frame (see PassContext). Runs the callback set with
     /// on_execute(); without one it records nothing. An error returned here fails the frame and
     /// comes back from the executor naming the pass.
@@ -313,6 +324,7 @@ private:
     // not scan every port (a pass may have very many).
     std::map<std::string, uint32_t, std::less<>> port_indices_;
     bool side_effect_ = false;
+    bool keep_declared_order_ = false;
     PassKind kind_ = PassKind::Graphics;
     Queue queue_ = Queue::Graphics;
     std::optional<Error> error_;

@@ -27,6 +27,24 @@ enum class SpecSharing : uint8_t {
 /// "equal" or "joinable".
 std::string_view spec_sharing_name(SpecSharing sharing);
 
+/// How the planner orders the passes that run (PlanOptions::order). Every order runs each pass
+/// after the passes it depends on (docs/framegraph.md, "Pass order").
+enum class PassOrder : uint8_t {
+    /// The declaration order, as far as the dependencies allow: of the passes ready at once,
+    /// the one declared first runs first.
+    Declared,
+    /// An order that lowers the peak of live bytes (PlanSummary::lower_bound_bytes, the heap
+    /// allocator's target), keeping side-effect passes and passes pinned with
+    /// Pass::keep_declared_order in their declared relative order. Never a higher peak than
+    /// Declared: the planner keeps the declared order unless it finds a better one.
+    Memory,
+};
+
+/// "declared" or "memory".
+std::string_view pass_order_name(PassOrder order);
+/// The order called `name` ("declared", "memory"), or nullopt.
+std::optional<PassOrder> parse_pass_order(std::string_view name);
+
 /// An inclusive range of positions in Plan::order during which a resource must exist.
 struct Lifetime {
     uint32_t first = 0;
@@ -216,6 +234,9 @@ struct Plan {
     std::string allocator;            ///< name of the allocator that made it
     Extent2D frame{};
     SpecSharing sharing = SpecSharing::Equal;
+    /// How `order` was chosen (PlanOptions::order). Under PassOrder::Memory the order may still
+    /// be the declared one, when no other lowers the peak.
+    PassOrder pass_order = PassOrder::Declared;
     std::vector<PlanPass> order;      ///< passes that run, in execution order
     std::vector<std::string> culled;  ///< passes that do not run, in declaration order
     std::vector<PlanEdge> edges;      ///< connections between passes that run, in connection order

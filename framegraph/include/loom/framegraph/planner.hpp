@@ -14,7 +14,8 @@ namespace loom::fg {
 
 class FrameGraph;
 
-/// How to plan: the frame size, the allocator, which specs may share, the memory model, the heap cap.
+/// How to plan: the frame size, the allocator, which specs may share, the memory model, the heap
+/// cap, the pass order.
 struct PlanOptions {
     Extent2D frame{1920, 1080};      ///< the size relative sizes scale
     std::string allocator = "interval";  ///< see allocator_names()
@@ -22,6 +23,8 @@ struct PlanOptions {
     /// Sizes and alignments; null means DefaultMemoryModel. Compared by identity.
     std::shared_ptr<MemoryModel> memory_model;
     uint64_t max_heap_bytes = 0;     ///< "heap" allocator: 0 means a single heap of any size
+    /// How to order the passes: declared (the default) or for the lowest peak of live bytes.
+    PassOrder order = PassOrder::Declared;
 
     friend bool operator==(const PlanOptions&, const PlanOptions&) = default;
 };
