@@ -47,13 +47,14 @@ constexpr const char* kSquareGltf = R"({
   "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1], "metallicFactor": 0,
                                           "roughnessFactor": 1}}],
   "buffers": [{"uri": "square.bin", "byteLength": 108}],
-  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 96},
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                  {"buffer": 0, "byteOffset": 48, "byteLength": 48},
                   {"buffer": 0, "byteOffset": 96, "byteLength": 12}],
   "accessors": [
-    {"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
      "min": [-1, -1, 0], "max": [1, 1, 0]},
-    {"bufferView": 0, "byteOffset": 48, "componentType": 5126, "count": 4, "type": "VEC3"},
-    {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}
+    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+    {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}
   ]
 })";
 
