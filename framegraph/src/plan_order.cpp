@@ -576,6 +576,29 @@ OrderProblem make_order_problem(const FrameGraph& graph, const Dependencies& dep
     return problem;
 }
 
+namespace {
+
+// The cost of an order from the bytes that start and end at each position: the peak of the live
+// bytes, how many positions reach it, and the area under the curve.
+OrderCost sweep_cost(const std::vector<uint64_t>& starting, const std::vector<uint64_t>& ending) {
+    OrderCost cost;
+    uint64_t live = 0;
+    for (std::size_t k = 0; k < starting.size(); ++k) {
+        live += starting[k];
+        cost.area += live;
+        if (live > cost.peak) {
+            cost.peak = live;
+            cost.at_peak = 1;
+        } else if (live == cost.peak) {
+            ++cost.at_peak;
+        }
+        live -= ending[k];
+    }
+    return cost;
+}
+
+}  // namespace
+
 OrderCost order_cost(const OrderProblem& problem, const std::vector<uint32_t>& order) {
     const auto n = static_cast<uint32_t>(order.size());
     std::vector<uint32_t> position(problem.pass_count(), 0);
@@ -591,20 +614,7 @@ OrderCost order_cost(const OrderProblem& problem, const std::vector<uint32_t>& o
         starting[position[resource.producer]] += resource.bytes;
         ending[last] += resource.bytes;
     }
-    OrderCost cost;
-    uint64_t live = 0;
-    for (uint32_t k = 0; k < n; ++k) {
-        live += starting[k];
-        cost.area += live;
-        if (live > cost.peak) {
-            cost.peak = live;
-            cost.at_peak = 1;
-        } else if (live == cost.peak) {
-            ++cost.at_peak;
-        }
-        live -= ending[k];
-    }
-    return cost;
+    return sweep_cost(starting, ending);
 }
 
 OrderCost held_cost(const std::vector<PlanResource>& resources, uint32_t position_count) {
@@ -614,20 +624,7 @@ OrderCost held_cost(const std::vector<PlanResource>& resources, uint32_t positio
         starting[resource.occupancy.first] += resource.bytes;
         ending[resource.occupancy.last] += resource.bytes;
     }
-    OrderCost cost;
-    uint64_t live = 0;
-    for (uint32_t k = 0; k < position_count; ++k) {
-        live += starting[k];
-        cost.area += live;
-        if (live > cost.peak) {
-            cost.peak = live;
-            cost.at_peak = 1;
-        } else if (live == cost.peak) {
-            ++cost.at_peak;
-        }
-        live -= ending[k];
-    }
-    return cost;
+    return sweep_cost(starting, ending);
 }
 
 bool respects_constraints(const OrderProblem& problem, const std::vector<uint32_t>& order) {

@@ -84,19 +84,10 @@ loom::Result<Options> parse(int argc, char** argv) {
     if (!common) return common.take_error();
     Options options;
     options.common = std::move(*common);
-    const auto& rest = options.common.rest;
-    for (std::size_t i = 0; i < rest.size(); ++i) {
-        std::string name = rest[i], value;
-        const bool inline_value = name.rfind("--", 0) == 0 && name.find('=') != std::string::npos;
-        if (inline_value) {
-            value = name.substr(name.find('=') + 1);
-            name = name.substr(0, name.find('='));
-        }
-        auto take = [&]() -> loom::Result<std::string> {
-            if (inline_value) return value;
-            if (i + 1 >= rest.size()) return loom::make_error(loom::ErrorCode::InvalidArgument, name + " needs a value");
-            return rest[++i];
-        };
+    loom::samples::ArgumentReader args(options.common.rest);
+    while (args.next()) {
+        const std::string& name = args.name();
+        auto take = [&] { return args.value(); };
         if (name == "--frames") {
             auto v = take();
             if (!v) return v.take_error();
@@ -146,7 +137,7 @@ loom::Result<Options> parse(int argc, char** argv) {
             }
             options.camera = static_cast<uint32_t>(n);
         } else {
-            return loom::make_error(loom::ErrorCode::InvalidArgument, "unknown argument '" + rest[i] + "'");
+            return args.unknown();
         }
     }
     if (options.camera && options.scene.empty()) {

@@ -75,27 +75,14 @@ loom::Result<Options> parse(int argc, char** argv) {
     if (!common) return common.take_error();
     Options options;
     options.common = std::move(*common);
-    const auto& rest = options.common.rest;
-    for (std::size_t i = 0; i < rest.size(); ++i) {
-        std::string name = rest[i], value;
-        const bool inline_value = name.rfind("--", 0) == 0 && name.find('=') != std::string::npos;
-        if (inline_value) {
-            value = name.substr(name.find('=') + 1);
-            name = name.substr(0, name.find('='));
-        }
-        auto take = [&]() -> loom::Result<std::string> {
-            if (inline_value) return value;
-            if (i + 1 >= rest.size()) return loom::make_error(loom::ErrorCode::InvalidArgument, name + " needs a value");
-            return rest[++i];
-        };
-        auto v = take();
-        if (!v) {
-            if (name.rfind("--", 0) != 0 || (name != "--scene" && name != "--lights" && name != "--frames" && name != "--allocator" &&
-                                             name != "--async" && name != "--shadow-size")) {
-                return loom::make_error(loom::ErrorCode::InvalidArgument, "unknown argument '" + rest[i] + "'");
-            }
-            return v.take_error();
-        }
+    loom::samples::ArgumentReader args(options.common.rest);
+    while (args.next()) {
+        const std::string& name = args.name();
+        const bool known = name == "--scene" || name == "--lights" || name == "--frames" || name == "--allocator" ||
+                           name == "--async" || name == "--shadow-size";
+        if (!known) return args.unknown();
+        auto v = args.value();
+        if (!v) return v.take_error();
         if (name == "--scene") {
             if (v->empty()) return loom::make_error(loom::ErrorCode::InvalidArgument, "--scene needs a file or 'builtin'");
             options.scene.model = *v == "builtin" ? std::filesystem::path() : std::filesystem::path(*v);
@@ -117,8 +104,6 @@ loom::Result<Options> parse(int argc, char** argv) {
             auto n = number(name, *v, 16384);
             if (!n) return n.take_error();
             options.frame.shadow_size = static_cast<uint32_t>(*n);
-        } else {
-            return loom::make_error(loom::ErrorCode::InvalidArgument, "unknown argument '" + rest[i] + "'");
         }
     }
     if (!options.common.window && options.frames == 0) {

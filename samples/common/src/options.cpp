@@ -106,4 +106,29 @@ rhi::DeviceDesc device_desc(const CommonOptions& options, const std::string& tit
     return desc;
 }
 
+bool ArgumentReader::next() {
+    if (started_) ++index_;
+    started_ = true;
+    if (index_ >= args_.size()) return false;
+    name_ = args_[index_];
+    inline_value_.reset();
+    if (name_.rfind("--", 0) == 0) {
+        if (const auto equals = name_.find('='); equals != std::string::npos) {
+            inline_value_ = name_.substr(equals + 1);
+            name_ = name_.substr(0, equals);
+        }
+    }
+    return true;
+}
+
+Result<std::string> ArgumentReader::value() {
+    if (inline_value_) return *inline_value_;
+    if (index_ + 1 >= args_.size()) return make_error(ErrorCode::InvalidArgument, name_ + " needs a value");
+    return args_[++index_];
+}
+
+Error ArgumentReader::unknown() const {
+    return Error{ErrorCode::InvalidArgument, "unknown argument '" + args_[index_] + "'"};
+}
+
 }  // namespace loom::samples

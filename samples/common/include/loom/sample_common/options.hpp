@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -48,5 +49,33 @@ rhi::DeviceDesc device_desc(const CommonOptions& options, const std::string& tit
 
 /// Parses "WxH" (e.g. "640x480"); both sides positive.
 Result<std::pair<uint32_t, uint32_t>> parse_size(const std::string& text);
+
+/// Walks a sample's own arguments (CommonOptions::rest), each "--name value" or "--name=value":
+///
+///   ArgumentReader args(options.common.rest);
+///   while (args.next()) {
+///       if (args.name() == "--frames") { auto v = args.value(); ... }
+///       else return args.unknown();
+///   }
+class ArgumentReader {
+public:
+    explicit ArgumentReader(std::span<const std::string> args) : args_(args) {}
+    /// Moves to the next argument; false after the last.
+    bool next();
+    /// The argument's name ("--frames" also for "--frames=3").
+    [[nodiscard]] const std::string& name() const { return name_; }
+    /// Its value: the inline one, else the next argument, which it consumes. InvalidArgument
+    /// "NAME needs a value" when there is none.
+    Result<std::string> value();
+    /// InvalidArgument "unknown argument 'ARG'" for the current argument as given.
+    [[nodiscard]] Error unknown() const;
+
+private:
+    std::span<const std::string> args_;
+    std::size_t index_ = 0;
+    bool started_ = false;
+    std::string name_;
+    std::optional<std::string> inline_value_;
+};
 
 }  // namespace loom::samples
