@@ -462,6 +462,27 @@ private:
         return key + name;
     }
 
+    // tinygltf copies every image's bytes while it loads, before the converter can refuse an
+    // image whose buffer has no data: the stand-in of such a buffer must cover the image's
+    // view (zeros), or tinygltf would read past it. Images too large to stand in are refused here.
+    Status cover_unavailable_image(uint64_t view_index, const JsonPointer& where) {
+        const json& view = root_["bufferViews"][view_index];
+        const auto buffer = view["buffer"].get<uint64_t>();
+        if (output_.unavailable_buffers.count(buffer) == 0) return {};
+        const uint64_t offset = view.contains("byteOffset") ? view["byteOffset"].get<uint64_t>() : 0;
+        const uint64_t end = offset + view["byteLength"].get<uint64_t>();  // both validated: no overflow
+        constexpr uint64_t kMaxStandIn = uint64_t{64} << 20;
+        if (end > kMaxStandIn) {
+            return parse_error(where, "reads buffer view " + std::to_string(view_index) + " of buffer " + std::to_string(buffer) +
+                                          ", whose data is unavailable");
+        }
+        auto& rewrite = output_.buffer_rewrites[buffer];
+        if (end <= rewrite.second) return {};
+        rewrite.second = end;
+        output_.files[store_key(rewrite.first)].resize(end, 0);
+        return {};
+    }
+
     // A buffer without data: tinygltf gets a one-byte stand-in, the converter the index.
     void mark_unavailable(uint64_t index) {
         const std::string name = "__loom_unavailable_buffer_" + std::to_string(index) + ".bin";
@@ -770,7 +791,7 @@ private:
                 if (**mime != "image/png" && **mime != "image/jpeg") {
                     return parse_error(where / "mimeType", "'" + **mime + "' is not a glTF image type (image/png, image/jpeg)");
                 }
-                return {};
+                return cover_unavailable_image(**view, where);
             }
             if (is_data_uri(**uri)) {
                 auto size = check_data_uri(**uri, where / "uri");
