@@ -29,6 +29,16 @@ std::string safe_id(const std::string& text) {
     return id;
 }
 
+/// What compare_images found, as the reports keep it (the heat map's file is added when written).
+ImageMetrics metrics_of(const rhi::ImageComparison& comparison) {
+    ImageMetrics metrics;
+    metrics.max_channel_diff = comparison.max_channel_diff;
+    metrics.pixels_above_threshold = comparison.pixels_above_threshold;
+    metrics.pixel_count = comparison.pixel_count;
+    metrics.psnr = comparison.psnr;
+    return metrics;
+}
+
 /// One line of an error message (the importer's are one line already; a backend's may not be).
 std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
 
@@ -217,11 +227,7 @@ void CaseRunner::compare_pipelines(const CaseResult& deferred, const std::vector
                                        std::to_string(static_cast<int>(kPipelineThreshold)) + ")");
         }
         if (forward.against_deferred) continue;
-        ImageMetrics metrics;
-        metrics.max_channel_diff = comparison->max_channel_diff;
-        metrics.pixels_above_threshold = comparison->pixels_above_threshold;
-        metrics.pixel_count = comparison->pixel_count;
-        metrics.psnr = comparison->psnr;
+        ImageMetrics metrics = metrics_of(*comparison);
         if (comparison->heatmap) {
             const std::filesystem::path file = std::filesystem::path("cases") / forward.id / "vs-deferred.png";
             if (Status written = image_io::write_png(*comparison->heatmap, options_.out / file); written) {
@@ -280,11 +286,7 @@ std::optional<rhi::Image> CaseRunner::compare(CaseResult& result, const std::vec
         result.failures.push_back("pictures: " + comparison.error().to_string());
         return std::nullopt;
     }
-    ImageMetrics metrics;
-    metrics.max_channel_diff = comparison->max_channel_diff;
-    metrics.pixels_above_threshold = comparison->pixels_above_threshold;
-    metrics.pixel_count = comparison->pixel_count;
-    metrics.psnr = comparison->psnr;
+    ImageMetrics metrics = metrics_of(*comparison);
     const auto allowed = static_cast<uint64_t>(std::floor(options_.max_differing * static_cast<double>(metrics.pixel_count)));
     if (metrics.pixels_above_threshold > allowed) {
         char allowance[96];

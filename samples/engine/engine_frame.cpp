@@ -379,7 +379,9 @@ Status EngineFrame::record(rhi::CommandList& commands, rhi::TextureHandle target
 }
 
 rhi::TextureHandle EngineFrame::final_texture() {
-    if (final_capture_) return final_capture_;
+    for (const Intermediate& captured : captures_) {
+        if (captured.name == "final") return captured.texture;
+    }
     return executor_.texture("tonemap", "final");
 }
 
@@ -420,7 +422,6 @@ Status EngineFrame::capture(fg::PassContext& ctx, const std::string& port, const
     // The copy left the source in CopySrc: back to the state the pass left it in, which is the
     // state the executor planned from.
     ctx.commands().transition(source, state, range);
-    if (name == "final") final_capture_ = entry->texture;
     return {};
 }
 

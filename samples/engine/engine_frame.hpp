@@ -129,7 +129,6 @@ private:
     std::vector<Intermediate> captures_;
     rhi::BufferHandle light_list_capture_;
     uint64_t light_list_capture_bytes_ = 0;
-    rhi::TextureHandle final_capture_;
 };
 
 }  // namespace loom::engine

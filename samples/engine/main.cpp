@@ -66,12 +66,17 @@ loom::Result<uint64_t> number(const std::string& name, const std::string& text, 
     return static_cast<uint64_t>(n);
 }
 
-loom::Result<Options> parse(int argc, char** argv) {
+/// The shared options' defaults for this sample (parsing and --help).
+loom::samples::CommonDefaults engine_defaults() {
     loom::samples::CommonDefaults defaults;
     defaults.width = 960;
     defaults.height = 540;
     defaults.out = "out/engine";
-    auto common = loom::samples::parse_common_options(argc, argv, defaults);
+    return defaults;
+}
+
+loom::Result<Options> parse(int argc, char** argv) {
+    auto common = loom::samples::parse_common_options(argc, argv, engine_defaults());
     if (!common) return common.take_error();
     Options options;
     options.common = std::move(*common);
@@ -278,11 +283,7 @@ int main(int argc, char** argv) {
     auto options = parse(argc, argv);
     if (!options) return fail(options.error().message + " (see --help)");
     if (options->common.help) {
-        loom::samples::CommonDefaults defaults;
-        defaults.width = 960;
-        defaults.height = 540;
-        defaults.out = "out/engine";
-        std::printf("%s%s%s", kUsage, loom::samples::common_options_help(defaults).c_str(), extra_help().c_str());
+        std::printf("%s%s%s", kUsage, loom::samples::common_options_help(engine_defaults()).c_str(), extra_help().c_str());
         return EXIT_SUCCESS;
     }
     return options->common.window ? run_window(*options) : run_headless(*options);
