@@ -197,13 +197,13 @@ Status CommandListState::set_index_buffer(BufferHandle buffer, IndexType type, u
 
 // ---- draws and dispatches ------------------------------------------------------------------------
 
+// Messages are built only on a failure: draws ask these on every call.
 Result<PipelineFacts> CommandListState::bound_pipeline(std::string_view command, bool compute) const {
-    const std::string what(command);
-    if (pipeline_.is_null()) return invalid_state(what + ": no pipeline is set; call set_pipeline first");
+    if (pipeline_.is_null()) return invalid_state(std::string(command) + ": no pipeline is set; call set_pipeline first");
     auto facts = pipelines_(pipeline_);
     if (!facts.ok()) return stale(command, "pipeline " + in_quotes(pipeline_name_), facts.error());
     if (facts->compute != compute) {
-        return invalid_state(what + ": pipeline " + in_quotes(facts->name) + " is a " +
+        return invalid_state(std::string(command) + ": pipeline " + in_quotes(facts->name) + " is a " +
                              (facts->compute ? "compute" : "graphics") + " pipeline; " +
                              (compute ? "dispatches need a compute pipeline" : "draws need a graphics pipeline"));
     }
@@ -225,15 +225,15 @@ Status CommandListState::check_pipeline_matches_pass(std::string_view command, c
 }
 
 Status CommandListState::check_draw(std::string_view command, bool indexed) const {
-    const std::string what(command);
-    if (!pass_) return invalid_state(what + ": no render pass is open; draws go inside a render pass");
+    const auto what = [&] { return std::string(command); };
+    if (!pass_) return invalid_state(what() + ": no render pass is open; draws go inside a render pass");
     auto pipeline = bound_pipeline(command, false);
     if (!pipeline.ok()) return pipeline.take_error();
     LOOM_TRY(check_pipeline_matches_pass(command, *pipeline));
     for (uint32_t slot = 0; slot < pipeline->vertex_buffers && slot < kMaxVertexBuffers; ++slot) {
         const BufferHandle buffer = vertex_buffers_[slot].buffer;
         if (buffer.is_null()) {
-            return invalid_state(what + ": pipeline " + in_quotes(pipeline->name) + " reads vertex buffer slot " +
+            return invalid_state(what() + ": pipeline " + in_quotes(pipeline->name) + " reads vertex buffer slot " +
                                  std::to_string(slot) + ", but no vertex buffer is bound there");
         }
         if (auto found = buffers_(buffer); !found.ok()) {
@@ -242,7 +242,7 @@ Status CommandListState::check_draw(std::string_view command, bool indexed) cons
     }
     if (indexed) {
         if (index_buffer_.buffer.is_null()) {
-            return invalid_state(what + ": no index buffer is bound; call set_index_buffer first");
+            return invalid_state(what() + ": no index buffer is bound; call set_index_buffer first");
         }
         auto found = buffers_(index_buffer_.buffer);
         if (!found.ok()) return stale(command, "index buffer", found.error());

@@ -567,7 +567,9 @@ bool same_shape(TextureKind kind, TextureDimension dimension) {
 // Whether `layers` layers of texture `t` can be seen as the shader's declaration `kind`: the
 // views both APIs can make (a 2D one of one layer, an array one of 2D, array and cube layers, a
 // cube one of six faces, a 3D one of a 3D texture).
-Status kind_fits(const std::string& site, TextureKind kind, const TextureDesc& t, uint32_t layers) {
+// `site` makes the error's prefix, called only on a failure.
+template <class Site>
+Status kind_fits(const Site& site, TextureKind kind, const TextureDesc& t, uint32_t layers) {
     bool fits = false;
     std::string_view hint;
     switch (kind) {
@@ -589,7 +591,7 @@ Status kind_fits(const std::string& site, TextureKind kind, const TextureDesc& t
             break;
     }
     if (fits) return {};
-    return Error{ErrorCode::InvalidArgument, site + ": texture " + in_quotes(t.name) + " (" + std::string(dimension_name(t.dimension)) + ", " +
+    return Error{ErrorCode::InvalidArgument, site() + ": texture " + in_quotes(t.name) + " (" + std::string(dimension_name(t.dimension)) + ", " +
                                                  count_of(layers, "layer") + " bound) does not fit the shader's " +
                                                  std::string(texture_kind_name(kind)) + " declaration; " + std::string(hint)};
 }
@@ -694,6 +696,11 @@ Result<const BindingEntry*> binding(std::string_view command, std::string_view p
         e.message = site() + ": " + e.message;
         return e;
     };
+    // texture_range's message for `what` "" begins with ": ".
+    auto in_texture = [&](Error e, const TextureDesc& t) {
+        e.message = site() + ": texture " + in_quotes(t.name) + e.message;
+        return e;
+    };
     switch (slot.kind) {
         case BindingKind::UniformBuffer:
         case BindingKind::StorageBuffer: {
@@ -726,9 +733,9 @@ Result<const BindingEntry*> binding(std::string_view command, std::string_view p
             if (!has_all(t.usage, TextureUsage::Sampled)) {
                 return Error{ErrorCode::InvalidArgument, site() + ": texture " + in_quotes(t.name) + " lacks usage Sampled"};
             }
-            auto range = texture_range(site() + ": texture " + in_quotes(t.name), t, tb->range);
-            if (!range.ok()) return range.take_error();
-            LOOM_TRY(kind_fits(site(), slot.texture_kind, t, range->layer_count));
+            auto range = texture_range("", t, tb->range);
+            if (!range.ok()) return in_texture(range.take_error(), t);
+            LOOM_TRY(kind_fits(site, slot.texture_kind, t, range->layer_count));
             return entry;
         }
         case BindingKind::StorageImage: {
@@ -744,9 +751,9 @@ Result<const BindingEntry*> binding(std::string_view command, std::string_view p
                 return Error{ErrorCode::InvalidArgument, site() + ": mip " + std::to_string(sb->mip) + " of texture " + in_quotes(t.name) +
                                                              " does not exist (" + count_of(t.mip_levels, "level") + ")"};
             }
-            auto range = texture_range(site() + ": texture " + in_quotes(t.name), t, TextureRange{sb->mip, 1, sb->base_layer, sb->layer_count});
-            if (!range.ok()) return range.take_error();
-            LOOM_TRY(kind_fits(site(), slot.texture_kind, t, range->layer_count));
+            auto range = texture_range("", t, TextureRange{sb->mip, 1, sb->base_layer, sb->layer_count});
+            if (!range.ok()) return in_texture(range.take_error(), t);
+            LOOM_TRY(kind_fits(site, slot.texture_kind, t, range->layer_count));
             return entry;
         }
     }
@@ -871,20 +878,22 @@ Status vertex_buffer_slot(uint32_t slot) {
 }
 
 Status vertex_buffer(uint32_t slot, const BufferDesc& buffer, uint64_t offset) {
-    const std::string what = "set_vertex_buffer: slot " + std::to_string(slot) + ": buffer " + in_quotes(buffer.name);
-    if (!has_all(buffer.usage, BufferUsage::Vertex)) return Error{ErrorCode::InvalidArgument, what + " lacks usage Vertex"};
+    // Built only on a failure (these run per bind or draw).
+    const auto what = [&] { return std::string("set_vertex_buffer: slot " + std::to_string(slot) + ": buffer " + in_quotes(buffer.name)); };
+    if (!has_all(buffer.usage, BufferUsage::Vertex)) return Error{ErrorCode::InvalidArgument, what() + " lacks usage Vertex"};
     if (offset >= buffer.size) {
-        return Error{ErrorCode::InvalidArgument, what + ": offset " + std::to_string(offset) + " is not inside its " +
+        return Error{ErrorCode::InvalidArgument, what() + ": offset " + std::to_string(offset) + " is not inside its " +
                                                      std::to_string(buffer.size) + " bytes"};
     }
     return {};
 }
 
 Status index_buffer(const BufferDesc& buffer, IndexType type, uint64_t offset) {
-    const std::string what = "set_index_buffer: buffer " + in_quotes(buffer.name);
-    if (!has_all(buffer.usage, BufferUsage::Index)) return Error{ErrorCode::InvalidArgument, what + " lacks usage Index"};
+    // Built only on a failure (these run per bind or draw).
+    const auto what = [&] { return std::string("set_index_buffer: buffer " + in_quotes(buffer.name)); };
+    if (!has_all(buffer.usage, BufferUsage::Index)) return Error{ErrorCode::InvalidArgument, what() + " lacks usage Index"};
     if (offset >= buffer.size || offset % index_bytes(type) != 0) {
-        return Error{ErrorCode::InvalidArgument, what + ": offset " + std::to_string(offset) + " is not inside its " +
+        return Error{ErrorCode::InvalidArgument, what() + ": offset " + std::to_string(offset) + " is not inside its " +
                                                      std::to_string(buffer.size) + " bytes or not a multiple of the index size " +
                                                      std::to_string(index_bytes(type))};
     }
@@ -903,16 +912,17 @@ Status index_range(const BufferDesc& buffer, IndexType type, uint64_t offset, ui
 }
 
 Status indirect_draws(const BufferDesc& buffer, uint64_t offset, uint32_t draw_count, uint32_t stride) {
-    const std::string what = "draw_indexed_indirect: buffer " + in_quotes(buffer.name);
+    // Built only on a failure (these run per bind or draw).
+    const auto what = [&] { return std::string("draw_indexed_indirect: buffer " + in_quotes(buffer.name)); };
     constexpr uint64_t kCommandBytes = sizeof(DrawIndexedIndirectCommand);
-    if (!has_all(buffer.usage, BufferUsage::Indirect)) return Error{ErrorCode::InvalidArgument, what + " lacks usage Indirect"};
+    if (!has_all(buffer.usage, BufferUsage::Indirect)) return Error{ErrorCode::InvalidArgument, what() + " lacks usage Indirect"};
     if (offset % 4 != 0 || stride % 4 != 0 || stride < kCommandBytes) {
-        return Error{ErrorCode::InvalidArgument, what + ": offset " + std::to_string(offset) + " and stride " + std::to_string(stride) +
+        return Error{ErrorCode::InvalidArgument, what() + ": offset " + std::to_string(offset) + " and stride " + std::to_string(stride) +
                                                      " must be multiples of 4, the stride at least " + std::to_string(kCommandBytes)};
     }
     // At most (2^32 - 1)^2 + kCommandBytes bytes: the span itself cannot overflow; offset + span can.
     if (draw_count > 0 && !checked::range_fits(offset, uint64_t{draw_count - 1} * stride + kCommandBytes, buffer.size)) {
-        return Error{ErrorCode::InvalidArgument, what + ": " + count_of(draw_count, "command") + " from offset " + std::to_string(offset) +
+        return Error{ErrorCode::InvalidArgument, what() + ": " + count_of(draw_count, "command") + " from offset " + std::to_string(offset) +
                                                      " run past its end (" + std::to_string(buffer.size) + " bytes)"};
     }
     return {};

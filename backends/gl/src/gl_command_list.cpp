@@ -73,15 +73,33 @@ void GlCommandList::begin() {
     push_dirty_ = false;
     push_binding_.reset();
     timers_.clear();
+    draws_.clear();
+    indirect_draws_.clear();
+    pipeline_states_.clear();
+    vertex_states_.clear();
+    binding_states_.clear();
+    draw_pipeline_ = nullptr;
+    push_buffer_ = 0;
+    blends_.clear();
+    vertex_bindings_.clear();
+    bindings_.clear();
+    invalidate_draw_state();
+    replayed_pipeline_ = replayed_vertex_ = replayed_bindings_ = UINT32_MAX;
 }
 
-std::vector<GlCommand> GlCommandList::finish() {
+std::vector<GlCommand>& GlCommandList::finish() {
     accepted(state_.check_nothing_open());
     if (state_.render_pass()) end_render_pass();
     if (state_.open_timer()) end_timer();
     while (state_.debug_group_depth() > 0) pop_debug_group();
     state_.end_frame();
-    return std::move(commands_);
+    replayed_pipeline_ = replayed_vertex_ = replayed_bindings_ = UINT32_MAX;
+    return commands_;
+}
+
+uint64_t GlCommandList::device_removals() const {
+    return device_->textures().removals() + device_->buffers().removals() + device_->samplers().removals() +
+           device_->pipelines().removals();
 }
 
 void GlCommandList::fail(ErrorCode code, std::string message) {
@@ -216,7 +234,8 @@ void GlCommandList::end_render_pass() {
 
 void GlCommandList::set_pipeline(rhi::PipelineHandle pipeline) {
     // The tracker checks the pipeline against the open pass; GL binds it at the next draw.
-    accepted(state_.set_pipeline(pipeline));
+    if (pipeline != state_.pipeline()) invalidate_draw_state();
+    if (!accepted(state_.set_pipeline(pipeline))) invalidate_draw_state();
 }
 
 void GlCommandList::set_viewport(const rhi::Viewport& v) {
@@ -235,6 +254,7 @@ void GlCommandList::set_scissor(const rhi::Rect& r) {
 // Bind groups, push constants and vertex and index buffers are kept by the tracker and
 // resolved to GL names at each draw or dispatch.
 void GlCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
+    binding_state_valid_ = false;
     accepted(state_.set_bind_group(set, group));
 }
 
@@ -243,10 +263,12 @@ void GlCommandList::push_constants(std::span<const std::byte> data, uint32_t off
 }
 
 void GlCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, uint64_t offset) {
+    vertex_state_valid_ = false;
     accepted(state_.set_vertex_buffer(slot, buffer, offset));
 }
 
 void GlCommandList::set_index_buffer(rhi::BufferHandle buffer, rhi::IndexType type, uint64_t offset) {
+    vertex_state_valid_ = false;
     accepted(state_.set_index_buffer(buffer, type, offset));
 }
 
@@ -257,10 +279,9 @@ rhi::BufferBinding GlCommandList::transient_uniforms(std::span<const std::byte> 
 
 // ---- bindings --------------------------------------------------------------------------------
 
-bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view command, std::vector<ResolvedBinding>& out) {
+bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view command) {
     // Every binding is checked before any state, as on Vulkan.
     const rhi::validation::ResourceLookup& lookup = device_->resource_lookup();
-    std::vector<const rhi::BindingEntry*> entries;
     for (const PipelineBinding& b : p.bindings) {
         const rhi::validation::PipelineSlot slot{b.set, b.binding, b.kind, b.name, b.texture_kind};
         auto entry =
@@ -269,12 +290,14 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
             fail(entry.take_error());
             return false;
         }
-        entries.push_back(*entry);
     }
-    for (std::size_t n = 0; n < p.bindings.size(); ++n) {
-        const PipelineBinding& b = p.bindings[n];
+    for (const PipelineBinding& b : p.bindings) {
         const rhi::validation::PipelineSlot slot{b.set, b.binding, b.kind, b.name, b.texture_kind};
-        const rhi::BindingEntry* entry = entries[n];
+        // Found by the check above.
+        const rhi::BindingEntry* entry = nullptr;
+        for (const rhi::BindingEntry& e : state_.bind_group(b.set)->entries) {
+            if (e.binding == b.binding) entry = &e;
+        }
         // The handles were found by the validation above.
         ResolvedBinding r;
         r.kind = b.kind;
@@ -367,26 +390,23 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
                 break;
             }
         }
-        out.push_back(r);
-    }
-    if (p.push_constant_size > 0) {
-        if (push_dirty_ || !push_binding_ || push_binding_->size < p.push_constant_size) {
-            // A copy of the push-constant block per change, so that every draw sees the
-            // values current when it was recorded.
-            const uint32_t size = std::max(p.push_constant_size, state_.push_constant_size());
-            push_binding_ = device_->allocate_transient(state_.push_constant_data().first(size));
-            push_dirty_ = false;
-        }
-        auto buffer = device_->buffers().get(push_binding_->buffer);
-        ResolvedBinding r;
-        r.kind = BindingKind::UniformBuffer;
-        r.point = rhi::kGlPushConstantBinding;
-        r.object = (*buffer)->name;
-        r.offset = static_cast<GLintptr>(push_binding_->offset);
-        r.size = static_cast<GLsizeiptr>(push_binding_->size);
-        out.push_back(r);
+        bindings_.push_back(r);
     }
     return true;
+}
+
+GlCommandList::PushRange GlCommandList::push_constant_range(const GlPipeline& p) {
+    PushRange r;
+    if (p.push_constant_size == 0) return r;
+    if (push_dirty_ || !push_binding_ || push_binding_->size < p.push_constant_size) {
+        const uint32_t size = std::max(p.push_constant_size, state_.push_constant_size());
+        push_binding_ = device_->allocate_transient(state_.push_constant_data().first(size), &push_buffer_);
+        push_dirty_ = false;
+    }
+    r.object = push_buffer_;
+    r.offset = static_cast<GLintptr>(push_binding_->offset);
+    r.size = static_cast<GLsizeiptr>(push_binding_->size);
+    return r;
 }
 
 // ---- draws and dispatches --------------------------------------------------------------------
@@ -400,8 +420,9 @@ void GlCommandList::draw_indexed(uint32_t index_count, uint32_t instance_count, 
     draw_common(true, index_count, instance_count, first_index, base_vertex, first_instance);
 }
 
-void GlCommandList::apply_bindings(GlStateCache& cache, const std::vector<ResolvedBinding>& bindings) {
-    for (const ResolvedBinding& b : bindings) {
+void GlCommandList::apply_bindings(GlStateCache& cache, uint32_t first, uint32_t count) const {
+    for (uint32_t i = first; i < first + count; ++i) {
+        const ResolvedBinding& b = bindings_[i];
         switch (b.kind) {
             case BindingKind::UniformBuffer: cache.bind_uniform_buffer(b.point, b.object, b.offset, b.size); break;
             case BindingKind::StorageBuffer: cache.bind_storage_buffer(b.point, b.object, b.offset, b.size); break;
@@ -427,103 +448,194 @@ void GlCommandList::draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t off
                 IndirectDraw{b.name, static_cast<uintptr_t>(offset), static_cast<GLsizei>(draw_count), static_cast<GLsizei>(stride)});
 }
 
+bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool indirect) {
+    // Draws with nothing bound, begun, recorded or destroyed between them share the state
+    // checked and resolved for the first: a later draw costs its arguments only, or the part
+    // that changed (a bind group, the vertex buffers).
+    if (draw_state_removals_ != device_removals()) invalidate_draw_state();
+    if (indirect || (indexed && vertex_state_valid_ && vertex_states_.back().index_buffer == 0)) {
+        invalidate_draw_state();  // checks that only these draws need, below
+    }
+    if (pipeline_state_valid_ && vertex_state_valid_ && binding_state_valid_) return true;
+    if (!pipeline_state_valid_ || !vertex_state_valid_) {
+        // The render pass, the pipeline against it, the vertex and index buffers it reads.
+        if (!accepted(state_.check_draw(command, indexed))) return false;
+    }
+    if (!pipeline_state_valid_) {
+        // The tracker found the pipeline alive.
+        const GlPipeline* p = *device_->pipelines().get(state_.pipeline());
+        if (indirect && p->base_instance_location >= 0) {
+            // GL offsets gl_InstanceIndex by a uniform set per draw: one call cannot give each
+            // command its own first instance (per-instance attributes are offset by GL itself).
+            fail(ErrorCode::Unsupported, std::string(command) + ": pipeline " + in_quotes(p->name) +
+                                             " reads gl_InstanceIndex, which GL's indirect draws cannot offset by each "
+                                             "command's first instance; use a per-instance vertex attribute");
+            return false;
+        }
+        PipelineState d;
+        d.program = p->program;
+        d.topology = p->topology;
+        d.raster = p->raster;
+        d.base_instance_location = p->base_instance_location;
+        d.first_blend = static_cast<uint32_t>(blends_.size());
+        d.blend_count = static_cast<uint32_t>(p->blend.size());
+        blends_.insert(blends_.end(), p->blend.begin(), p->blend.end());
+        pipeline_states_.push_back(d);
+        draw_pipeline_ = p;
+        // Vertex buffers go on the pipeline's vertex array; bindings follow its layout.
+        vertex_state_valid_ = binding_state_valid_ = false;
+    }
+    const GlPipeline& p = *draw_pipeline_;
+    if (!vertex_state_valid_) {
+        const rhi::CommandListState::IndexBuffer& bound_indices = state_.index_buffer();
+        if (indirect && bound_indices.offset != 0) {
+            // GL's indirect draws count first_index from the start of the element buffer.
+            fail(ErrorCode::InvalidArgument, std::string(command) + ": the index buffer must be bound at offset 0");
+            return false;
+        }
+        VertexState v;
+        v.vao = p.vao;
+        v.first_vertex_binding = static_cast<uint32_t>(vertex_bindings_.size());
+        v.vertex_binding_count = static_cast<uint32_t>(p.strides.size());
+        for (uint32_t slot = 0; slot < p.strides.size(); ++slot) {
+            const rhi::CommandListState::VertexBuffer& vb = state_.vertex_buffer(slot);
+            vertex_bindings_.push_back({slot, (*device_->buffers().get(vb.buffer))->name, static_cast<GLintptr>(vb.offset),
+                                        static_cast<GLsizei>(p.strides[slot])});
+        }
+        if (indexed) {
+            v.index_buffer = (*device_->buffers().get(bound_indices.buffer))->name;
+            v.index_type = bound_indices.type == rhi::IndexType::Uint16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
+            v.index_offset = bound_indices.offset;
+        }
+        vertex_states_.push_back(v);
+    }
+    if (!binding_state_valid_) {
+        BindingState b;
+        b.first_binding = static_cast<uint32_t>(bindings_.size());
+        if (!resolve_bindings(p, command)) {
+            bindings_.resize(b.first_binding);
+            binding_states_.push_back(b);  // keeps the indices of the others in step; never drawn
+            return false;
+        }
+        b.binding_count = static_cast<uint32_t>(bindings_.size()) - b.first_binding;
+        binding_states_.push_back(b);
+    }
+    pipeline_state_valid_ = vertex_state_valid_ = binding_state_valid_ = true;
+    draw_state_removals_ = device_removals();
+    return true;
+}
+
 void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
                                 uint32_t first_instance, const std::optional<IndirectDraw>& indirect) {
     const char* command = indirect ? "draw_indexed_indirect" : indexed ? "draw_indexed" : "draw";
-    if (!accepted(state_.check_draw(command, indexed))) return;
-    // The tracker found the pipeline and the buffers alive.
-    const GlPipeline* p = *device_->pipelines().get(state_.pipeline());
-    const rhi::CommandListState::IndexBuffer& bound_indices = state_.index_buffer();
-    if (indirect && p->base_instance_location >= 0) {
-        // GL offsets gl_InstanceIndex by a uniform set per draw: one call cannot give each
-        // command its own first instance (per-instance attributes are offset by GL itself).
-        fail(ErrorCode::Unsupported, std::string(command) + ": pipeline " + in_quotes(p->name) +
-                                         " reads gl_InstanceIndex, which GL's indirect draws cannot offset by each "
-                                         "command's first instance; use a per-instance vertex attribute");
+    if (!prepare_draw_state(command, indexed, indirect.has_value())) {
+        // A refused draw leaves state resolved in part: the next one starts again.
+        invalidate_draw_state();
         return;
     }
-    if (indirect && bound_indices.offset != 0) {
-        // GL's indirect draws count first_index from the start of the element buffer.
-        fail(ErrorCode::InvalidArgument, std::string(command) + ": the index buffer must be bound at offset 0");
-        return;
-    }
-    std::vector<ResolvedBinding> bindings;
-    if (!resolve_bindings(*p, command, bindings)) return;
     // Indirect draws' index ranges are in GPU memory: the GPU checks them.
     if (indexed && !indirect && !accepted(state_.check_index_range(first, count))) return;
     // Checked like any other draw (as Vulkan records it), then nothing to draw.
     if (indirect ? indirect->count == 0 : (count == 0 || instance_count == 0)) return;
+    Draw draw;
+    draw.pipeline_state = static_cast<uint32_t>(pipeline_states_.size() - 1);
+    draw.vertex_state = static_cast<uint32_t>(vertex_states_.size() - 1);
+    draw.binding_state = static_cast<uint32_t>(binding_states_.size() - 1);
+    draw.indexed = indexed;
+    draw.count = count;
+    draw.instance_count = instance_count;
+    draw.first = first;
+    draw.base_vertex = base_vertex;
+    draw.first_instance = first_instance;
+    if (indirect) {
+        draw.indirect = static_cast<uint32_t>(indirect_draws_.size());
+        indirect_draws_.push_back(*indirect);
+    }
+    // The pipeline was found alive for this state (nothing destroyed since).
+    draw.push = push_constant_range(*draw_pipeline_);
+    const auto index = static_cast<uint32_t>(draws_.size());
+    draws_.push_back(draw);
+    // Small enough for std::function to hold without allocating.
+    commands_.push_back([this, index](GlStateCache& cache) { replay_draw(cache, draws_[index]); });
+}
 
-    struct VertexBinding {
-        uint32_t slot;
-        GLuint buffer;
-        GLintptr offset;
-        GLsizei stride;
-    };
-    std::vector<VertexBinding> vertex;
-    for (uint32_t slot = 0; slot < p->strides.size(); ++slot) {
-        const rhi::CommandListState::VertexBuffer& vb = state_.vertex_buffer(slot);
-        vertex.push_back({slot, (*device_->buffers().get(vb.buffer))->name, static_cast<GLintptr>(vb.offset),
-                          static_cast<GLsizei>(p->strides[slot])});
-    }
-    GLuint index_buffer = 0;
-    GLenum index_type = GL_UNSIGNED_INT;
-    uintptr_t index_offset = 0;
-    if (indexed) {
-        const bool u16 = bound_indices.type == rhi::IndexType::Uint16;
-        index_buffer = (*device_->buffers().get(bound_indices.buffer))->name;
-        index_type = u16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
-        // Inside the buffer (checked above; indirect draws start at index 0).
-        index_offset = static_cast<uintptr_t>(bound_indices.offset + uint64_t{first} * (u16 ? 2 : 4));
-    }
-    const GLuint program = p->program, vao = p->vao;
-    const GLenum topology = p->topology;
-    const GlRasterState raster = p->raster;
-    const std::vector<GlBlendState> blend = p->blend;
-    const GLint base_instance_location = p->base_instance_location;
-    record([=](GlStateCache& cache) {
-        cache.use_program(program);
-        cache.raster(raster);
-        for (uint32_t i = 0; i < blend.size(); ++i) cache.blend(i, blend[i]);
+void GlCommandList::replay_draw(GlStateCache& cache, const Draw& draw) {
+    const PipelineState& p = pipeline_states_[draw.pipeline_state];
+    const VertexState& v = vertex_states_[draw.vertex_state];
+    if (draw.pipeline_state != replayed_pipeline_) {
+        cache.use_program(p.program);
+        cache.raster(p.raster);
+        for (uint32_t i = 0; i < p.blend_count; ++i) cache.blend(i, blends_[p.first_blend + i]);
         cache.enable(GL_SCISSOR_TEST, true);
-        cache.bind_vertex_array(vao);
-        for (const VertexBinding& v : vertex) cache.vertex_buffer(vao, v.slot, v.buffer, v.offset, v.stride);
-        if (indexed) cache.element_buffer(vao, index_buffer);
-        apply_bindings(cache, bindings);
-        if (base_instance_location >= 0) cache.base_instance(program, base_instance_location, static_cast<GLint>(first_instance));
-        if (indirect) {
-            // The argument buffer binding is not shadowed by the cache; it is bound for each
-            // multi-draw (one call for many draws).
-            glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect->buffer);
-            glMultiDrawElementsIndirect(topology, index_type, reinterpret_cast<const void*>(indirect->offset),
-                                        indirect->count, indirect->stride);
-            cache.count_call(2);
-            cache.count_draw();
-            return;
+        replayed_pipeline_ = draw.pipeline_state;
+    }
+    if (draw.vertex_state != replayed_vertex_) {
+        cache.bind_vertex_array(v.vao);
+        for (uint32_t i = v.first_vertex_binding; i < v.first_vertex_binding + v.vertex_binding_count; ++i) {
+            const VertexBinding& b = vertex_bindings_[i];
+            cache.vertex_buffer(v.vao, b.slot, b.buffer, b.offset, b.stride);
         }
-        if (indexed) {
-            glDrawElementsInstancedBaseVertexBaseInstance(topology, static_cast<GLsizei>(count), index_type,
-                                                          reinterpret_cast<const void*>(index_offset),
-                                                          static_cast<GLsizei>(instance_count), base_vertex, first_instance);
-        } else {
-            glDrawArraysInstancedBaseInstance(topology, static_cast<GLint>(first), static_cast<GLsizei>(count),
-                                              static_cast<GLsizei>(instance_count), first_instance);
-        }
-        cache.count_call();
+        if (v.index_buffer != 0) cache.element_buffer(v.vao, v.index_buffer);
+        replayed_vertex_ = draw.vertex_state;
+    }
+    if (draw.binding_state != replayed_bindings_) {
+        const BindingState& b = binding_states_[draw.binding_state];
+        apply_bindings(cache, b.first_binding, b.binding_count);
+        replayed_bindings_ = draw.binding_state;
+    }
+    if (draw.push.object != 0) {
+        cache.bind_uniform_buffer(rhi::kGlPushConstantBinding, draw.push.object, draw.push.offset, draw.push.size);
+    }
+    if (p.base_instance_location >= 0) cache.base_instance(p.program, p.base_instance_location, static_cast<GLint>(draw.first_instance));
+    if (draw.indirect != UINT32_MAX) {
+        const IndirectDraw& args = indirect_draws_[draw.indirect];
+        // The argument buffer binding is not shadowed by the cache; it is bound for each
+        // multi-draw (one call for many draws).
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, args.buffer);
+        glMultiDrawElementsIndirect(p.topology, v.index_type, reinterpret_cast<const void*>(args.offset), args.count, args.stride);
+        cache.count_call(2);
         cache.count_draw();
-    });
+        return;
+    }
+    if (draw.indexed) {
+        // Inside the buffer (checked at record time).
+        const uint64_t index_bytes = v.index_type == GL_UNSIGNED_SHORT ? 2 : 4;
+        const auto offset = static_cast<uintptr_t>(v.index_offset + uint64_t{draw.first} * index_bytes);
+        glDrawElementsInstancedBaseVertexBaseInstance(p.topology, static_cast<GLsizei>(draw.count), v.index_type,
+                                                      reinterpret_cast<const void*>(offset),
+                                                      static_cast<GLsizei>(draw.instance_count), draw.base_vertex,
+                                                      draw.first_instance);
+    } else {
+        glDrawArraysInstancedBaseInstance(p.topology, static_cast<GLint>(draw.first), static_cast<GLsizei>(draw.count),
+                                          static_cast<GLsizei>(draw.instance_count), draw.first_instance);
+    }
+    cache.count_call();
+    cache.count_draw();
 }
 
 void GlCommandList::dispatch(uint32_t groups_x, uint32_t groups_y, uint32_t groups_z) {
     if (!accepted(state_.check_dispatch())) return;
     const GlPipeline* p = *device_->pipelines().get(state_.pipeline());  // found by the tracker
-    std::vector<ResolvedBinding> bindings;
-    if (!resolve_bindings(*p, "dispatch", bindings)) return;
+    const auto first = static_cast<uint32_t>(bindings_.size());
+    if (!resolve_bindings(*p, "dispatch")) {
+        bindings_.resize(first);
+        return;
+    }
+    if (const PushRange push = push_constant_range(*p); push.object != 0) {
+        ResolvedBinding r;
+        r.kind = BindingKind::UniformBuffer;
+        r.point = rhi::kGlPushConstantBinding;
+        r.object = push.object;
+        r.offset = push.offset;
+        r.size = push.size;
+        bindings_.push_back(r);
+    }
+    const auto count = static_cast<uint32_t>(bindings_.size()) - first;
     if (groups_x == 0 || groups_y == 0 || groups_z == 0) return;
     const GLuint program = p->program;
-    record([=](GlStateCache& cache) {
+    record([=, this](GlStateCache& cache) {
         cache.use_program(program);
-        apply_bindings(cache, bindings);
+        apply_bindings(cache, first, count);
         glDispatchCompute(groups_x, groups_y, groups_z);
         cache.count_call();
         cache.count_dispatch();

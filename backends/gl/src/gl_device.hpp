@@ -73,8 +73,9 @@ public:
     // -- used by GlDevice ---------------------------------------------------------------
     /// Starts recording a frame (the device has checked that none is being recorded).
     void begin();
-    /// Closes what was left open (recording an error for the first) and hands over the commands.
-    std::vector<GlCommand> finish();
+    /// Closes what was left open (recording an error for the first) and hands over the
+    /// commands, valid until the next begin() (the list keeps their storage from frame to frame).
+    std::vector<GlCommand>& finish();
     /// What is open and bound; also whether a frame is being recorded.
     [[nodiscard]] const rhi::CommandListState& state() const { return state_; }
     [[nodiscard]] bool recording() const { return state_.recording(); }
@@ -102,12 +103,26 @@ private:
         GLenum format = 0;
     };
 
-    void record(GlCommand command) { commands_.push_back(std::move(command)); }
+    /// A push-constant block's copy for one draw (object 0: the pipeline has none).
+    struct PushRange {
+        GLuint object = 0;
+        GLintptr offset = 0;
+        GLsizeiptr size = 0;
+    };
+    /// Records a command other than a draw. Draws recorded after it check and resolve their
+    /// state again (it may change what they checked, or GL state they set).
+    void record(GlCommand command) {
+        commands_.push_back(std::move(command));
+        invalidate_draw_state();
+    }
     /// True when `status` is ok; else records its error (the command is then skipped).
     bool accepted(Status status);
-    /// Resolves the current pipeline's bindings from the bound groups (and push constants);
-    /// false (with an error recorded) when something is missing or in the wrong state.
-    bool resolve_bindings(const GlPipeline& pipeline, std::string_view command, std::vector<ResolvedBinding>& out);
+    /// Resolves the current pipeline's bindings from the bound groups into bindings_; false
+    /// (with an error recorded) when something is missing or in the wrong state.
+    bool resolve_bindings(const GlPipeline& pipeline, std::string_view command);
+    /// The push-constant block of `pipeline` as a uniform range: a copy per change, so that
+    /// every draw sees the values current when it was recorded.
+    PushRange push_constant_range(const GlPipeline& pipeline);
     /// An indirect draw's arguments: glMultiDrawElementsIndirect from `buffer`.
     struct IndirectDraw {
         GLuint buffer = 0;
@@ -118,11 +133,84 @@ private:
     void draw_common(bool indexed, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
                      uint32_t first_instance,
                      const std::optional<IndirectDraw>& indirect = std::nullopt);
-    static void apply_bindings(GlStateCache& cache, const std::vector<ResolvedBinding>& bindings);
+    // What consecutive draws share, resolved at the first draw after it changed and replayed
+    // only when it differs from the previous draw's: the pipeline's fixed state, the vertex and
+    // index buffers (on the pipeline's vertex array), the bindings of the bound groups. Their
+    // arrays are ranges of blends_, vertex_bindings_ and bindings_.
+    struct PipelineState {
+        GLuint program = 0;
+        GLenum topology = GL_TRIANGLES;
+        GlRasterState raster;
+        GLint base_instance_location = -1;
+        uint32_t first_blend = 0, blend_count = 0;
+    };
+    struct VertexState {
+        GLuint vao = 0;
+        uint32_t first_vertex_binding = 0, vertex_binding_count = 0;
+        GLuint index_buffer = 0;
+        GLenum index_type = GL_UNSIGNED_INT;
+        uint64_t index_offset = 0;  ///< of the bound index buffer
+    };
+    struct BindingState {
+        uint32_t first_binding = 0, binding_count = 0;
+    };
+    struct VertexBinding {
+        uint32_t slot;
+        GLuint buffer;
+        GLintptr offset;
+        GLsizei stride;
+    };
+    /// One recorded draw: the states it draws with (indices into the arrays below) and its arguments.
+    struct Draw {
+        uint32_t pipeline_state = 0;
+        uint32_t vertex_state = 0;
+        uint32_t binding_state = 0;
+        uint32_t indirect = UINT32_MAX;  ///< index into indirect_draws_, or none
+        bool indexed = false;
+        uint32_t count = 0;
+        uint32_t instance_count = 0;
+        uint32_t first = 0;
+        int32_t base_vertex = 0;
+        uint32_t first_instance = 0;
+        PushRange push;
+    };
+    /// Checks the bound state for a draw and records the parts that changed since the previous
+    /// draw; false with an error recorded when it is refused.
+    bool prepare_draw_state(const char* command, bool indexed, bool indirect);
+    /// The GL calls of one draw (its shared state only when it differs from the last draw's).
+    void replay_draw(GlStateCache& cache, const Draw& draw);
+    void apply_bindings(GlStateCache& cache, uint32_t first, uint32_t count) const;
+    /// Objects the device has destroyed so far (a draw state resolved before a destruction is
+    /// checked again: its objects may be gone).
+    [[nodiscard]] uint64_t device_removals() const;
 
     GlDevice* device_;
     rhi::CommandListState state_;
     std::vector<GlCommand> commands_;
+    // Storage for the frame's draws, kept from frame to frame so that steady-state recording
+    // allocates nothing.
+    std::vector<Draw> draws_;
+    std::vector<IndirectDraw> indirect_draws_;
+    std::vector<PipelineState> pipeline_states_;
+    std::vector<VertexState> vertex_states_;
+    std::vector<BindingState> binding_states_;
+    std::vector<GlBlendState> blends_;
+    std::vector<VertexBinding> vertex_bindings_;
+    std::vector<ResolvedBinding> bindings_;
+    /// The last of each kind of state still holds for the next draw: nothing of that kind was
+    /// bound, nothing begun, recorded or destroyed since (a new pipeline changes all three).
+    bool pipeline_state_valid_ = false;
+    bool vertex_state_valid_ = false;
+    bool binding_state_valid_ = false;
+    uint64_t draw_state_removals_ = 0;
+    const GlPipeline* draw_pipeline_ = nullptr;  ///< the pipeline of pipeline_states_.back()
+    GLuint push_buffer_ = 0;                     ///< the GL name of push_binding_'s buffer
+    /// The states whose GL calls were replayed last (UINT32_MAX: none, or other commands since).
+    uint32_t replayed_pipeline_ = UINT32_MAX;
+    uint32_t replayed_vertex_ = UINT32_MAX;
+    uint32_t replayed_bindings_ = UINT32_MAX;
+    /// Forgets every state resolved for draws (the next draw checks and resolves all again).
+    void invalidate_draw_state() { pipeline_state_valid_ = vertex_state_valid_ = binding_state_valid_ = false; }
     std::optional<Error> first_error_;
     // The GL side of the open render pass.
     GLuint pass_framebuffer_ = 0;
@@ -211,7 +299,8 @@ public:
     GLuint framebuffer_for(const std::vector<std::pair<const GlTexture*, std::array<uint32_t, 2>>>& colors,
                            const GlTexture* depth, std::array<uint32_t, 2> depth_mip_layer);
     /// Copies `data` into this frame's transient uniform memory.
-    rhi::BufferBinding allocate_transient(std::span<const std::byte> data);
+    /// `name`, when given, receives the GL name of the buffer the binding is in.
+    rhi::BufferBinding allocate_transient(std::span<const std::byte> data, GLuint* name = nullptr);
     GLuint acquire_query();
     void discard_first_timer_query();
     /// Counts upload bytes into the frame being prepared.

@@ -67,7 +67,7 @@ void GlDevice::ensure_backbuffer() {
 Status GlDevice::end_frame() {
     context_->make_current();
     LOOM_TRY(list_->state().check_recording("end_frame"));
-    std::vector<GlCommand> commands = list_->finish();
+    std::vector<GlCommand>& commands = list_->finish();
     std::optional<Error> error = std::move(list_->first_error());
     // On the application's context: its state is saved here and put back before returning.
     const GlAppStateScope scope = app_state_scope();
@@ -142,8 +142,9 @@ Status GlDevice::wait_idle() {
 
 // ---- transient uniforms ----------------------------------------------------------------------
 
-rhi::BufferBinding GlDevice::allocate_transient(std::span<const std::byte> data) {
-    context_->make_current();  // recording may interleave with calls on another device
+rhi::BufferBinding GlDevice::allocate_transient(std::span<const std::byte> data, GLuint* name) {
+    // Copied into the frame's staging memory, uploaded at end_frame: GL is called (and this
+    // device's context made current) only for a new chunk.
     const uint64_t alignment = caps_.uniform_buffer_offset_alignment;
     const uint64_t size = std::max<uint64_t>(data.size(), 1);
     TransientChunk* chunk = nullptr;
@@ -156,6 +157,7 @@ rhi::BufferBinding GlDevice::allocate_transient(std::span<const std::byte> data)
             frame_chunks_.push_back(std::move(*reusable));
             free_chunks_.erase(reusable);
         } else {
+            context_->make_current();  // recording may interleave with calls on another device
             TransientChunk fresh;
             fresh.size = std::max(kTransientChunkBytes, align_up(size, alignment));
             GlBuffer b;
@@ -177,6 +179,7 @@ rhi::BufferBinding GlDevice::allocate_transient(std::span<const std::byte> data)
     std::copy(data.begin(), data.end(), chunk->staging.begin() + static_cast<std::ptrdiff_t>(offset));
     chunk->used = offset + size;
     count_upload(data.size());
+    if (name) *name = chunk->name;
     return rhi::BufferBinding{chunk->buffer, offset, size};
 }
 

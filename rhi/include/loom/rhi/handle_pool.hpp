@@ -43,8 +43,8 @@ public:
 
     /// The object behind `handle`, or an InvalidHandle error that says why there is none.
     Result<T*> get(HandleType handle) {
-        if (auto error = check(handle)) return std::move(*error);
-        return &*slots_[handle.index].value;
+        if (T* found = find(handle)) return found;
+        return std::move(*check(handle));
     }
 
     /// Like get(), but nullptr instead of an error (for hot paths that already validated).
@@ -66,8 +66,13 @@ public:
         slot.generation = static_cast<uint16_t>(slot.generation == 0xFFFF ? 1 : slot.generation + 1);
         free_.push_back(handle.index);
         --live_;
+        ++removals_;
         return value;
     }
+
+    /// Objects removed so far: unchanged, every handle found alive before is still alive (a
+    /// command list may then reuse what it checked for an earlier draw).
+    [[nodiscard]] uint64_t removals() const { return removals_; }
 
     /// Objects alive in the pool.
     [[nodiscard]] std::size_t size() const { return live_; }
@@ -95,7 +100,12 @@ private:
         uint16_t generation = 1;
     };
 
+    // The message is built only for a bad handle: lookups run on every draw.
     std::optional<Error> check(HandleType handle) const {
+        if (!handle.is_null() && handle.device == device_id_ && handle.index < slots_.size() &&
+            slots_[handle.index].generation == handle.generation && slots_[handle.index].value) {
+            return std::nullopt;
+        }
         const std::string kind = Tag::kName;
         if (handle.is_null()) return Error{ErrorCode::InvalidHandle, kind + " handle is null"};
         if (handle.device != device_id_) {
@@ -104,19 +114,15 @@ private:
                              std::to_string(handle.device) + ", not to this device (" +
                              std::to_string(device_id_) + ")"};
         }
-        if (handle.index >= slots_.size() || slots_[handle.index].generation != handle.generation ||
-            !slots_[handle.index].value) {
-            return Error{ErrorCode::InvalidHandle,
-                         kind + " handle #" + std::to_string(handle.index) + " is stale: the " + kind +
-                             " was destroyed"};
-        }
-        return std::nullopt;
+        return Error{ErrorCode::InvalidHandle,
+                     kind + " handle #" + std::to_string(handle.index) + " is stale: the " + kind + " was destroyed"};
     }
 
     uint16_t device_id_;
     std::vector<Slot> slots_;
     std::vector<uint32_t> free_;
     std::size_t live_ = 0;
+    uint64_t removals_ = 0;
 };
 
 }  // namespace loom::rhi
