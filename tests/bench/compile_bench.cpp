@@ -80,6 +80,12 @@ void BM_CompileLoomByName(benchmark::State& state, LoomAllocatorUnderTest alloca
     run_compile(state, [allocator](const CompileGraph& g, const CompileNames& n) { return compile_in_loom_by_name(g, n, allocator); });
 }
 
+void BM_CompileLoomTyped(benchmark::State& state, LoomAllocatorUnderTest allocator, bool reuse) {
+    run_compile(state, [allocator, reuse](const CompileGraph& g, const CompileNames& n) {
+        return compile_in_loom_typed(g, n, allocator, reuse);
+    });
+}
+
 #ifdef LOOM_BENCH_SKAARJ
 void BM_CompileSkaarj(benchmark::State& state) { run_compile(state, compile_in_skaarj); }
 #endif
@@ -92,6 +98,9 @@ void sizes(benchmark::internal::Benchmark* b) { b->RangeMultiplier(10)->Range(10
 
 BENCHMARK_CAPTURE(BM_CompileLoomByName, interval, LoomAllocatorUnderTest::Interval)->Apply(sizes);
 BENCHMARK_CAPTURE(BM_CompileLoomByName, heap, LoomAllocatorUnderTest::Heap)->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval, LoomAllocatorUnderTest::Interval, false)->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_reused, LoomAllocatorUnderTest::Interval, true)->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, heap, LoomAllocatorUnderTest::Heap, false)->Apply(sizes);
 #ifdef LOOM_BENCH_SKAARJ
 BENCHMARK(BM_CompileSkaarj)->Apply(sizes);
 #endif

@@ -26,6 +26,12 @@ enum class LoomAllocatorUnderTest { Interval, Heap };
 /// loom through its string API: ports declared by name, connected by "pass.port" names.
 uint64_t compile_in_loom_by_name(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator);
 
+/// loom through its typed API: reads by the handle of the write (Pass::read), outputs by
+/// port_of, the graph reserved up front. With `reuse`, one graph is cleared and declared again
+/// on every call, as an engine does frame after frame.
+uint64_t compile_in_loom_typed(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator,
+                               bool reuse);
+
 #ifdef LOOM_BENCH_SKAARJ
 /// skaarj1989/FrameGraph: addCallbackPass, create + write, read, compile().
 uint64_t compile_in_skaarj(const CompileGraph& graph, const CompileNames& names);

@@ -64,4 +64,27 @@ uint64_t compile_in_loom_by_name(const CompileGraph& graph, const CompileNames& 
     return result_of(build_plan(frame_graph, plan_options(allocator)));
 }
 
+uint64_t compile_in_loom_typed(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator,
+                               bool reuse) {
+    static FrameGraph reused;
+    FrameGraph fresh;
+    FrameGraph& frame_graph = reuse ? reused : fresh;
+    frame_graph.clear();
+    frame_graph.reserve(static_cast<uint32_t>(graph.passes.size()),
+                        static_cast<uint32_t>(graph.reads.size() + graph.textures.size()));
+    std::vector<PortAddress> handles(graph.textures.size());
+    for (std::size_t index = 0; index < graph.passes.size(); ++index) {
+        const CompilePass& pass = graph.passes[index];
+        Pass declared(names.passes[index]);
+        for (uint32_t r = 0; r < pass.read_count; ++r) declared.read(handles[graph.reads[pass.first_read + r]]);
+        for (uint32_t o = 0; o < pass.create_count; ++o) declared.output(kOutputNames[o], spec_of(graph.textures[pass.first_texture + o]));
+        declared.set_side_effect(pass.side_effect);
+        auto id = frame_graph.add_pass(std::move(declared));
+        if (!id) std::abort();
+        // Reads come first among the pass's ports, then the outputs in declaration order.
+        for (uint32_t o = 0; o < pass.create_count; ++o) handles[pass.first_texture + o] = port_of(*id, pass.read_count + o);
+    }
+    return result_of(build_plan(frame_graph, plan_options(allocator)));
+}
+
 }  // namespace loom::bench
