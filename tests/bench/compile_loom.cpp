@@ -39,8 +39,15 @@ CompileNames make_compile_names(const CompileGraph& graph) {
     CompileNames names;
     names.passes.reserve(graph.passes.size());
     names.textures.reserve(graph.textures.size());
-    for (std::size_t i = 0; i < graph.passes.size(); ++i) names.passes.push_back("p" + std::to_string(i));
-    for (std::size_t i = 0; i < graph.textures.size(); ++i) names.textures.push_back("t" + std::to_string(i));
+    // Appended, not "p" + std::to_string(i): GCC 12 at -O3 warns falsely (-Wrestrict) about the
+    // insertion that operator+(const char*, std::string&&) inlines.
+    auto numbered = [](char prefix, std::size_t i) {
+        std::string name(1, prefix);
+        name += std::to_string(i);
+        return name;
+    };
+    for (std::size_t i = 0; i < graph.passes.size(); ++i) names.passes.push_back(numbered('p', i));
+    for (std::size_t i = 0; i < graph.textures.size(); ++i) names.textures.push_back(numbered('t', i));
     return names;
 }
 
