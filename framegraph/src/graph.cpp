@@ -50,8 +50,23 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
     }
     // Bad port set names were refused by Pass::add (its status).
     LOOM_TRY(pass->status());
-    if (pass_index_.contains(pass->name())) {
+    if (pass_index_.contains(std::string_view(pass->name()))) {
         return graph_error("add_pass: a pass called '" + pass->name() + "' already exists");
+    }
+    // Reads (Pass::read) are checked before the pass is added, so that a refused pass leaves
+    // the graph as it was; the input they connect is new, so no other check can fail.
+    for (const auto& [input, source] : pass->reads()) {
+        const Port& port = pass->ports()[input];
+        auto what = [&] { return "add_pass: pass '" + pass->name() + "': " + port.name + " reads "; };
+        if (auto problem = address_problem(source)) return graph_error(what() + *problem);
+        const Port& written = port_at(source);
+        if (!port_writes(written.kind)) {
+            return graph_error(what() + port_name(source) + ", an input; a read takes an output or inout");
+        }
+        if (written.type != port.type) {
+            return graph_error(what() + port_name(source) + ", a " + std::string(resource_type_name(written.type)) +
+                               " port; read() reads textures");
+        }
     }
     const auto index = static_cast<uint32_t>(passes_.size());
     pass_index_.emplace(pass->name(), index);
@@ -61,12 +76,56 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
     consumers_.resize(first_port + pass->ports().size());
     marked_output_.resize(first_port + pass->ports().size());
     passes_.push_back(std::move(pass));
+    for (const auto& [input, source] : passes_.back()->reads()) link(source, PortAddress{index, input});
     ++revision_;
     return PassId{index};
 }
 
+void FrameGraph::reserve(uint32_t passes, uint32_t ports) {
+    passes_.reserve(passes);
+    pass_index_.reserve(passes);
+    port_offset_.reserve(passes);
+    sources_.reserve(ports);
+    consumers_.reserve(ports);
+    marked_output_.reserve(ports);
+    connections_.reserve(ports);
+}
+
+void FrameGraph::clear() {
+    passes_.clear();
+    pass_index_.clear();
+    port_offset_.clear();
+    sources_.clear();
+    consumers_.clear();
+    connections_.clear();
+    outputs_.clear();
+    marked_output_.clear();
+    order_requirements_.clear();
+    cached_plan_.reset();
+    ++revision_;
+}
+
+std::optional<std::string> FrameGraph::address_problem(PortAddress address) const {
+    if (address.pass >= passes_.size()) {
+        return "pass #" + std::to_string(address.pass) + ", which is not in the graph (it has " +
+               std::to_string(passes_.size()) + " passes)";
+    }
+    const Pass& p = *passes_[address.pass];
+    if (address.port >= p.ports().size()) {
+        return "port #" + std::to_string(address.port) + " of pass '" + p.name() + "', which has " +
+               std::to_string(p.ports().size()) + " ports (" + port_list(p) + ")";
+    }
+    return std::nullopt;
+}
+
+void FrameGraph::link(PortAddress from, PortAddress to) {
+    sources_[flat(to)] = from;
+    consumers_[flat(from)].push_back(to);
+    connections_.push_back({from, to});
+}
+
 std::optional<PassId> FrameGraph::find_pass(std::string_view name) const {
-    auto it = pass_index_.find(std::string(name));
+    auto it = pass_index_.find(name);
     if (it == pass_index_.end()) return std::nullopt;
     return PassId{it->second};
 }
@@ -95,41 +154,54 @@ Result<PortAddress> FrameGraph::resolve(const PortRef& ref) const {
 }
 
 Status FrameGraph::connect(const PortRef& from, const PortRef& to) {
-    const std::string what = "connect " + printable_name(from.to_string()) + " -> " + printable_name(to.to_string()) + ": ";
+    // The text is built only for an error.
+    auto what = [&] { return "connect " + printable_name(from.to_string()) + " -> " + printable_name(to.to_string()) + ": "; };
     auto from_address = resolve(from);
-    if (!from_address) return graph_error(what + from_address.error().message);
+    if (!from_address) return graph_error(what() + from_address.error().message);
     auto to_address = resolve(to);
-    if (!to_address) return graph_error(what + to_address.error().message);
+    if (!to_address) return graph_error(what() + to_address.error().message);
+    // Resolved names are the graph's, so the messages by address read as those by name.
+    return connect(*from_address, *to_address);
+}
 
-    const Port& from_port = port_at(*from_address);
-    const Port& to_port = port_at(*to_address);
+Status FrameGraph::connect(PortAddress from, PortAddress to) {
+    auto from_problem = address_problem(from);
+    auto to_problem = address_problem(to);
+    if (from_problem || to_problem) {
+        auto describe = [&](PortAddress a, const std::optional<std::string>& problem) {
+            return problem ? "pass #" + std::to_string(a.pass) + " port #" + std::to_string(a.port) : port_name(a);
+        };
+        return graph_error("connect " + describe(from, from_problem) + " -> " + describe(to, to_problem) + ": no " +
+                           (from_problem ? *from_problem : *to_problem));
+    }
+    auto what = [&] { return "connect " + port_name(from) + " -> " + port_name(to) + ": "; };
+    const Port& from_port = port_at(from);
+    const Port& to_port = port_at(to);
     if (!port_writes(from_port.kind)) {
-        return graph_error(what + from.to_string() + " is an input; a connection starts at an output or inout");
+        return graph_error(what() + port_name(from) + " is an input; a connection starts at an output or inout");
     }
     if (!port_reads(to_port.kind)) {
-        return graph_error(what + to.to_string() + " is an output; a connection ends at an input or inout");
+        return graph_error(what() + port_name(to) + " is an output; a connection ends at an input or inout");
     }
     if (from_port.type != to_port.type) {
-        return graph_error(what + from.to_string() + " is a " + std::string(resource_type_name(from_port.type)) +
-                           " port but " + to.to_string() + " is a " + std::string(resource_type_name(to_port.type)) +
+        return graph_error(what() + port_name(from) + " is a " + std::string(resource_type_name(from_port.type)) +
+                           " port but " + port_name(to) + " is a " + std::string(resource_type_name(to_port.type)) +
                            " port");
     }
-    if (auto existing = sources_[flat(*to_address)]) {
-        return graph_error(what + to.to_string() + " is already connected to " + port_name(*existing) + "; an " +
+    if (auto existing = sources_[flat(to)]) {
+        return graph_error(what() + port_name(to) + " is already connected to " + port_name(*existing) + "; an " +
                            std::string(port_kind_name(to_port.kind)) + " takes one source");
     }
     if (to_port.kind == PortKind::InOut) {
-        for (const PortAddress& consumer : consumers_[flat(*from_address)]) {
+        for (const PortAddress& consumer : consumers_[flat(from)]) {
             if (port_at(consumer).kind == PortKind::InOut) {
-                return graph_error(what + from.to_string() + " is already modified in place by " +
+                return graph_error(what() + port_name(from) + " is already modified in place by " +
                                    port_name(consumer) + "; one texture has one in-place writer at a time (chain " +
-                                   "the inouts: connect " + port_name(consumer) + " -> " + to.to_string() + ")");
+                                   "the inouts: connect " + port_name(consumer) + " -> " + port_name(to) + ")");
             }
         }
     }
-    sources_[flat(*to_address)] = *from_address;
-    consumers_[flat(*from_address)].push_back(*to_address);
-    connections_.push_back({*from_address, *to_address});
+    link(from, to);
     ++revision_;
     return {};
 }
@@ -137,13 +209,18 @@ Status FrameGraph::connect(const PortRef& from, const PortRef& to) {
 Status FrameGraph::mark_output(const PortRef& ref) {
     auto address = resolve(ref);
     if (!address) return graph_error("mark_output " + printable_name(ref.to_string()) + ": " + address.error().message);
-    if (!port_writes(port_at(*address).kind)) {
-        return graph_error("mark_output " + ref.to_string() + ": an input cannot be a graph output; mark the port "
+    return mark_output(*address);
+}
+
+Status FrameGraph::mark_output(PortAddress address) {
+    if (auto problem = address_problem(address)) return graph_error("mark_output: no " + *problem);
+    if (!port_writes(port_at(address).kind)) {
+        return graph_error("mark_output " + port_name(address) + ": an input cannot be a graph output; mark the port "
                            "that produces the texture");
     }
-    if (!marked_output_[flat(*address)]) {
-        marked_output_[flat(*address)] = true;
-        outputs_.push_back(*address);
+    if (!marked_output_[flat(address)]) {
+        marked_output_[flat(address)] = true;
+        outputs_.push_back(address);
         ++revision_;
     }
     return {};
@@ -152,8 +229,16 @@ Status FrameGraph::mark_output(const PortRef& ref) {
 Status FrameGraph::set_side_effect(std::string_view name, bool side_effect) {
     auto id = find_pass(name);
     if (!id) return graph_error("set_side_effect: unknown pass " + quoted_name(name));
-    if (passes_[id->index]->side_effect() != side_effect) {
-        passes_[id->index]->set_side_effect(side_effect);
+    return set_side_effect(*id, side_effect);
+}
+
+Status FrameGraph::set_side_effect(PassId id, bool side_effect) {
+    if (id.index >= passes_.size()) {
+        return graph_error("set_side_effect: no pass #" + std::to_string(id.index) + " (the graph has " +
+                           std::to_string(passes_.size()) + " passes)");
+    }
+    if (passes_[id.index]->side_effect() != side_effect) {
+        passes_[id.index]->set_side_effect(side_effect);
         ++revision_;
     }
     return {};

@@ -186,9 +186,28 @@ const Port* Pass::find_port(std::string_view name) const {
 }
 
 std::optional<uint32_t> Pass::port_index(std::string_view name) const {
+    if (port_indices_.empty()) {
+        for (uint32_t i = 0; i < ports_.size(); ++i) {
+            if (ports_[i].name == name) return i;
+        }
+        return std::nullopt;
+    }
     auto it = port_indices_.find(name);
     if (it == port_indices_.end()) return std::nullopt;
     return it->second;
+}
+
+Pass& Pass::read(PortAddress source, TextureSpec spec, SubresourceRange range) {
+    std::string port = "read" + std::to_string(reads_.size());
+    if (!error_ && port_index(port)) {
+        error_ = make_error(ErrorCode::Graph, "pass " + quoted_name(name_) + ": read() names its input " +
+                                                  quoted_name(port) + ", a name the pass already declares");
+        return *this;
+    }
+    const auto index = static_cast<uint32_t>(ports_.size());
+    merge(texture_port(std::move(port), PortKind::Input, std::move(spec), false, name_, range), name_);
+    reads_.emplace_back(index, source);
+    return *this;
 }
 
 Status Pass::execute(PassContext& context) {
@@ -201,16 +220,21 @@ Status Pass::status() const {
     return {};
 }
 
-void Pass::merge(const Port& declaration, const std::string& port_set) {
-    const auto [it, inserted] = port_indices_.try_emplace(declaration.name, static_cast<uint32_t>(ports_.size()));
-    if (inserted) {
-        ports_.push_back(declaration);
-        ports_.back().port_sets = {port_set};
+void Pass::merge(Port declaration, const std::string& port_set) {
+    const std::optional<uint32_t> known = port_index(declaration.name);
+    if (!known) {
+        if (declaration.port_sets.size() != 1 || declaration.port_sets.front() != port_set) declaration.port_sets = {port_set};
+        ports_.push_back(std::move(declaration));
+        if (ports_.size() == kIndexedPorts) {
+            for (uint32_t i = 0; i < ports_.size(); ++i) port_indices_.emplace(ports_[i].name, i);
+        } else if (ports_.size() > kIndexedPorts) {
+            port_indices_.emplace(ports_.back().name, static_cast<uint32_t>(ports_.size() - 1));
+        }
         return;
     }
     if (error_) return;  // keep the first error; later ones are usually consequences
 
-    Port& existing = ports_[it->second];
+    Port& existing = ports_[*known];
     const std::string& first_set = existing.port_sets.front();
     if (existing.kind != declaration.kind) {
         error_ = make_error(ErrorCode::Graph, "pass " + quoted_name(name_) + ": port " +

@@ -48,20 +48,6 @@ inline PortRef port(std::string_view pass, std::string_view name) { return {std:
 /// "pass.port" split at the last dot; nullopt when there is no dot or a side is empty.
 std::optional<PortRef> parse_port_ref(std::string_view text);
 
-/// Index of a pass in a graph (declaration order).
-struct PassId {
-    uint32_t index = 0;
-    friend bool operator==(const PassId&, const PassId&) = default;
-};
-
-/// A port of a graph by indices: pass (declaration order) and port (Pass::ports() order).
-struct PortAddress {
-    uint32_t pass = 0;
-    uint32_t port = 0;
-    friend bool operator==(const PortAddress&, const PortAddress&) = default;
-    friend auto operator<=>(const PortAddress&, const PortAddress&) = default;
-};
-
 /// An edge from an output/inout port to an input/inout port.
 struct Connection {
     PortAddress from;
@@ -94,13 +80,29 @@ public:
     /// (ErrorCode::Graph) name both ports: unknown pass or port, wrong direction, a second
     /// source, a second in-place modification.
     Status connect(const PortRef& from, const PortRef& to);
+    /// connect by the handles add_pass and port_of give: no name is looked up, and an error's
+    /// text (the same as connect by names gives) is built only when a check fails. An address
+    /// outside the graph is an error too.
+    Status connect(PortAddress from, PortAddress to);
 
     /// Marks an output or inout port as a graph output: its texture is read after the frame
     /// (presented, read back), so its pass is never culled and it lives until the last pass.
     Status mark_output(const PortRef& port);
+    /// mark_output by handle.
+    Status mark_output(PortAddress port);
 
     /// Marks a pass as having side effects (never culled), or clears the mark.
     Status set_side_effect(std::string_view pass, bool side_effect = true);
+    /// set_side_effect by handle.
+    Status set_side_effect(PassId pass, bool side_effect = true);
+
+    /// Makes room for `passes` passes with `ports` ports in all (and as many connections), so
+    /// that declaring a graph of a known size does not grow its arrays pass by pass.
+    void reserve(uint32_t passes, uint32_t ports);
+    /// Removes every pass, connection, graph output and order requirement, keeping the arrays'
+    /// memory: a graph declared anew every frame reuses it (reserve once, clear every frame).
+    /// The next plan() plans afresh.
+    void clear();
 
     /// Requires `earlier` to run before `later` in every order although no texture connects
     /// them (both write what the application presents, say). It orders them like a connection
@@ -149,9 +151,19 @@ public:
 
 private:
     uint32_t flat(PortAddress address) const { return port_offset_[address.pass] + address.port; }
+    // Why `address` names no port of this graph, or nullopt.
+    [[nodiscard]] std::optional<std::string> address_problem(PortAddress address) const;
+    // Records a connection that passed every check.
+    void link(PortAddress from, PortAddress to);
+
+    // Looks names up by string_view without making a std::string of them.
+    struct NameHash {
+        using is_transparent = void;
+        std::size_t operator()(std::string_view name) const { return std::hash<std::string_view>{}(name); }
+    };
 
     std::vector<std::unique_ptr<Pass>> passes_;
-    std::unordered_map<std::string, uint32_t> pass_index_;
+    std::unordered_map<std::string, uint32_t, NameHash, std::equal_to<>> pass_index_;
     std::vector<uint32_t> port_offset_;                 // first flat port index of each pass
     std::vector<std::optional<PortAddress>> sources_;   // per flat port
     std::vector<std::vector<PortAddress>> consumers_;   // per flat port

@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "loom/framegraph/buffer_spec.hpp"
@@ -98,6 +99,26 @@ std::string describe_range(const SubresourceRange& range);
 bool overlaps(const SubresourceRange& a, const SubresourceRange& b);
 /// True when the two byte ranges share a byte (size 0: to the end).
 bool overlaps(const BufferRange& a, const BufferRange& b);
+
+/// Index of a pass in a graph (declaration order).
+struct PassId {
+    uint32_t index = 0;
+    friend bool operator==(const PassId&, const PassId&) = default;
+};
+
+/// A port of a graph by indices: pass (declaration order) and port (Pass::ports() order). The
+/// typed handle of a port: connect, mark_output and Pass::read take it, no name is looked up.
+struct PortAddress {
+    uint32_t pass = 0;
+    uint32_t port = 0;
+    friend bool operator==(const PortAddress&, const PortAddress&) = default;
+    friend auto operator<=>(const PortAddress&, const PortAddress&) = default;
+};
+
+/// The port `index` of pass `pass`: a pass's ports are numbered in the order their names were
+/// first declared (Pass::ports()), so the first output a pass declares after two inputs is
+/// port_of(id, 2).
+inline PortAddress port_of(PassId pass, uint32_t index) { return {pass.index, index}; }
 
 /// One declared port.
 struct Port {
@@ -229,6 +250,14 @@ public:
         return declare(std::move(port), PortKind::Output, std::move(spec), true);
     }
 
+    /// Declares an input reading the texture that `source` (an output or inout of a pass
+    /// already in the graph) writes, and connects it when the pass is added: a read in one
+    /// step, by the handle of the write. The port is called "read<n>", n counting this pass's
+    /// reads from 0 (a name the pass declared itself is an error naming it).
+    Pass& read(PortAddress source, TextureSpec spec = {}, SubresourceRange range = {});
+    /// What read() declared: (index of the input in ports(), the port it reads), in order.
+    [[nodiscard]] const std::vector<std::pair<uint32_t, PortAddress>>& reads() const { return reads_; }
+
     // Buffer ports on the pass's own port set (see BufferSpec for what a port's usage means).
     Pass& declare_buffer(std::string port, PortKind kind, BufferSpec spec = {}, bool optional = false,
                          BufferRange bytes = {});
@@ -316,13 +345,16 @@ public:
     [[nodiscard]] Status status() const;
 
 private:
-    void merge(const Port& declaration, const std::string& port_set);
+    void merge(Port declaration, const std::string& port_set);
 
     std::string name_;
     std::vector<Port> ports_;
     // Port name -> index in ports_, so merging a declaration and finding a port by name do
-    // not scan every port (a pass may have very many).
+    // not scan every port (a pass may have very many). Filled only from kIndexedPorts ports on:
+    // below that a scan of ports_ is cheaper than building the map.
+    static constexpr std::size_t kIndexedPorts = 16;
     std::map<std::string, uint32_t, std::less<>> port_indices_;
+    std::vector<std::pair<uint32_t, PortAddress>> reads_;
     bool side_effect_ = false;
     bool keep_declared_order_ = false;
     PassKind kind_ = PassKind::Graphics;

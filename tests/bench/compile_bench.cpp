@@ -1,0 +1,115 @@
+// Frame-graph compile, side by side: the same seeded graphs (compile_graph.hpp: layers of passes,
+// each reading 1-3 earlier textures and creating 1-2, nothing culled) created, declared and
+// compiled in loom and, where their sources were found at configure time, in
+// skaarj1989/FrameGraph and acdemiralp/fg, in one process on a warm heap. Each benchmark reports
+// per_pass (seconds per pass; Google Benchmark prints it in the unit it chooses) and
+// allocs_per_pass (heap allocations per pass, counted by this program's operator new).
+// docs/BENCHMARKS.md, "Frame-graph compile vs peers", has the table and the command.
+//
+//   loom_framegraph_compile_bench [google benchmark flags]
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include <benchmark/benchmark.h>
+
+#include "compile_libraries.hpp"
+
+namespace {
+
+// Every allocation of the program, counted (relaxed: the benchmark is single-threaded; the
+// counter only has to be exact between two reads on the benchmark's thread).
+std::atomic<uint64_t> g_allocations{0};
+
+void* counted_allocation(std::size_t size) {
+    g_allocations.fetch_add(1, std::memory_order_relaxed);
+    if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+    throw std::bad_alloc();
+}
+
+void* counted_aligned_allocation(std::size_t size, std::align_val_t alignment) {
+    g_allocations.fetch_add(1, std::memory_order_relaxed);
+    const auto align = static_cast<std::size_t>(alignment);
+    if (void* p = std::aligned_alloc(align, (size + align - 1) / align * align)) return p;
+    throw std::bad_alloc();
+}
+
+}  // namespace
+
+void* operator new(std::size_t size) { return counted_allocation(size); }
+void* operator new[](std::size_t size) { return counted_allocation(size); }
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+    try { return counted_allocation(size); } catch (...) { return nullptr; }
+}
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+    try { return counted_allocation(size); } catch (...) { return nullptr; }
+}
+void* operator new(std::size_t size, std::align_val_t alignment) { return counted_aligned_allocation(size, alignment); }
+void* operator new[](std::size_t size, std::align_val_t alignment) { return counted_aligned_allocation(size, alignment); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+
+namespace {
+
+using namespace loom::bench;
+
+// Runs `compile` on the graph of state.range(0) passes: one untimed run first (the warm heap),
+// then the timed loop, counting the allocations of the timed runs.
+template <typename Compile>
+void run_compile(benchmark::State& state, Compile compile) {
+    const auto passes = static_cast<uint32_t>(state.range(0));
+    const CompileGraph graph = make_compile_graph(passes);
+    const CompileNames names = make_compile_names(graph);
+    benchmark::DoNotOptimize(compile(graph, names));
+    const uint64_t allocations_before = g_allocations.load(std::memory_order_relaxed);
+    for (auto _ : state) benchmark::DoNotOptimize(compile(graph, names));
+    const uint64_t allocations = g_allocations.load(std::memory_order_relaxed) - allocations_before;
+    const double pass_runs = static_cast<double>(passes) * static_cast<double>(state.iterations());
+    state.counters["per_pass"] = benchmark::Counter(passes, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["allocs_per_pass"] = static_cast<double>(allocations) / pass_runs;
+}
+
+void BM_CompileLoomByName(benchmark::State& state, LoomAllocatorUnderTest allocator) {
+    run_compile(state, [allocator](const CompileGraph& g, const CompileNames& n) { return compile_in_loom_by_name(g, n, allocator); });
+}
+
+void BM_CompileLoomTyped(benchmark::State& state, LoomAllocatorUnderTest allocator, bool reuse) {
+    run_compile(state, [allocator, reuse](const CompileGraph& g, const CompileNames& n) {
+        return compile_in_loom_typed(g, n, allocator, reuse);
+    });
+}
+
+#ifdef LOOM_BENCH_SKAARJ
+void BM_CompileSkaarj(benchmark::State& state) { run_compile(state, compile_in_skaarj); }
+#endif
+#ifdef LOOM_BENCH_ACDEMIRALP
+void BM_CompileAcdemiralp(benchmark::State& state) { run_compile(state, compile_in_acdemiralp); }
+#endif
+
+// 1k, 10k and 100k passes.
+void sizes(benchmark::internal::Benchmark* b) { b->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMillisecond); }
+
+BENCHMARK_CAPTURE(BM_CompileLoomByName, interval, LoomAllocatorUnderTest::Interval)->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomByName, heap, LoomAllocatorUnderTest::Heap)->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval, LoomAllocatorUnderTest::Interval, false)->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_reused, LoomAllocatorUnderTest::Interval, true)->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, heap, LoomAllocatorUnderTest::Heap, false)->Apply(sizes);
+#ifdef LOOM_BENCH_SKAARJ
+BENCHMARK(BM_CompileSkaarj)->Apply(sizes);
+#endif
+#ifdef LOOM_BENCH_ACDEMIRALP
+// acdemiralp/fg finds each resource's last user by a linear search over the tasks, so its cost
+// per pass grows with the graph; at 100k passes one run takes seconds.
+BENCHMARK(BM_CompileAcdemiralp)->Apply(sizes);
+#endif
+
+}  // namespace
+
+BENCHMARK_MAIN();

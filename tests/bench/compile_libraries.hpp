@@ -1,0 +1,45 @@
+#pragma once
+// One function per library of the side-by-side compile benchmark (compile_bench.cpp): each
+// creates a graph, declares every pass of a CompileGraph and compiles it, and returns a number
+// read from the result (so that no work is optimised away). The peers' functions are compiled
+// in their own files, against their own headers, only when their sources are present.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "compile_graph.hpp"
+
+namespace loom::bench {
+
+/// Names made once outside the timed loops, so that no library pays for formatting them:
+/// passes p0, p1, ... and textures t0, t1, ...
+struct CompileNames {
+    std::vector<std::string> passes;
+    std::vector<std::string> textures;
+};
+CompileNames make_compile_names(const CompileGraph& graph);
+
+/// The loom allocators the benchmark compares.
+enum class LoomAllocatorUnderTest { Interval, Heap };
+
+/// loom through its string API: ports declared by name, connected by "pass.port" names.
+uint64_t compile_in_loom_by_name(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator);
+
+/// loom through its typed API: reads by the handle of the write (Pass::read), outputs by
+/// port_of, the graph reserved up front. With `reuse`, one graph is cleared and declared again
+/// on every call, as an engine does frame after frame.
+uint64_t compile_in_loom_typed(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator,
+                               bool reuse);
+
+#ifdef LOOM_BENCH_SKAARJ
+/// skaarj1989/FrameGraph: addCallbackPass, create + write, read, compile().
+uint64_t compile_in_skaarj(const CompileGraph& graph, const CompileNames& names);
+#endif
+
+#ifdef LOOM_BENCH_ACDEMIRALP
+/// acdemiralp/fg: add_render_task, create, read, compile().
+uint64_t compile_in_acdemiralp(const CompileGraph& graph, const CompileNames& names);
+#endif
+
+}  // namespace loom::bench

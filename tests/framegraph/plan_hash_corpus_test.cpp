@@ -1,0 +1,101 @@
+// Plans must not change when planning gets faster: the plan hashes of seeded random graphs,
+// combined per way of planning, pinned to the values planning gave before the compile-speed
+// work (issue 16). A change to what a plan says (order, resources, sharing, placement, syncs)
+// changes a hash here; a deliberate change of plans updates the pinned values in the same
+// commit, saying why.
+#include <cstdint>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "loom/framegraph/framegraph.hpp"
+#include "random_graph.hpp"
+
+namespace loom::fg {
+namespace {
+
+constexpr uint64_t kGraphs = 300;
+
+// FNV-1a over the plan hashes in seed order, so that a changed plan anywhere changes the value.
+struct Combined {
+    uint64_t value = 1469598103934665603ull;
+    void add(uint64_t hash) {
+        for (int i = 0; i < 8; ++i) {
+            value ^= (hash >> (8 * i)) & 0xff;
+            value *= 1099511628211ull;
+        }
+    }
+};
+
+enum class Corpus { Textures, Mixed, Async };
+
+testing::RandomGraphOptions graph_options(uint64_t seed, Corpus corpus) {
+    testing::RandomGraphOptions options;
+    options.passes = 2 + static_cast<uint32_t>(seed % 39);
+    options.window = 2 + static_cast<uint32_t>(seed % 7);
+    if (corpus == Corpus::Mixed) {
+        options.buffer_percent = 25;
+        options.subresource_percent = 20;
+    }
+    if (corpus == Corpus::Async) options.async_percent = 33;
+    return options;
+}
+
+uint64_t corpus_hash(Corpus corpus, const std::string& allocator, SpecSharing sharing, PassOrder order) {
+    PlanOptions options;
+    options.frame = {1920, 1080};
+    options.allocator = allocator;
+    options.sharing = sharing;
+    options.order = order;
+    Combined combined;
+    for (uint64_t seed = 1; seed <= kGraphs; ++seed) {
+        const FrameGraph graph = testing::random_graph(seed, graph_options(seed, corpus));
+        auto plan = build_plan(graph, options);
+        if (!plan) {
+            ADD_FAILURE() << "seed " << seed << " " << allocator << ": " << plan.error().to_string();
+            return 0;
+        }
+        combined.add(plan_hash(*plan));
+    }
+    return combined.value;
+}
+
+TEST(PlanHashCorpus, TexturePlansAreUnchanged) {
+    EXPECT_EQ(corpus_hash(Corpus::Textures, "paper", SpecSharing::Equal, PassOrder::Declared), 0x3e33e217ef90d5c0ull);
+    EXPECT_EQ(corpus_hash(Corpus::Textures, "interval", SpecSharing::Equal, PassOrder::Declared), 0xf6ec50e5ae468c34ull);
+    EXPECT_EQ(corpus_hash(Corpus::Textures, "heap", SpecSharing::Equal, PassOrder::Declared), 0x8e8420041a855e4cull);
+    EXPECT_EQ(corpus_hash(Corpus::Textures, "interval", SpecSharing::Joinable, PassOrder::Declared), 0x69adf352d14d2d42ull);
+    EXPECT_EQ(corpus_hash(Corpus::Textures, "heap", SpecSharing::Joinable, PassOrder::Memory), 0x43a315b7ddc8cf59ull);
+}
+
+TEST(PlanHashCorpus, BufferAndSubresourcePlansAreUnchanged) {
+    EXPECT_EQ(corpus_hash(Corpus::Mixed, "interval", SpecSharing::Equal, PassOrder::Declared), 0x6e82c040172e8fb0ull);
+    EXPECT_EQ(corpus_hash(Corpus::Mixed, "heap", SpecSharing::Equal, PassOrder::Memory), 0x24b1e4d36c16cacaull);
+}
+
+TEST(PlanHashCorpus, AsyncComputePlansAreUnchanged) {
+    EXPECT_EQ(corpus_hash(Corpus::Async, "interval", SpecSharing::Equal, PassOrder::Declared), 0x9d9e6355016bb9b5ull);
+    EXPECT_EQ(corpus_hash(Corpus::Async, "heap", SpecSharing::Equal, PassOrder::Memory), 0x06fd52b264dda6cfull);
+}
+
+// One large graph (3,000 passes declared in frame order), where the heap allocator keeps many
+// resources apart at once.
+TEST(PlanHashCorpus, LargeGraphPlansAreUnchanged) {
+    testing::RandomGraphOptions options;
+    options.passes = 3000;
+    options.window = 8;
+    options.graph_output_percent = 0;
+    options.side_effect_percent = 10;
+    options.shuffle_declarations = false;
+    const FrameGraph graph = testing::random_graph(7, options);
+    for (const char* allocator : {"interval", "heap"}) {
+        PlanOptions plan_options;
+        plan_options.allocator = allocator;
+        auto plan = build_plan(graph, plan_options);
+        ASSERT_TRUE(plan) << plan.error().to_string();
+        EXPECT_EQ(plan_hash(*plan), std::string(allocator) == "heap" ? 0xa9df76f6a8130fc9ull : 0xa3cfb5f8abd00c64ull) << allocator;
+    }
+}
+
+}  // namespace
+}  // namespace loom::fg

@@ -1,0 +1,134 @@
+// The typed fast path of FrameGraph: connections, graph outputs and side effects by the handles
+// add_pass and port_of give, reads by the handle of a write (Pass::read), reserve and clear.
+// Plans made through it equal those made by names; its errors name the passes and ports.
+#include <gtest/gtest.h>
+
+#include "loom/framegraph/framegraph.hpp"
+
+namespace loom::fg {
+namespace {
+
+using rhi::Format;
+
+// geometry -> blur -> composite by names.
+FrameGraph by_names() {
+    FrameGraph graph;
+    EXPECT_TRUE(graph.add_pass(Pass("geometry").output("albedo", TextureSpec::of(Format::RGBA8Unorm)).output("depth", TextureSpec::of(Format::Depth32F))).ok());
+    EXPECT_TRUE(graph.add_pass(Pass("blur").input("color").output("out", TextureSpec::of(Format::RGBA8Unorm).with_scale(0.5f))).ok());
+    EXPECT_TRUE(graph.add_pass(Pass("composite").input("color").input("blurred").input("depth").output("final")).ok());
+    EXPECT_TRUE(graph.connect(port("geometry", "albedo"), port("blur", "color")).ok());
+    EXPECT_TRUE(graph.connect(port("geometry", "albedo"), port("composite", "color")).ok());
+    EXPECT_TRUE(graph.connect(port("blur", "out"), port("composite", "blurred")).ok());
+    EXPECT_TRUE(graph.connect(port("geometry", "depth"), port("composite", "depth")).ok());
+    EXPECT_TRUE(graph.mark_output(port("composite", "final")).ok());
+    return graph;
+}
+
+// The same graph by handles: ports by position, connections by address.
+void declare_by_handles(FrameGraph& graph) {
+    const PassId geometry = *graph.add_pass(Pass("geometry").output("albedo", TextureSpec::of(Format::RGBA8Unorm)).output("depth", TextureSpec::of(Format::Depth32F)));
+    const PassId blur = *graph.add_pass(Pass("blur").input("color").output("out", TextureSpec::of(Format::RGBA8Unorm).with_scale(0.5f)));
+    const PassId composite = *graph.add_pass(Pass("composite").input("color").input("blurred").input("depth").output("final"));
+    EXPECT_TRUE(graph.connect(port_of(geometry, 0), port_of(blur, 0)).ok());
+    EXPECT_TRUE(graph.connect(port_of(geometry, 0), port_of(composite, 0)).ok());
+    EXPECT_TRUE(graph.connect(port_of(blur, 1), port_of(composite, 1)).ok());
+    EXPECT_TRUE(graph.connect(port_of(geometry, 1), port_of(composite, 2)).ok());
+    EXPECT_TRUE(graph.mark_output(port_of(composite, 3)).ok());
+}
+
+TEST(TypedGraph, ConnectingByHandlesPlansAsByNames) {
+    FrameGraph named = by_names();
+    FrameGraph typed;
+    declare_by_handles(typed);
+    EXPECT_EQ(typed.connections(), named.connections());
+    EXPECT_EQ(typed.outputs(), named.outputs());
+    auto a = build_plan(named, {});
+    auto b = build_plan(typed, {});
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ(plan_hash(*a), plan_hash(*b));
+    EXPECT_TRUE(*a == *b);
+}
+
+TEST(TypedGraph, ReadTakesTheHandleOfTheWriteInOneStep) {
+    FrameGraph graph;
+    const PassId geometry = *graph.add_pass(Pass("geometry").output("albedo", TextureSpec::of(Format::RGBA8Unorm)));
+    auto blur = graph.add_pass(Pass("blur").read(port_of(geometry, 0)).read(port_of(geometry, 0), {}, mip(0)).output("out"));
+    ASSERT_TRUE(blur) << blur.error().to_string();
+    const Pass& pass = graph.pass(*blur);
+    ASSERT_EQ(pass.ports().size(), 3u);
+    EXPECT_EQ(pass.ports()[0].name, "read0");
+    EXPECT_EQ(pass.ports()[1].name, "read1");
+    EXPECT_EQ(pass.ports()[0].kind, PortKind::Input);
+    EXPECT_EQ(graph.source(port_of(*blur, 0)), port_of(geometry, 0));
+    EXPECT_EQ(graph.source(port_of(*blur, 1)), port_of(geometry, 0));
+    EXPECT_EQ(graph.connections().size(), 2u);
+    ASSERT_TRUE(graph.set_side_effect(*blur).ok());
+    EXPECT_TRUE(build_plan(graph, {}));
+}
+
+TEST(TypedGraph, ReadsOfPortsOutsideTheGraphOrOfInputsAreRefusedAndLeaveTheGraphAsItWas) {
+    FrameGraph graph;
+    const PassId geometry = *graph.add_pass(Pass("geometry").input("history").output("albedo"));
+    auto unknown = graph.add_pass(Pass("blur").read(port_of(PassId{7}, 0)));
+    ASSERT_FALSE(unknown);
+    EXPECT_EQ(unknown.error().code, ErrorCode::Graph);
+    EXPECT_NE(unknown.error().message.find("'blur'"), std::string::npos) << unknown.error().message;
+    EXPECT_NE(unknown.error().message.find("pass #7"), std::string::npos) << unknown.error().message;
+    auto input = graph.add_pass(Pass("blur").read(port_of(geometry, 0)));
+    ASSERT_FALSE(input);
+    EXPECT_NE(input.error().message.find("geometry.history, an input"), std::string::npos) << input.error().message;
+    auto clash = graph.add_pass(Pass("blur").input("read0").read(port_of(geometry, 1)));
+    ASSERT_FALSE(clash);
+    EXPECT_NE(clash.error().message.find("'read0'"), std::string::npos) << clash.error().message;
+    EXPECT_EQ(graph.pass_count(), 1u);
+    EXPECT_TRUE(graph.connections().empty());
+}
+
+TEST(TypedGraph, ErrorsByHandleReadAsErrorsByName) {
+    FrameGraph named = by_names();
+    FrameGraph typed = by_names();
+    // A second source for composite.color.
+    Status by_name = named.connect(port("blur", "out"), port("composite", "color"));
+    Status by_handle = typed.connect(port_of(PassId{1}, 1), port_of(PassId{2}, 0));
+    ASSERT_FALSE(by_name.ok());
+    ASSERT_FALSE(by_handle.ok());
+    EXPECT_EQ(by_handle.error().message, by_name.error().message);
+    // Wrong direction.
+    by_handle = typed.connect(port_of(PassId{1}, 0), port_of(PassId{2}, 1));
+    ASSERT_FALSE(by_handle.ok());
+    EXPECT_NE(by_handle.error().message.find("blur.color is an input"), std::string::npos) << by_handle.error().message;
+    // Addresses outside the graph.
+    by_handle = typed.connect(port_of(PassId{0}, 9), port_of(PassId{2}, 1));
+    ASSERT_FALSE(by_handle.ok());
+    EXPECT_EQ(by_handle.error().code, ErrorCode::Graph);
+    EXPECT_NE(by_handle.error().message.find("port #9 of pass 'geometry'"), std::string::npos) << by_handle.error().message;
+    Status output = typed.mark_output(port_of(PassId{5}, 0));
+    ASSERT_FALSE(output.ok());
+    EXPECT_NE(output.error().message.find("pass #5"), std::string::npos) << output.error().message;
+    output = typed.mark_output(port_of(PassId{1}, 0));
+    ASSERT_FALSE(output.ok());
+    EXPECT_NE(output.error().message.find("blur.color: an input cannot be a graph output"), std::string::npos);
+    EXPECT_FALSE(typed.set_side_effect(PassId{3}).ok());
+}
+
+TEST(TypedGraph, AClearedGraphIsDeclaredAgainAndPlannedAfresh) {
+    FrameGraph graph;
+    graph.reserve(3, 8);
+    declare_by_handles(graph);
+    auto first = graph.plan();
+    ASSERT_TRUE(first);
+    graph.clear();
+    EXPECT_EQ(graph.pass_count(), 0u);
+    EXPECT_TRUE(graph.connections().empty());
+    EXPECT_TRUE(graph.outputs().empty());
+    EXPECT_FALSE(graph.find_pass("geometry"));
+    declare_by_handles(graph);
+    auto second = graph.plan();
+    ASSERT_TRUE(second);
+    EXPECT_EQ(graph.plans_built(), 2u);
+    EXPECT_NE(first->get(), second->get());
+    EXPECT_EQ(plan_hash(**first), plan_hash(**second));
+}
+
+}  // namespace
+}  // namespace loom::fg
