@@ -11,18 +11,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string_view text(reinterpret_cast<const char*>(data), size);
     auto file = loom::fg::parse_graph_json(text, "fuzz.json");
     if (!file) return 0;
+    using loom::fg::AllocatorKind;
+    using loom::fg::SpecSharing;
     struct Variant {
-        const char* allocator;
+        AllocatorKind allocator;
         loom::fg::SpecSharing sharing;
         uint64_t max_heap_bytes;
         bool memory_order;
     };
     static constexpr Variant kVariants[] = {
-        {"paper", loom::fg::SpecSharing::Equal, 0, false},     {"paper", loom::fg::SpecSharing::Joinable, 0, false},
-        {"interval", loom::fg::SpecSharing::Equal, 0, false},  {"interval", loom::fg::SpecSharing::Joinable, 0, false},
-        {"heap", loom::fg::SpecSharing::Equal, 0, false},      {"heap", loom::fg::SpecSharing::Joinable, 1, false},
-        {"heap", loom::fg::SpecSharing::Equal, 1 << 20, false}, {"interval", loom::fg::SpecSharing::Equal, 0, true},
-        {"heap", loom::fg::SpecSharing::Equal, 0, true},
+        {AllocatorKind::Paper, SpecSharing::Equal, 0, false},        {AllocatorKind::Paper, SpecSharing::Joinable, 0, false},
+        {AllocatorKind::Interval, SpecSharing::Equal, 0, false},     {AllocatorKind::Interval, SpecSharing::Joinable, 0, false},
+        {AllocatorKind::Heap, SpecSharing::Equal, 0, false},         {AllocatorKind::Heap, SpecSharing::Joinable, 1, false},
+        {AllocatorKind::Heap, SpecSharing::Equal, 1 << 20, false},   {AllocatorKind::Interval, SpecSharing::Equal, 0, true},
+        {AllocatorKind::Heap, SpecSharing::Equal, 0, true},
     };
     for (const Variant& variant : kVariants) {
         loom::fg::PlanOptions options;

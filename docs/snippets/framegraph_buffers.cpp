@@ -148,8 +148,8 @@ Status plan_buffer_examples(const std::string& graphs_dir) {
         LOOM_TRY(example.build(graph));
         auto file = fg::load_graph_file(graphs_dir + "/" + example.file);
         if (!file) return file.take_error();
-        for (const char* allocator : {"paper", "interval", "heap"}) {
-            if (example.async && std::string_view(allocator) == "paper") continue;
+        for (fg::AllocatorKind allocator : fg::allocator_kinds()) {
+            if (example.async && allocator == fg::AllocatorKind::Paper) continue;
             fg::PlanOptions options;
             options.frame = file->frame;
             options.allocator = allocator;
@@ -158,7 +158,8 @@ Status plan_buffer_examples(const std::string& graphs_dir) {
             auto from_json = fg::build_plan(file->graph, options);
             if (!from_json) return from_json.take_error();
             LOOM_TRY(check(*from_code == *from_json,
-                           std::string("the C++ graph plans as ") + example.file + " does with " + allocator));
+                           std::string("the C++ graph plans as ") + example.file + " does with " +
+                                            std::string(fg::allocator_name(allocator))));
         }
     }
     // The figures the guide quotes, at 1920x1080 with the default memory model.
@@ -172,7 +173,7 @@ Status plan_buffer_examples(const std::string& graphs_dir) {
     fg::FrameGraph hzb;
     LOOM_TRY(build_hzb(hzb));
     fg::PlanOptions heap;
-    heap.allocator = "heap";
+    heap.allocator = fg::AllocatorKind::Heap;
     auto placed = fg::build_plan(hzb, heap);
     if (!placed) return placed.take_error();
     LOOM_TRY(check(placed->summary.bytes == 24989696 && placed->summary.lower_bound_bytes == 24989696,

@@ -101,7 +101,7 @@ Status plan_framegraph_examples() {
         if (auto built = build(graph); !built) { /* built.error().message names the pass and port */ }
         fg::PlanOptions options;
         options.frame = {1920, 1080};
-        options.allocator = "paper";
+        options.allocator = fg::AllocatorKind::Paper;
         auto plan = graph.plan(options);  // Result<std::shared_ptr<const fg::Plan>>
         // plan->get()->texture_of("light", "hdr") == plan->get()->texture_of("ui", "hdr")
         // [/docs:plan]

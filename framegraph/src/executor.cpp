@@ -530,7 +530,7 @@ rhi::Device& Executor::device() const { return impl_->device; }
 std::shared_ptr<MemoryModel> Executor::memory_model() const { return impl_->memory; }
 
 PlanOptions Executor::effective_options(PlanOptions options) const {
-    if (!options.memory_model && options.allocator == "heap" && impl_->device.capabilities().placed_resources) {
+    if (!options.memory_model && options.allocator == AllocatorKind::Heap && impl_->device.capabilities().placed_resources) {
         options.memory_model = impl_->memory;
     }
     return options;

@@ -64,6 +64,25 @@ Result<OrderProblem> order_problem_of(const FrameGraph& graph, const PlanOptions
 
 }  // namespace detail
 
+AllocatorChoice::AllocatorChoice(const std::string& name) : kind_(AllocatorKind::Interval) {
+    auto parsed = parse_allocator(name);
+    if (parsed) {
+        kind_ = *parsed;
+    } else {
+        unknown_name_ = name;  // build_plan's error quotes it
+    }
+}
+
+Result<AllocatorKind> AllocatorChoice::kind() const {
+    if (unknown_name_) return parse_allocator(*unknown_name_);
+    const auto kinds = allocator_kinds();
+    if (std::find(kinds.begin(), kinds.end(), kind_) == kinds.end()) {
+        return make_error(ErrorCode::InvalidArgument,
+                          "unknown allocator kind " + std::to_string(static_cast<unsigned>(kind_)));
+    }
+    return kind_;
+}
+
 // The phases in order, each a function of plain data (plan_phases.hpp); what they decide is
 // put together into the plan here.
 Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
@@ -71,8 +90,9 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
         return make_error(ErrorCode::InvalidArgument, "plan: frame size " + std::to_string(options.frame.width) + "x" +
                                                           std::to_string(options.frame.height) + " is empty");
     }
-    auto allocator = make_allocator(options.allocator);
-    if (!allocator) return allocator.take_error();
+    auto allocator_kind = options.allocator.kind();
+    if (!allocator_kind) return allocator_kind.take_error();
+    const std::unique_ptr<Allocator> allocator = make_allocator(*allocator_kind);
     std::shared_ptr<MemoryModel> memory = options.memory_model;
     if (!memory) memory = std::make_shared<DefaultMemoryModel>();
 
@@ -88,13 +108,13 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
     if (options.order == PassOrder::Memory) choose_order(graph, *dependencies, schedule, *resolved);
 
     Plan plan;
-    plan.allocator = std::string((*allocator)->name());
+    plan.allocator = std::string(allocator->name());
     plan.frame = options.frame;
     plan.sharing = options.sharing;
     plan.pass_order = options.order;
     plan.order = detail::plan_passes(graph, schedule, *resolved);
     detail::QueuePlan queues = detail::plan_queues(plan.order, resolved->resources, *dependencies, schedule);
-    if (!queues.syncs.empty() && plan.allocator == "paper") {
+    if (!queues.syncs.empty() && *allocator_kind == AllocatorKind::Paper) {
         const auto async = std::find_if(plan.order.begin(), plan.order.end(),
                                         [](const PlanPass& pass) { return pass.queue != Queue::Graphics; });
         return make_error(ErrorCode::InvalidArgument,
@@ -120,7 +140,7 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
     const AllocationProblem problem =
         detail::make_allocation_problem(plan.order, plan.resources, std::move(resolved->graph_output_resources),
                                         static_cast<uint32_t>(plan.spec_classes.size()), options.max_heap_bytes);
-    auto textures = detail::allocate_textures(**allocator, problem, plan.resources, options.frame, *memory);
+    auto textures = detail::allocate_textures(*allocator, problem, plan.resources, options.frame, *memory);
     if (!textures) return textures.take_error();
     for (uint32_t r = 0; r < plan.resources.size(); ++r) {
         plan.resources[r].texture = textures->texture_of_resource[r];

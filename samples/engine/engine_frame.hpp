@@ -40,11 +40,11 @@ inline constexpr uint32_t kBloomLevels = 5;
 inline constexpr uint32_t kMinFrameSide = 64;
 
 struct FrameSettings {
-    /// Allocator of the plan: "heap" (the default: the frame's transients all differ in
+    /// Allocator of the plan: heap (the default: the frame's transients all differ in
     /// format or size, so only aliasing in bytes saves memory; placed in device heaps where the
-    /// device has them, as on Vulkan), "interval" (shares whole textures of one shape) or
-    /// "paper" (which refuses async passes: use it with async_compute off).
-    std::string allocator = "heap";
+    /// device has them, as on Vulkan), interval (shares whole textures of one shape) or
+    /// paper (which refuses async passes: use it with async_compute off).
+    fg::AllocatorKind allocator = fg::AllocatorKind::Heap;
     /// SSAO and its blur on the async compute queue (run in order on devices with one queue).
     bool async_compute = true;
     /// Side of each shadow cascade, texels.

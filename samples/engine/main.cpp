@@ -101,7 +101,9 @@ loom::Result<Options> parse(int argc, char** argv) {
             if (!n) return n.take_error();
             options.frames = *n;
         } else if (name == "--allocator") {
-            options.frame.allocator = *v;
+            auto allocator = loom::fg::parse_allocator(*v);
+            if (!allocator) return loom::make_error(loom::ErrorCode::InvalidArgument, "--allocator: " + allocator.error().message);
+            options.frame.allocator = *allocator;
         } else if (name == "--async") {
             if (*v != "on" && *v != "off") return loom::make_error(loom::ErrorCode::InvalidArgument, "--async expects on or off, got '" + *v + "'");
             options.frame.async_compute = *v == "on";
@@ -146,9 +148,11 @@ std::string memory_report(loom::engine::EngineFrame& frame, loom::fg::Extent2D s
         << " queue syncs\n";
     out << "memory (" << size.width << "x" << size.height << "):\n";
     out << "  allocator   textures  buffers        bytes   vs naive\n";
-    for (const char* allocator : {"interval", "heap", "paper"}) {
+    using loom::fg::AllocatorKind;
+    for (AllocatorKind kind : {AllocatorKind::Interval, AllocatorKind::Heap, AllocatorKind::Paper}) {
+        const std::string allocator(loom::fg::allocator_name(kind));
         loom::fg::PlanOptions options = frame.executor().effective_options(frame.plan_options(size));
-        options.allocator = allocator;
+        options.allocator = kind;
         auto planned = loom::fg::build_plan(frame.graph(), options);
         char line[160];
         if (!planned) {
@@ -156,10 +160,10 @@ std::string memory_report(loom::engine::EngineFrame& frame, loom::fg::Extent2D s
             continue;
         }
         const auto& s = planned->summary;
-        std::snprintf(line, sizeof(line), "  %-10s  %8u  %7u  %11s  %7.1f %%\n", allocator, s.textures, s.buffers, format_bytes(s.bytes).c_str(),
+        std::snprintf(line, sizeof(line), "  %-10s  %8u  %7u  %11s  %7.1f %%\n", allocator.c_str(), s.textures, s.buffers, format_bytes(s.bytes).c_str(),
                       100.0 * static_cast<double>(s.bytes) / static_cast<double>(std::max<uint64_t>(s.naive_bytes, 1)));
         out << line;
-        if (std::string(allocator) == "interval") {
+        if (kind == AllocatorKind::Interval) {
             std::snprintf(line, sizeof(line), "  %-10s  %8u  %7u  %11s  %7.1f %%\n", "naive", s.naive_textures, s.naive_buffers,
                           format_bytes(s.naive_bytes).c_str(), 100.0);
             out << line;
@@ -177,7 +181,7 @@ std::string summary(loom::engine::EngineFrame& frame, loom::rhi::Device& device,
     std::ostringstream out;
     const auto& caps = device.capabilities();
     out << kName << ": " << loom::rhi::backend_name(device.backend()) << ", " << caps.device_name << ", " << size.width << "x"
-        << size.height << ", allocator " << frame.settings().allocator << ", async compute "
+        << size.height << ", allocator " << loom::fg::allocator_name(frame.settings().allocator) << ", async compute "
         << (frame.settings().async_compute ? (caps.async_compute ? "on (two queues)" : "on (one queue: run in order)") : "off") << ", "
         << options.frames << " frame(s)\n";
     out << "scene: " << frame.scene().description << "; textures with mipmaps: " << format_bytes(frame.gpu_scene().texture_bytes()) << "\n";

@@ -44,14 +44,15 @@ int compare(const loom::fg::GraphFile& file, loom::fg::PlanOptions options, bool
     };
     std::vector<Row> rows;
     std::optional<loom::fg::PlanSummary> any;
-    for (std::string_view allocator : loom::fg::allocator_names()) {
-        options.allocator = std::string(allocator);
+    for (loom::fg::AllocatorKind allocator : loom::fg::allocator_kinds()) {
+        options.allocator = allocator;
+        const std::string name(loom::fg::allocator_name(allocator));
         auto plan = loom::fg::build_plan(file.graph, options);
         if (plan) {
-            rows.push_back({options.allocator, plan->summary, {}});
+            rows.push_back({name, plan->summary, {}});
             any = plan->summary;
         } else if (plan.error().code == loom::ErrorCode::InvalidArgument) {
-            rows.push_back({options.allocator, std::nullopt, plan.error().message});
+            rows.push_back({name, std::nullopt, plan.error().message});
         } else {
             return fail(1, loom::fg::locate_in_graph_file(file, plan.take_error()).to_string());
         }
@@ -137,7 +138,8 @@ int main(int argc, char** argv) {
 
     auto plan = loom::fg::build_plan(file->graph, args.options);
     if (!plan) {
-        // A bad allocator name is an argument error, not a graph error (nor located in the file).
+        // A bad option (an empty frame, paper with async compute) is an argument error, not a
+        // graph error (nor located in the file).
         if (plan.error().code == loom::ErrorCode::InvalidArgument) return fail(2, plan.error().to_string());
         // A planning error names passes and ports; say where the file declares them.
         return fail(1, loom::fg::locate_in_graph_file(*file, plan.take_error()).to_string());

@@ -45,7 +45,9 @@ Result<Arguments> parse_arguments(std::span<const std::string> argv) {
             auto v = value();
             if (!v) return bad(std::string(arg) + " needs a value");
             if (arg == "--allocator") {
-                args.options.allocator = std::string(*v);
+                auto kind = fg::parse_allocator(*v);
+                if (!kind) return bad("--allocator: " + kind.error().message);
+                args.options.allocator = *kind;
                 allocator_given = true;
             } else if (arg == "--sharing") {
                 if (*v == "equal") {

@@ -37,7 +37,7 @@ struct Arguments {
 std::optional<fg::Extent2D> parse_frame(std::string_view text);
 
 /// Parses `args` (without the program name). Errors are InvalidArgument with a message naming
-/// the argument; the allocator name is not checked here (build_plan reports an unknown one).
+/// the argument (an unknown allocator name among them).
 Result<Arguments> parse_arguments(std::span<const std::string> args);
 
 }  // namespace loom::plan

@@ -23,7 +23,7 @@ TextureSpec spec_of(const CompileTexture& texture) {
 PlanOptions plan_options(LoomAllocatorUnderTest allocator) {
     PlanOptions options;
     options.frame = {1920, 1080};
-    options.allocator = allocator == LoomAllocatorUnderTest::Heap ? "heap" : "interval";
+    options.allocator = allocator == LoomAllocatorUnderTest::Heap ? AllocatorKind::Heap : AllocatorKind::Interval;
     return options;
 }
 

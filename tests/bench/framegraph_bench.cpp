@@ -44,7 +44,7 @@ testing::RandomGraphOptions big_graph_options(uint32_t passes) {
     return options;
 }
 
-PlanOptions options_for(const char* allocator, PassOrder order = PassOrder::Declared) {
+PlanOptions options_for(AllocatorKind allocator, PassOrder order = PassOrder::Declared) {
     PlanOptions options;
     options.frame = {1920, 1080};
     options.allocator = allocator;
@@ -62,7 +62,7 @@ double mean_live(const Plan& plan) {
 }
 
 // Building the graph (passes, connections, outputs) and planning it from scratch.
-void BM_BuildAndPlan(benchmark::State& state, const char* allocator) {
+void BM_BuildAndPlan(benchmark::State& state, AllocatorKind allocator) {
     const auto passes = static_cast<uint32_t>(state.range(0));
     const PlanOptions options = options_for(allocator);
     uint64_t resources = 0;
@@ -107,14 +107,14 @@ void plan_repeatedly(benchmark::State& state, const FrameGraph& graph, const Pla
 }
 
 // Planning only: the graph is built once outside the loop.
-void BM_Plan(benchmark::State& state, const char* allocator) {
+void BM_Plan(benchmark::State& state, AllocatorKind allocator) {
     const auto passes = static_cast<uint32_t>(state.range(0));
     plan_repeatedly(state, testing::random_graph(7, big_graph_options(passes)), options_for(allocator), passes);
 }
 
 // Planning in declared or in memory order: compare the two per_pass times (and lower bounds) in
 // the same run.
-void BM_PlanOrder(benchmark::State& state, const char* allocator, PassOrder order) {
+void BM_PlanOrder(benchmark::State& state, AllocatorKind allocator, PassOrder order) {
     const auto passes = static_cast<uint32_t>(state.range(0));
     plan_repeatedly(state, testing::random_graph(7, big_graph_options(passes)), options_for(allocator, order), passes);
 }
@@ -123,7 +123,7 @@ void BM_PlanOrder(benchmark::State& state, const char* allocator, PassOrder orde
 // outputs after each pass's first are buffers (absolute, per-pixel and per-tile sizes) and a
 // fifth of the textures are mip chains or layer arrays whose ports use one subresource at a
 // time. Compare its per_pass time with BM_Plan's (texture-only graphs) in the same run.
-void BM_PlanMixed(benchmark::State& state, const char* allocator, uint32_t buffer_percent, uint32_t subresource_percent) {
+void BM_PlanMixed(benchmark::State& state, AllocatorKind allocator, uint32_t buffer_percent, uint32_t subresource_percent) {
     const auto passes = static_cast<uint32_t>(state.range(0));
     testing::RandomGraphOptions graph_options = big_graph_options(passes);
     graph_options.buffer_percent = buffer_percent;
@@ -135,7 +135,7 @@ void BM_PlanMixed(benchmark::State& state, const char* allocator, uint32_t buffe
 // passes) with those passes on the async compute queue or on the graphics queue; the queues
 // phase (syncs, transfers, occupancies) runs only in the first. Compare the two per_pass times
 // in the same run.
-void BM_PlanAsync(benchmark::State& state, const char* allocator, bool async_queue) {
+void BM_PlanAsync(benchmark::State& state, AllocatorKind allocator, bool async_queue) {
     const auto passes = static_cast<uint32_t>(state.range(0));
     testing::RandomGraphOptions graph_options = big_graph_options(passes);
     graph_options.async_percent = 33;
@@ -146,7 +146,7 @@ void BM_PlanAsync(benchmark::State& state, const char* allocator, bool async_que
 // The engine frames among the sample graphs (samples/plan/graphs: GTA V, DOOM 2016, Unreal's
 // deferred renderer), read once and planned at their 1920x1080 (docs/BENCHMARKS.md, "Engine
 // frames").
-void BM_EngineFrameOrder(benchmark::State& state, const char* file, const char* allocator, PassOrder order) {
+void BM_EngineFrameOrder(benchmark::State& state, const char* file, AllocatorKind allocator, PassOrder order) {
     auto loaded = load_graph_file(std::string(LOOM_SAMPLE_GRAPHS) + "/" + file);
     if (!loaded) {
         state.SkipWithError(loaded.error().message.c_str());
@@ -157,7 +157,7 @@ void BM_EngineFrameOrder(benchmark::State& state, const char* file, const char* 
     plan_repeatedly(state, loaded->graph, options, static_cast<uint32_t>(loaded->graph.pass_count()));
 }
 
-void BM_EngineFrame(benchmark::State& state, const char* file, const char* allocator) {
+void BM_EngineFrame(benchmark::State& state, const char* file, AllocatorKind allocator) {
     BM_EngineFrameOrder(state, file, allocator, PassOrder::Declared);
 }
 
@@ -175,7 +175,7 @@ void BM_Build(benchmark::State& state) {
 void BM_Replan(benchmark::State& state) {
     const auto passes = static_cast<uint32_t>(state.range(0));
     FrameGraph graph = testing::random_graph(7, big_graph_options(passes));
-    const PlanOptions options = options_for("interval");
+    const PlanOptions options = options_for(AllocatorKind::Interval);
     if (!graph.plan(options)) {
         state.SkipWithError("plan failed");
         return;
@@ -209,9 +209,9 @@ void BM_BytesOverLowerBoundCorpus(benchmark::State& state) {
         naive.clear();
         heap_optimal = 0;
         for (const FrameGraph& graph : graphs) {
-            auto heap_plan = build_plan(graph, options_for("heap"));
-            auto interval_plan = build_plan(graph, options_for("interval"));
-            auto paper_plan = build_plan(graph, options_for("paper"));
+            auto heap_plan = build_plan(graph, options_for(AllocatorKind::Heap));
+            auto interval_plan = build_plan(graph, options_for(AllocatorKind::Interval));
+            auto paper_plan = build_plan(graph, options_for(AllocatorKind::Paper));
             if (!heap_plan || !interval_plan || !paper_plan) {
                 state.SkipWithError("plan failed");
                 return;
@@ -275,7 +275,7 @@ void BM_ScaleWidePass(benchmark::State& state) {
         for (int64_t i = 0; i < ports; ++i) {
             if (!graph.mark_output(port("wide", numbered("o", i)))) return state.SkipWithError("mark_output");
         }
-        plan_or_skip(state, graph, options_for("interval"));
+        plan_or_skip(state, graph, options_for(AllocatorKind::Interval));
     }
     state.SetComplexityN(ports);
 }
@@ -301,7 +301,7 @@ void BM_ScaleConnect(benchmark::State& state) {
             }
         }
         if (!graph.mark_output(port("consumer", "final"))) return state.SkipWithError("mark_output");
-        plan_or_skip(state, graph, options_for("interval"));
+        plan_or_skip(state, graph, options_for(AllocatorKind::Interval));
     }
     state.SetComplexityN(ports);
 }
@@ -324,7 +324,7 @@ void BM_ScaleLiveHeap(benchmark::State& state) {
         }
     }
     if (!graph.mark_output(port("reader", "final"))) return state.SkipWithError("mark_output");
-    PlanOptions options = options_for("heap");
+    PlanOptions options = options_for(AllocatorKind::Heap);
     options.max_heap_bytes = 1;
     for (auto _ : state) plan_or_skip(state, graph, options);
     state.SetComplexityN(producers);
@@ -361,7 +361,7 @@ void BM_ScalePlanJson(benchmark::State& state) {
         }
     }
     if (!graph.mark_output(port(numbered("p", passes - 1), "out"))) return state.SkipWithError("mark_output");
-    auto plan = build_plan(graph, options_for("interval"));
+    auto plan = build_plan(graph, options_for(AllocatorKind::Interval));
     if (!plan) return state.SkipWithError(plan.error().message.c_str());
     uint64_t bytes = 0;
     for (auto _ : state) {
@@ -377,35 +377,35 @@ void BM_ScalePlanJson(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(BM_BuildAndPlan, paper, "paper")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
-BENCHMARK_CAPTURE(BM_BuildAndPlan, interval, "interval")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
-BENCHMARK_CAPTURE(BM_BuildAndPlan, heap, "heap")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
-BENCHMARK_CAPTURE(BM_Plan, paper, "paper")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
-BENCHMARK_CAPTURE(BM_Plan, interval, "interval")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
-BENCHMARK_CAPTURE(BM_Plan, heap, "heap")->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
-BENCHMARK_CAPTURE(BM_PlanMixed, interval, "interval", 25, 20)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
-BENCHMARK_CAPTURE(BM_PlanMixed, heap, "heap", 25, 20)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
-BENCHMARK_CAPTURE(BM_PlanAsync, interval_one_queue, "interval", false)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_PlanAsync, interval_async, "interval", true)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_PlanAsync, heap_one_queue, "heap", false)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_PlanAsync, heap_async, "heap", true)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_PlanMixed, heap_buffers_only, "heap", 25, 0)->Arg(10000)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_PlanMixed, heap_subresources_only, "heap", 0, 20)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BuildAndPlan, paper, AllocatorKind::Paper)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_BuildAndPlan, interval, AllocatorKind::Interval)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_BuildAndPlan, heap, AllocatorKind::Heap)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_Plan, paper, AllocatorKind::Paper)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_Plan, interval, AllocatorKind::Interval)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_Plan, heap, AllocatorKind::Heap)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_PlanMixed, interval, AllocatorKind::Interval, 25, 20)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_PlanMixed, heap, AllocatorKind::Heap, 25, 20)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK_CAPTURE(BM_PlanAsync, interval_one_queue, AllocatorKind::Interval, false)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanAsync, interval_async, AllocatorKind::Interval, true)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanAsync, heap_one_queue, AllocatorKind::Heap, false)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanAsync, heap_async, AllocatorKind::Heap, true)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanMixed, heap_buffers_only, AllocatorKind::Heap, 25, 0)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanMixed, heap_subresources_only, AllocatorKind::Heap, 0, 20)->Arg(10000)->Unit(benchmark::kMillisecond);
 // The paper's allocator refuses plans with async compute passes (DOOM's and Unreal's frames).
-BENCHMARK_CAPTURE(BM_EngineFrame, gta5_paper, "gta5_frame.json", "paper")->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_EngineFrame, gta5_interval, "gta5_frame.json", "interval")->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_EngineFrame, gta5_heap, "gta5_frame.json", "heap")->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_EngineFrame, doom2016_interval, "doom2016_frame.json", "interval")->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_EngineFrame, doom2016_heap, "doom2016_frame.json", "heap")->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_EngineFrame, unreal_interval, "unreal_deferred_frame.json", "interval")->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_EngineFrame, unreal_heap, "unreal_deferred_frame.json", "heap")->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_PlanOrder, interval_declared, "interval", PassOrder::Declared)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_PlanOrder, interval_memory, "interval", PassOrder::Memory)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_PlanOrder, heap_declared, "heap", PassOrder::Declared)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_PlanOrder, heap_memory, "heap", PassOrder::Memory)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_EngineFrameOrder, gta5_heap_memory, "gta5_frame.json", "heap", PassOrder::Memory)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_EngineFrameOrder, doom2016_heap_memory, "doom2016_frame.json", "heap", PassOrder::Memory)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(BM_EngineFrameOrder, unreal_heap_memory, "unreal_deferred_frame.json", "heap", PassOrder::Memory)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrame, gta5_paper, "gta5_frame.json", AllocatorKind::Paper)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrame, gta5_interval, "gta5_frame.json", AllocatorKind::Interval)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrame, gta5_heap, "gta5_frame.json", AllocatorKind::Heap)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrame, doom2016_interval, "doom2016_frame.json", AllocatorKind::Interval)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrame, doom2016_heap, "doom2016_frame.json", AllocatorKind::Heap)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrame, unreal_interval, "unreal_deferred_frame.json", AllocatorKind::Interval)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrame, unreal_heap, "unreal_deferred_frame.json", AllocatorKind::Heap)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_PlanOrder, interval_declared, AllocatorKind::Interval, PassOrder::Declared)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanOrder, interval_memory, AllocatorKind::Interval, PassOrder::Memory)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanOrder, heap_declared, AllocatorKind::Heap, PassOrder::Declared)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_PlanOrder, heap_memory, AllocatorKind::Heap, PassOrder::Memory)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_EngineFrameOrder, gta5_heap_memory, "gta5_frame.json", AllocatorKind::Heap, PassOrder::Memory)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrameOrder, doom2016_heap_memory, "doom2016_frame.json", AllocatorKind::Heap, PassOrder::Memory)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_EngineFrameOrder, unreal_heap_memory, "unreal_deferred_frame.json", AllocatorKind::Heap, PassOrder::Memory)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Build)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK(BM_Replan)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BytesOverLowerBoundCorpus)->Iterations(1)->Unit(benchmark::kMillisecond);

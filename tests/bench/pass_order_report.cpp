@@ -73,7 +73,7 @@ Options parse(int argc, char** argv) {
     return options;
 }
 
-PlanOptions plan_options(PassOrder order, const std::string& allocator = "heap", Extent2D frame = {1920, 1080}) {
+PlanOptions plan_options(PassOrder order, AllocatorKind allocator = AllocatorKind::Heap, Extent2D frame = {1920, 1080}) {
     PlanOptions options;
     options.frame = frame;
     options.allocator = allocator;
@@ -148,18 +148,18 @@ void sample_graphs(const Options& options, std::ofstream* csv) {
             std::fprintf(stderr, "%s\n", file.error().to_string().c_str());
             std::exit(1);
         }
-        const Plan declared = must_plan(file->graph, plan_options(PassOrder::Declared, "heap", file->frame));
-        const Plan memory = must_plan(file->graph, plan_options(PassOrder::Memory, "heap", file->frame));
-        const Plan interval_declared = must_plan(file->graph, plan_options(PassOrder::Declared, "interval", file->frame));
-        const Plan interval_memory = must_plan(file->graph, plan_options(PassOrder::Memory, "interval", file->frame));
-        auto problem = detail::order_problem_of(file->graph, plan_options(PassOrder::Declared, "heap", file->frame));
+        const Plan declared = must_plan(file->graph, plan_options(PassOrder::Declared, AllocatorKind::Heap, file->frame));
+        const Plan memory = must_plan(file->graph, plan_options(PassOrder::Memory, AllocatorKind::Heap, file->frame));
+        const Plan interval_declared = must_plan(file->graph, plan_options(PassOrder::Declared, AllocatorKind::Interval, file->frame));
+        const Plan interval_memory = must_plan(file->graph, plan_options(PassOrder::Memory, AllocatorKind::Interval, file->frame));
+        auto problem = detail::order_problem_of(file->graph, plan_options(PassOrder::Declared, AllocatorKind::Heap, file->frame));
         if (!problem) std::exit(1);
         const auto exact = detail::exact_memory_order(*problem, options.exact_states,
                                                       detail::order_cost(*problem, identity(problem->pass_count())).peak);
         const double declared_us =
-            plan_microseconds(file->graph, plan_options(PassOrder::Declared, "heap", file->frame), options.repetitions);
+            plan_microseconds(file->graph, plan_options(PassOrder::Declared, AllocatorKind::Heap, file->frame), options.repetitions);
         const double memory_us =
-            plan_microseconds(file->graph, plan_options(PassOrder::Memory, "heap", file->frame), options.repetitions);
+            plan_microseconds(file->graph, plan_options(PassOrder::Memory, AllocatorKind::Heap, file->frame), options.repetitions);
         const uint64_t before = declared.summary.lower_bound_bytes;
         const uint64_t after = memory.summary.lower_bound_bytes;
         std::printf("| `%s` | %zu | %llu (%s MiB) | %llu (%s MiB) | %s | %s | %s | %s MiB | %s MiB | %.0f µs | %.0f µs |\n",
@@ -263,7 +263,7 @@ void corpus_row(const char* name, const CorpusFigures& f) {
 
 template <class MakeOptions>
 CorpusFigures plan_corpus(uint32_t count, MakeOptions make_options) {
-    const char* allocator = "heap";
+    const AllocatorKind allocator = AllocatorKind::Heap;
     CorpusFigures figures;
     for (uint64_t seed = 1; seed <= count; ++seed) {
         const FrameGraph graph = testing::random_graph(seed, make_options(seed));
@@ -276,8 +276,8 @@ CorpusFigures plan_corpus(uint32_t count, MakeOptions make_options) {
         figures.heap_worse += memory_plan.summary.bytes > declared_plan.summary.bytes ? 1 : 0;
         figures.heap_better += memory_plan.summary.bytes < declared_plan.summary.bytes ? 1 : 0;
         const uint64_t interval_declared =
-            must_plan(graph, plan_options(PassOrder::Declared, "interval")).summary.bytes;
-        const uint64_t interval_memory = must_plan(graph, plan_options(PassOrder::Memory, "interval")).summary.bytes;
+            must_plan(graph, plan_options(PassOrder::Declared, AllocatorKind::Interval)).summary.bytes;
+        const uint64_t interval_memory = must_plan(graph, plan_options(PassOrder::Memory, AllocatorKind::Interval)).summary.bytes;
         figures.interval_worse += interval_memory > interval_declared ? 1 : 0;
         figures.interval_better += interval_memory < interval_declared ? 1 : 0;
         figures.interval_ratio_sum += static_cast<double>(interval_memory) / static_cast<double>(interval_declared);
@@ -346,15 +346,15 @@ void big_graphs(const Options& options) {
         o.side_effect_percent = 10;
         o.shuffle_declarations = false;
         const FrameGraph graph = testing::random_graph(7, o);
-        const Plan declared = must_plan(graph, plan_options(PassOrder::Declared, "interval"));
-        const Plan memory = must_plan(graph, plan_options(PassOrder::Memory, "interval"));
+        const Plan declared = must_plan(graph, plan_options(PassOrder::Declared, AllocatorKind::Interval));
+        const Plan memory = must_plan(graph, plan_options(PassOrder::Memory, AllocatorKind::Interval));
         const uint64_t before = declared.summary.lower_bound_bytes;
         const uint64_t after = memory.summary.lower_bound_bytes;
-        const uint64_t heap_before = must_plan(graph, plan_options(PassOrder::Declared, "heap")).summary.bytes;
-        const uint64_t heap_after = must_plan(graph, plan_options(PassOrder::Memory, "heap")).summary.bytes;
+        const uint64_t heap_before = must_plan(graph, plan_options(PassOrder::Declared, AllocatorKind::Heap)).summary.bytes;
+        const uint64_t heap_after = must_plan(graph, plan_options(PassOrder::Memory, AllocatorKind::Heap)).summary.bytes;
         const uint32_t repetitions = std::max(3u, options.repetitions / 3);
-        const double declared_us = plan_microseconds(graph, plan_options(PassOrder::Declared, "interval"), repetitions);
-        const double memory_us = plan_microseconds(graph, plan_options(PassOrder::Memory, "interval"), repetitions);
+        const double declared_us = plan_microseconds(graph, plan_options(PassOrder::Declared, AllocatorKind::Interval), repetitions);
+        const double memory_us = plan_microseconds(graph, plan_options(PassOrder::Memory, AllocatorKind::Interval), repetitions);
         std::printf("| %u | %s MiB | %s MiB | %s | %s MiB | %s MiB | %s MiB | %s MiB | %.2f ms | %.2f ms | %+.0f %% |\n",
                     passes, mib(before).c_str(), mib(after).c_str(), percent_change(after, before).c_str(),
                     mib(heap_before).c_str(), mib(heap_after).c_str(), mib(declared.summary.bytes).c_str(),

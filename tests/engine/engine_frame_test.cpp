@@ -249,12 +249,12 @@ TEST_F(EngineFrameTest, AsyncComputeAndHeapAliasingChangeNoPixel) {
         SCOPED_TRACE(rhi::backend_name(device->backend()));
         engine::FrameSettings reference_settings = small_shadows();
         reference_settings.async_compute = false;
-        reference_settings.allocator = "interval";
+        reference_settings.allocator = fg::AllocatorKind::Interval;
         auto reference = render(*device, courtyard(), reference_settings, 2);
         ASSERT_TRUE(reference.ok()) << reference.error().to_string();
-        for (const char* allocator : {"interval", "heap"}) {
+        for (fg::AllocatorKind allocator : {fg::AllocatorKind::Interval, fg::AllocatorKind::Heap}) {
             for (bool async : {false, true}) {
-                if (allocator == std::string("interval") && !async) continue;
+                if (allocator == fg::AllocatorKind::Interval && !async) continue;
                 engine::FrameSettings settings = small_shadows();
                 settings.allocator = allocator;
                 settings.async_compute = async;
@@ -262,7 +262,7 @@ TEST_F(EngineFrameTest, AsyncComputeAndHeapAliasingChangeNoPixel) {
                 ASSERT_TRUE(images.ok()) << images.error().to_string();
                 for (const auto& [name, image] : *reference) {
                     ASSERT_TRUE(images->count(name)) << name;
-                    EXPECT_TRUE(images->at(name).pixels == image.pixels) << name << " with allocator " << allocator << ", async " << async;
+                    EXPECT_TRUE(images->at(name).pixels == image.pixels) << name << " with allocator " << fg::allocator_name(allocator) << ", async " << async;
                 }
             }
         }
@@ -275,8 +275,8 @@ TEST_F(EngineFrameTest, PlanIsPinned) {
     auto frame = EngineFrame::create(gl(), courtyard(), small_shadows());
     ASSERT_TRUE(frame.ok()) << frame.error().to_string();
     fg::PlanOptions options = (*frame)->plan_options(kSize);
-    EXPECT_EQ(options.allocator, "heap");  // the sample's default
-    options.allocator = "interval";
+    EXPECT_TRUE(options.allocator == fg::AllocatorKind::Heap);  // the sample's default
+    options.allocator = fg::AllocatorKind::Interval;
     auto plan = fg::build_plan((*frame)->graph(), options);
     ASSERT_TRUE(plan.ok()) << plan.error().to_string();
     std::vector<std::string> order;
@@ -300,7 +300,7 @@ TEST_F(EngineFrameTest, PlanIsPinned) {
     EXPECT_EQ(s.naive_bytes, 6287360u);
     EXPECT_EQ(s.bytes, 6287360u);
     EXPECT_EQ(s.lower_bound_bytes, 5107712u);
-    options.allocator = "heap";
+    options.allocator = fg::AllocatorKind::Heap;
     auto heap = fg::build_plan((*frame)->graph(), options);
     ASSERT_TRUE(heap.ok()) << heap.error().to_string();
     EXPECT_EQ(heap->summary.bytes, heap->summary.lower_bound_bytes);

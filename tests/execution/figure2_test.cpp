@@ -137,7 +137,8 @@ protected:
 };
 
 TEST_P(Figure2Execution, EveryAllocatorGivesTheSamePictureAndCreatesThePlansTextures) {
-    for (const std::string allocator : {"paper", "interval", "heap"}) {
+    for (fg::AllocatorKind kind : fg::allocator_kinds()) {
+        const std::string allocator(fg::allocator_name(kind));
         SCOPED_TRACE(allocator);
         fg::FrameGraph graph = figure2(p_);
         const rhi::ResourceStats before = device().resource_stats();
@@ -145,7 +146,7 @@ TEST_P(Figure2Execution, EveryAllocatorGivesTheSamePictureAndCreatesThePlansText
             fg::Executor executor(device());
             fg::PlanOptions options;
             options.frame = {16, 8};
-            options.allocator = allocator;
+            options.allocator = kind;
             LOOM_ASSERT_OK(executor.run_frame(graph, options));
             expect_final_picture(executor.texture("composite", "final"), 16, 8, allocator);
             save_texture(device(), executor.texture("composite", "final"), "figure2_" + allocator + "_" + std::string(rhi::backend_name(backend())));
@@ -190,7 +191,7 @@ TEST_P(Figure2Execution, UnchangedPlanCreatesNothingNew) {
     fg::Executor executor(device());
     fg::PlanOptions options;
     options.frame = {16, 8};
-    options.allocator = device().capabilities().placed_resources ? "heap" : "interval";
+    options.allocator = device().capabilities().placed_resources ? fg::AllocatorKind::Heap : fg::AllocatorKind::Interval;
     LOOM_ASSERT_OK(executor.run_frame(graph, options));
     const rhi::ResourceStats first = device().resource_stats();
     const auto plan = executor.plan();
@@ -216,14 +217,15 @@ TEST_P(Figure2Execution, UnchangedPlanCreatesNothingNew) {
 TEST_P(Figure2Execution, At720pWithFiguresAndTimings) {
     // A realistic frame size: the same exact picture, the plan's figures next to the device's,
     // and per-pass timings (printed for the record; not asserted).
-    for (const std::string allocator : {"interval", "heap"}) {
+    for (fg::AllocatorKind kind : {fg::AllocatorKind::Interval, fg::AllocatorKind::Heap}) {
+        const std::string allocator(fg::allocator_name(kind));
         SCOPED_TRACE(allocator);
         fg::FrameGraph graph = figure2(p_);
         const rhi::ResourceStats before = device().resource_stats();
         fg::Executor executor(device());
         fg::PlanOptions options;
         options.frame = {1280, 720};
-        options.allocator = allocator;
+        options.allocator = kind;
         for (int frame = 0; frame < 3; ++frame) LOOM_ASSERT_OK(executor.run_frame(graph, options));
         LOOM_ASSERT_OK(device().wait_idle());
         expect_final_picture(executor.texture("composite", "final"), 1280, 720, allocator);
@@ -250,7 +252,7 @@ TEST_P(Figure2Execution, GraphRebuiltEveryFrameReusesTheResources) {
     fg::Executor executor(device());
     fg::PlanOptions options;
     options.frame = {16, 8};
-    options.allocator = "heap";
+    options.allocator = fg::AllocatorKind::Heap;
     std::vector<rhi::TextureHandle> first;
     for (int frame = 0; frame < 3; ++frame) {
         fg::FrameGraph graph = figure2(p_);
@@ -269,7 +271,7 @@ TEST_P(Figure2Execution, ResizeRebuildsTexturesWithoutLeaks) {
     const rhi::ResourceStats before = device().resource_stats();
     fg::Executor executor(device());
     fg::PlanOptions options;
-    options.allocator = device().capabilities().placed_resources ? "heap" : "interval";
+    options.allocator = device().capabilities().placed_resources ? fg::AllocatorKind::Heap : fg::AllocatorKind::Interval;
     for (const fg::Extent2D frame : {fg::Extent2D{16, 8}, fg::Extent2D{40, 24}, fg::Extent2D{12, 30}, fg::Extent2D{16, 8}}) {
         const std::string what = std::to_string(frame.width) + "x" + std::to_string(frame.height);
         SCOPED_TRACE(what);
@@ -316,7 +318,7 @@ TEST_P(Figure2Execution, HeapAliasingKeepsBothTenantsResults) {
     fg::Executor executor(device());
     fg::PlanOptions options;
     options.frame = {16, 8};
-    options.allocator = "heap";
+    options.allocator = fg::AllocatorKind::Heap;
     LOOM_ASSERT_OK(executor.run_frame(graph, options));
     const fg::Plan& plan = *executor.plan();
 

@@ -62,9 +62,9 @@ TEST_P(PassOrderTest, MemoryOrderDrawsTheDeclaredOrdersPixels) {
 
     std::vector<rhi::Image> pictures;
     std::vector<uint64_t> peaks;
-    for (const char* allocator : {"heap", "interval"}) {
+    for (fg::AllocatorKind allocator : {fg::AllocatorKind::Heap, fg::AllocatorKind::Interval}) {
         for (fg::PassOrder order : {fg::PassOrder::Declared, fg::PassOrder::Memory}) {
-            SCOPED_TRACE(std::string(allocator) + ", " + std::string(fg::pass_order_name(order)));
+            SCOPED_TRACE(std::string(fg::allocator_name(allocator)) + ", " + std::string(fg::pass_order_name(order)));
             fg::Executor executor(device());
             fg::PlanOptions options;
             options.frame = {128, 128};

@@ -325,7 +325,7 @@ TEST_P(ResourceExecution, AsyncComputeTexturesAreTransitionedAcrossTheQueues) {
         fg::Executor executor(device());
         fg::PlanOptions options;
         options.frame = {16, 16};
-        options.allocator = "heap";
+        options.allocator = fg::AllocatorKind::Heap;
         for (int frame = 0; frame < 3; ++frame) LOOM_ASSERT_OK(executor.run_frame(graph, options));
         const fg::Plan& plan = *executor.plan();
         if (queue == fg::Queue::AsyncCompute) {
@@ -391,8 +391,8 @@ TEST_P(ResourceExecution, CreatedBuffersAndTexturesAreThePlans) {
     ASSERT_TRUE(graph.connect(fg::port("args", "arguments"), fg::port("shade", "arguments")).ok());
     ASSERT_TRUE(graph.mark_output(fg::port("shade", "color")).ok());
 
-    for (const char* allocator : {"interval", "heap"}) {
-        SCOPED_TRACE(allocator);
+    for (fg::AllocatorKind allocator : {fg::AllocatorKind::Interval, fg::AllocatorKind::Heap}) {
+        SCOPED_TRACE(fg::allocator_name(allocator));
         fg::Executor executor(device());
         fg::PlanOptions options;
         options.frame = {96, 64};

@@ -40,7 +40,7 @@ FrameGraph figure2() {
     return graph;
 }
 
-Plan plan_of(FrameGraph& graph, const std::string& allocator = "interval") {
+Plan plan_of(FrameGraph& graph, AllocatorKind allocator = AllocatorKind::Interval) {
     PlanOptions options;
     options.frame = {16, 8};
     options.allocator = allocator;

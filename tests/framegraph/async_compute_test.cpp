@@ -20,14 +20,14 @@ using rhi::Format;
 constexpr Queue G = Queue::Graphics;
 constexpr Queue A = Queue::AsyncCompute;
 
-PlanOptions options_with(const std::string& allocator) {
+PlanOptions options_with(AllocatorKind allocator) {
     PlanOptions options;
     options.frame = {1920, 1080};
     options.allocator = allocator;
     return options;
 }
 
-Plan must_plan(const FrameGraph& graph, const std::string& allocator = "interval") {
+Plan must_plan(const FrameGraph& graph, AllocatorKind allocator = AllocatorKind::Interval) {
     auto plan = build_plan(graph, options_with(allocator));
     EXPECT_TRUE(plan.ok()) << plan.error().to_string();
     return plan.ok() ? std::move(*plan) : Plan{};
@@ -141,7 +141,7 @@ TEST(AsyncCompute, ATemporaryOfAnAsyncChainIsHeldWhileTheGraphicsQueueRunsBeside
     EXPECT_EQ(one_queue.summary.textures, 5u);
 
     // In a heap the two never overlap either.
-    const Plan heap = must_plan(ssao_chain_frame(A), "heap");
+    const Plan heap = must_plan(ssao_chain_frame(A), AllocatorKind::Heap);
     const auto& raw_at = *heap.textures[heap.resources[resource_index(heap, "ssao.raw")].texture].placement;
     const auto& scratch_at = *heap.textures[heap.resources[resource_index(heap, "scratch_write.scratch")].texture].placement;
     const uint64_t bytes = heap.resources[resource_index(heap, "ssao.raw")].bytes;
@@ -257,7 +257,7 @@ TEST(AsyncCompute, PlansWithoutAsyncPassesHaveNoSyncs) {
     add(graph, Pass("b").input("x").output("y", TextureSpec::of(Format::RGBA8Unorm)));
     connect(graph, "a.x", "b.x");
     ASSERT_TRUE(graph.mark_output(*parse_port_ref("b.y")).ok());
-    for (const char* allocator : {"paper", "interval", "heap"}) {
+    for (AllocatorKind allocator : allocator_kinds()) {
         const Plan plan = must_plan(graph, allocator);
         EXPECT_TRUE(plan.queue_syncs.empty());
         EXPECT_TRUE(plan.ownership_transfers.empty());
@@ -274,7 +274,7 @@ TEST(AsyncCompute, OnlyComputeAndCopyPassesRunOnTheAsyncQueue) {
     draw.set_queue(A).output("color", TextureSpec::of(Format::RGBA8Unorm));
     add(graph, std::move(draw));
     ASSERT_TRUE(graph.mark_output(*parse_port_ref("draw.color")).ok());
-    auto plan = build_plan(graph, options_with("interval"));
+    auto plan = build_plan(graph, options_with(AllocatorKind::Interval));
     ASSERT_FALSE(plan.ok());
     EXPECT_EQ(plan.error().code, ErrorCode::Graph);
     EXPECT_NE(plan.error().message.find("pass 'draw' is a graphics pass: only compute and copy passes run on the async "
@@ -284,7 +284,7 @@ TEST(AsyncCompute, OnlyComputeAndCopyPassesRunOnTheAsyncQueue) {
 }
 
 TEST(AsyncCompute, ThePaperAllocatorRefusesAsyncPlans) {
-    auto plan = build_plan(ssao_frame(), options_with("paper"));
+    auto plan = build_plan(ssao_frame(), options_with(AllocatorKind::Paper));
     ASSERT_FALSE(plan.ok());
     EXPECT_EQ(plan.error().code, ErrorCode::InvalidArgument);
     EXPECT_NE(plan.error().message.find("async compute pass 'ssao'): use 'interval' or 'heap'"), std::string::npos)
@@ -438,13 +438,13 @@ TEST(AsyncComputeRandomGraphs, EverySharedPieceOfMemoryDependencyAndTransferIsOr
     uint32_t widened = 0;
     for (uint64_t seed = 1; seed <= 400; ++seed) {
         const FrameGraph graph = testing::random_graph(seed, async_options(seed));
-        for (const char* allocator : {"interval", "heap"}) {
+        for (AllocatorKind allocator : {AllocatorKind::Interval, AllocatorKind::Heap}) {
             auto plan = build_plan(graph, options_with(allocator));
             ASSERT_TRUE(plan.ok()) << "seed " << seed << ": " << plan.error().to_string();
             expect_memory_reuse_ordered(*plan, seed);
             expect_dependencies_and_transfers_ordered(*plan, seed);
             EXPECT_GE(plan->summary.bytes, plan->summary.lower_bound_bytes) << "seed " << seed;
-            if (std::string(allocator) == "interval") {
+            if (allocator == AllocatorKind::Interval) {
                 EXPECT_EQ(plan->summary.textures, plan->summary.lower_bound_textures) << "seed " << seed;
                 with_syncs += plan->queue_syncs.empty() ? 0 : 1;
                 with_transfers += plan->ownership_transfers.empty() ? 0 : 1;
@@ -465,7 +465,7 @@ TEST(AsyncComputeRandomGraphs, MemoryOrderKeepsTheSemaphoreRulesAndNeverHoldsMor
     uint32_t lower = 0;
     for (uint64_t seed = 1; seed <= 400; ++seed) {
         const FrameGraph graph = testing::random_graph(seed, async_options(seed));
-        for (const char* allocator : {"interval", "heap"}) {
+        for (AllocatorKind allocator : {AllocatorKind::Interval, AllocatorKind::Heap}) {
             PlanOptions options = options_with(allocator);
             const Plan declared = must_plan(graph, allocator);
             options.order = PassOrder::Memory;
@@ -474,7 +474,7 @@ TEST(AsyncComputeRandomGraphs, MemoryOrderKeepsTheSemaphoreRulesAndNeverHoldsMor
             expect_memory_reuse_ordered(*plan, seed);
             expect_dependencies_and_transfers_ordered(*plan, seed);
             ASSERT_LE(plan->summary.lower_bound_bytes, declared.summary.lower_bound_bytes) << "seed " << seed;
-            if (std::string(allocator) == "heap") {
+            if (allocator == AllocatorKind::Heap) {
                 reordered += plan->order != declared.order ? 1 : 0;
                 lower += plan->summary.lower_bound_bytes < declared.summary.lower_bound_bytes ? 1 : 0;
             }

@@ -227,7 +227,7 @@ TEST(BufferPlans, BuffersOfOneSizeWhoseLifetimesDoNotOverlapShareOneBuffer) {
 TEST(BufferPlans, HeapsPlaceBuffersBesideTexturesAndTheBoundCountsThem) {
     PlanOptions options;
     options.frame = {64, 48};
-    options.allocator = "heap";
+    options.allocator = AllocatorKind::Heap;
     const Plan plan = must_plan(light_list_graph(), options);
     ASSERT_EQ(plan.heaps.size(), 1u);
     ASSERT_EQ(plan.buffers.size(), 2u);

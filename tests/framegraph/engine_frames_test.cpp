@@ -26,16 +26,16 @@ struct Frame {
     Plan heap;
 };
 
-Result<Plan> try_plan(const GraphFile& file, const char* allocator) {
+Result<Plan> try_plan(const GraphFile& file, AllocatorKind allocator) {
     PlanOptions options;
     options.frame = file.frame;
     options.allocator = allocator;
     return build_plan(file.graph, options);
 }
 
-Plan plan_with(const GraphFile& file, const char* allocator) {
+Plan plan_with(const GraphFile& file, AllocatorKind allocator) {
     auto plan = try_plan(file, allocator);
-    EXPECT_TRUE(plan.ok()) << file.source << " " << allocator << ": " << plan.error().to_string();
+    EXPECT_TRUE(plan.ok()) << file.source << " " << allocator_name(allocator) << ": " << plan.error().to_string();
     return plan.ok() ? std::move(*plan) : Plan{};
 }
 
@@ -44,9 +44,9 @@ Frame load_frame(const std::string& name) {
     EXPECT_TRUE(file.ok()) << file.error().to_string();
     if (!file.ok()) return {};
     Frame frame{std::move(*file), Plan{}, {}, {}};
-    frame.paper = try_plan(frame.file, "paper");
-    frame.interval = plan_with(frame.file, "interval");
-    frame.heap = plan_with(frame.file, "heap");
+    frame.paper = try_plan(frame.file, AllocatorKind::Paper);
+    frame.interval = plan_with(frame.file, AllocatorKind::Interval);
+    frame.heap = plan_with(frame.file, AllocatorKind::Heap);
     return frame;
 }
 

@@ -12,7 +12,7 @@ namespace {
 
 using rhi::Format;
 
-Plan small_plan(const std::string& allocator) {
+Plan small_plan(AllocatorKind allocator) {
     FrameGraph graph;
     EXPECT_TRUE(graph.add_pass(Pass("scene").output("color", TextureSpec::of(Format::RGBA16Float)).output("depth", TextureSpec::of(Format::Depth32F))).ok());
     EXPECT_TRUE(graph.add_pass(Pass("post").input("color").input("depth").output("final", TextureSpec::of(Format::RGBA8Unorm))).ok());
@@ -32,7 +32,7 @@ Plan small_plan(const std::string& allocator) {
 }
 
 // Buffers, pass kinds and ranges: a mip written in place, a compute-built buffer read in part.
-Plan buffer_plan(const std::string& allocator) {
+Plan buffer_plan(AllocatorKind allocator) {
     FrameGraph graph;
     const TextureSpec pyramid = TextureSpec::of(Format::RGBA8Unorm).with_size(16, 16).with_mips(3);
     EXPECT_TRUE(graph.add_pass(Pass("base").output("pyramid", pyramid, mip(0))).ok());
@@ -60,7 +60,7 @@ Plan buffer_plan(const std::string& allocator) {
 }
 
 TEST(Export, JsonHasEverySummaryFieldAndTheStructure) {
-    const Plan plan = small_plan("heap");
+    const Plan plan = small_plan(AllocatorKind::Heap);
     const auto json = nlohmann::json::parse(plan_to_json(plan));
     const auto& summary = json.at("summary");
     EXPECT_EQ(summary.at("textures").get<uint32_t>(), plan.summary.textures);
@@ -90,7 +90,7 @@ TEST(Export, JsonHasEverySummaryFieldAndTheStructure) {
 }
 
 TEST(Export, DotDrawsPassesPortsAndTextureColouredEdges) {
-    const Plan plan = small_plan("interval");
+    const Plan plan = small_plan(AllocatorKind::Interval);
     const std::string dot = plan_to_dot(plan);
     EXPECT_EQ(dot.rfind("digraph plan {", 0), 0u);
     EXPECT_NE(dot.find("p1 [label=\"{{<f0> color (t0)|<f1> depth (t1)}|1: post|{<f2> final (t2)}}\"];"),
@@ -105,7 +105,7 @@ TEST(Export, DotDrawsPassesPortsAndTextureColouredEdges) {
 }
 
 TEST(Export, TableListsOrderResourcesTexturesAndSummary) {
-    const std::string table = plan_to_table(small_plan("paper"));
+    const std::string table = plan_to_table(small_plan(AllocatorKind::Paper));
     EXPECT_NE(table.find("plan: allocator paper, frame 64x32, sharing equal"), std::string::npos) << table;
     EXPECT_NE(table.find("order (3 passes; culled: unused)"), std::string::npos) << table;
     EXPECT_NE(table.find("tint   <>final=t2"), std::string::npos) << table;
@@ -119,11 +119,11 @@ TEST(Export, TableListsOrderResourcesTexturesAndSummary) {
 TEST(Export, StreamedJsonIsWhatTheWholeDocumentDumpsAtEveryIndent) {
     // write_plan_json writes member by member; the text must be what nlohmann's dump of the
     // whole document prints (sorted keys, its escaping and its indentation), at every indent.
-    Plan plan = small_plan("heap");
+    Plan plan = small_plan(AllocatorKind::Heap);
     plan.resources[0].name = "scene.\"color\"\t\u00e9";  // escaping goes through json
     plan.culled.push_back("second culled");
     // Buffers, their ports, edges, spec classes and placements have members of their own.
-    for (const Plan& each : {plan, buffer_plan("heap"), buffer_plan("interval")}) {
+    for (const Plan& each : {plan, buffer_plan(AllocatorKind::Heap), buffer_plan(AllocatorKind::Interval)}) {
         const auto document = nlohmann::json::parse(plan_to_json(each));
         for (int indent : {-1, 0, 1, 2, 4}) {
             std::ostringstream streamed;
@@ -135,7 +135,7 @@ TEST(Export, StreamedJsonIsWhatTheWholeDocumentDumpsAtEveryIndent) {
 }
 
 TEST(Export, StreamedDotAndTableAreTheReturnedText) {
-    const Plan plan = small_plan("heap");
+    const Plan plan = small_plan(AllocatorKind::Heap);
     std::ostringstream dot;
     write_plan_dot(dot, plan);
     EXPECT_EQ(dot.str(), plan_to_dot(plan));
@@ -148,7 +148,7 @@ TEST(Export, StreamedDotAndTableAreTheReturnedText) {
 TEST(Export, TextureOnlyPlansPrintWhatTheyPrintedBeforeBuffers) {
     // Pinned whole: buffers, kinds and ranges add nothing to a texture-only plan's DOT and table
     // (the same text loom-plan printed for the sample graphs before they existed).
-    EXPECT_EQ(plan_to_dot(small_plan("interval")),
+    EXPECT_EQ(plan_to_dot(small_plan(AllocatorKind::Interval)),
               "digraph plan {\n"
               "  rankdir=LR;\n"
               "  node [shape=record, fontname=\"Helvetica\", fontsize=10];\n"
@@ -164,7 +164,7 @@ TEST(Export, TextureOnlyPlansPrintWhatTheyPrintedBeforeBuffers) {
               "  output [shape=doublecircle, label=\"output\"];\n"
               "  p2:f0:e -> output [color=\"#2ca02c\", label=\"t2\"];\n"
               "}\n");
-    EXPECT_EQ(plan_to_table(small_plan("paper")),
+    EXPECT_EQ(plan_to_table(small_plan(AllocatorKind::Paper)),
               "plan: allocator paper, frame 64x32, sharing equal\n"
               "\n"
               "order (3 passes; culled: unused)\n"
@@ -193,7 +193,7 @@ TEST(Export, TextureOnlyPlansPrintWhatTheyPrintedBeforeBuffers) {
 }
 
 TEST(Export, TableShowsPassKindsRangesBufferResourcesBuffersAndTheirFigures) {
-    EXPECT_EQ(plan_to_table(buffer_plan("heap")),
+    EXPECT_EQ(plan_to_table(buffer_plan(AllocatorKind::Heap)),
               "plan: allocator heap, frame 64x48, sharing equal\n"
               "\n"
               "order (4 passes)\n"
@@ -231,7 +231,7 @@ TEST(Export, TableShowsPassKindsRangesBufferResourcesBuffersAndTheirFigures) {
 }
 
 TEST(Export, DotDrawsBufferEdgesDashedAndLabelsPartialRanges) {
-    EXPECT_EQ(plan_to_dot(buffer_plan("interval")),
+    EXPECT_EQ(plan_to_dot(buffer_plan(AllocatorKind::Interval)),
               "digraph plan {\n"
               "  rankdir=LR;\n"
               "  node [shape=record, fontname=\"Helvetica\", fontsize=10];\n"
@@ -252,7 +252,7 @@ TEST(Export, DotDrawsBufferEdgesDashedAndLabelsPartialRanges) {
 
 TEST(Export, JsonCarriesPassKindsPortRangesBufferResourcesBuffersAndTheBufferSummary) {
     using nlohmann::json;
-    const auto plan = json::parse(plan_to_json(buffer_plan("heap")));
+    const auto plan = json::parse(plan_to_json(buffer_plan(AllocatorKind::Heap)));
     EXPECT_EQ(plan.at("passes")[0].at("kind"), "graphics");
     EXPECT_EQ(plan.at("passes")[1].at("kind"), "compute");
     EXPECT_EQ(plan.at("passes")[1].at("ports")[1],
@@ -285,7 +285,7 @@ TEST(Export, JsonCarriesPassKindsPortRangesBufferResourcesBuffersAndTheBufferSum
                               "naive_bytes": 132096, "naive_textures": 2, "textures": 2})"));
     EXPECT_EQ(plan.at("heaps"), json::parse("[66560]"));
     // A texture-only plan has the members too, empty or zero.
-    const auto textures = json::parse(plan_to_json(small_plan("interval")));
+    const auto textures = json::parse(plan_to_json(small_plan(AllocatorKind::Interval)));
     EXPECT_EQ(textures.at("buffers"), json::array());
     EXPECT_EQ(textures.at("summary").at("buffers"), 0);
     EXPECT_EQ(textures.at("summary").at("naive_buffers"), 0);

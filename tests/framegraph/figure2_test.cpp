@@ -43,7 +43,7 @@ FrameGraph figure2() {
     return graph;
 }
 
-Plan plan_with(const std::string& allocator) {
+Plan plan_with(AllocatorKind allocator) {
     FrameGraph graph = figure2();
     PlanOptions options;
     options.frame = {1920, 1080};
@@ -77,7 +77,7 @@ TEST(Figure2, DeferredPassIsComposedFromThreePortSets) {
 }
 
 TEST(Figure2, OrderAndLifetimes) {
-    const Plan plan = plan_with("paper");
+    const Plan plan = plan_with(AllocatorKind::Paper);
     std::vector<std::string> order;
     for (const PlanPass& p : plan.order) order.push_back(p.name);
     EXPECT_EQ(order, (std::vector<std::string>{"shadow", "geometry", "deferred", "blur", "composite"}));
@@ -97,7 +97,7 @@ TEST(Figure2, OrderAndLifetimes) {
 }
 
 TEST(Figure2, PaperColouringUsesFiveColourTexturesAsInThePaper) {
-    const Plan plan = plan_with("paper");
+    const Plan plan = plan_with(AllocatorKind::Paper);
     EXPECT_EQ(plan.summary.naive_textures, 8u);  // 7 colour outputs + the depth map
     EXPECT_EQ(plan.summary.textures, 6u);        // 5 colour textures + the depth map
     EXPECT_EQ(plan.summary.lower_bound_textures, 6u);
@@ -128,7 +128,7 @@ TEST(Figure2, PaperColouringUsesFiveColourTexturesAsInThePaper) {
 }
 
 TEST(Figure2, IntervalColouringAlsoUsesFiveColourTextures) {
-    const Plan plan = plan_with("interval");
+    const Plan plan = plan_with(AllocatorKind::Interval);
     EXPECT_EQ(plan.summary.textures, 6u);
     EXPECT_EQ(plan.summary.naive_textures, 8u);
     EXPECT_EQ(texture(plan, "shadow", "shadow_map"), 0u);
@@ -145,7 +145,7 @@ TEST(Figure2, IntervalColouringAlsoUsesFiveColourTextures) {
 }
 
 TEST(Figure2, HeapPlacementReachesThePeakOfLiveBytes) {
-    const Plan plan = plan_with("heap");
+    const Plan plan = plan_with(AllocatorKind::Heap);
     EXPECT_EQ(plan.summary.textures, 8u);  // one placed texture per resource
     ASSERT_EQ(plan.heaps.size(), 1u);
     EXPECT_EQ(plan.summary.bytes, plan.heaps[0]);
@@ -169,7 +169,7 @@ TEST(Figure2, HeapPlacementReachesThePeakOfLiveBytes) {
 }
 
 TEST(Figure2, UsageFollowsHowPortsUseEachTexture) {
-    const Plan plan = plan_with("interval");
+    const Plan plan = plan_with(AllocatorKind::Interval);
     using rhi::TextureUsage;
     EXPECT_EQ(plan.resource_of("shadow", "shadow_map")->spec.usage,
               TextureUsage::DepthStencilAttachment | TextureUsage::Sampled);
@@ -187,7 +187,7 @@ TEST(Figure2, UsageFollowsHowPortsUseEachTexture) {
 TEST(Figure2, ReplanningAnUnchangedGraphReusesThePlan) {
     FrameGraph graph = figure2();
     PlanOptions options;
-    options.allocator = "paper";
+    options.allocator = AllocatorKind::Paper;
     auto first = graph.plan(options);
     ASSERT_TRUE(first.ok()) << first.error().to_string();
     auto second = graph.plan(options);
@@ -213,9 +213,9 @@ TEST(Figure2, ReplanningAnUnchangedGraphReusesThePlan) {
 }
 
 TEST(Figure2, PlansCompareAndHash) {
-    const Plan a = plan_with("paper");
-    const Plan b = plan_with("paper");
-    const Plan c = plan_with("interval");
+    const Plan a = plan_with(AllocatorKind::Paper);
+    const Plan b = plan_with(AllocatorKind::Paper);
+    const Plan c = plan_with(AllocatorKind::Interval);
     EXPECT_EQ(a, b);
     EXPECT_EQ(plan_hash(a), plan_hash(b));
     EXPECT_NE(a, c);

@@ -34,7 +34,7 @@ std::vector<std::string> order_of(const Plan& plan) {
     return names;
 }
 
-PlanOptions with_order(PassOrder order, const std::string& allocator = "heap") {
+PlanOptions with_order(PassOrder order, AllocatorKind allocator = AllocatorKind::Heap) {
     PlanOptions options;
     options.frame = {1920, 1080};
     options.allocator = allocator;
@@ -100,8 +100,8 @@ TEST(PassOrder, MemoryOrderFinishesOneBigTemporaryBeforeStartingTheNext) {
     EXPECT_EQ(memory.edges.front().from_pass, 0u);  // a1 -> a2, by positions in the new order
     EXPECT_EQ(memory.edges.front().to_pass, 1u);
     // The interval allocator needs one big texture instead of two.
-    EXPECT_EQ(must_plan(graph, with_order(PassOrder::Declared, "interval")).summary.textures, 5u);
-    EXPECT_EQ(must_plan(graph, with_order(PassOrder::Memory, "interval")).summary.textures, 4u);
+    EXPECT_EQ(must_plan(graph, with_order(PassOrder::Declared, AllocatorKind::Interval)).summary.textures, 5u);
+    EXPECT_EQ(must_plan(graph, with_order(PassOrder::Memory, AllocatorKind::Interval)).summary.textures, 4u);
 }
 
 TEST(PassOrder, AnOrderAlreadyAtTheOptimumIsKept) {
@@ -368,8 +368,8 @@ TEST(MemoryOrderCorpus, NeverWorseThanDeclaredAndEveryConstraintHolds) {
         options.buffer_percent = seed % 2 == 0 ? 25 : 0;
         options.subresource_percent = seed % 3 == 0 ? 20 : 0;
         const FrameGraph graph = testing::random_graph(seed, options);
-        const Plan declared = must_plan(graph, with_order(PassOrder::Declared, "interval"));
-        const Plan memory = must_plan(graph, with_order(PassOrder::Memory, "interval"));
+        const Plan declared = must_plan(graph, with_order(PassOrder::Declared, AllocatorKind::Interval));
+        const Plan memory = must_plan(graph, with_order(PassOrder::Memory, AllocatorKind::Interval));
         ASSERT_LE(memory.summary.lower_bound_bytes, declared.summary.lower_bound_bytes) << "seed " << seed;
         better += memory.summary.lower_bound_bytes < declared.summary.lower_bound_bytes ? 1 : 0;
         // The interval allocator still needs exactly the peak count of each class.

@@ -25,7 +25,7 @@ TEST(PlanArguments, EveryOption) {
                        "1048576", "--order", "memory", "--json", "--dot", "plan.dot"});
     ASSERT_TRUE(args.ok()) << args.error().message;
     EXPECT_EQ(args->graph, "g.json");
-    EXPECT_EQ(args->options.allocator, "heap");
+    EXPECT_TRUE(args->options.allocator == fg::AllocatorKind::Heap);
     EXPECT_EQ(args->options.sharing, fg::SpecSharing::Joinable);
     ASSERT_TRUE(args->frame.has_value());
     EXPECT_EQ(args->frame->width, 640u);
@@ -58,6 +58,7 @@ TEST(PlanArguments, ErrorsNameTheArgument) {
     EXPECT_EQ(error_of({"g.json", "--sharing", "some"}), "--sharing must be equal or joinable, not 'some'");
     EXPECT_EQ(error_of({"g.json", "--order", "fast"}), "--order must be declared or memory, not 'fast'");
     EXPECT_EQ(error_of({"g.json", "--order"}), "--order needs a value");
+    EXPECT_EQ(error_of({"g.json", "--allocator", "greedy"}), "--allocator: unknown allocator 'greedy' (known: paper, interval, heap)");
     EXPECT_EQ(error_of({"g.json", "--verbose"}), "unknown option '--verbose'");
     EXPECT_EQ(error_of({"a.json", "b.json"}), "more than one graph file given ('a.json', 'b.json')");
     EXPECT_EQ(error_of({}), "no graph file given; " + std::string(kUsage));

@@ -41,7 +41,7 @@ testing::RandomGraphOptions graph_options(uint64_t seed, Corpus corpus) {
     return options;
 }
 
-uint64_t corpus_hash(Corpus corpus, const std::string& allocator, SpecSharing sharing, PassOrder order) {
+uint64_t corpus_hash(Corpus corpus, AllocatorKind allocator, SpecSharing sharing, PassOrder order) {
     PlanOptions options;
     options.frame = {1920, 1080};
     options.allocator = allocator;
@@ -52,7 +52,7 @@ uint64_t corpus_hash(Corpus corpus, const std::string& allocator, SpecSharing sh
         const FrameGraph graph = testing::random_graph(seed, graph_options(seed, corpus));
         auto plan = build_plan(graph, options);
         if (!plan) {
-            ADD_FAILURE() << "seed " << seed << " " << allocator << ": " << plan.error().to_string();
+            ADD_FAILURE() << "seed " << seed << " " << allocator_name(allocator) << ": " << plan.error().to_string();
             return 0;
         }
         combined.add(plan_hash(*plan));
@@ -61,21 +61,21 @@ uint64_t corpus_hash(Corpus corpus, const std::string& allocator, SpecSharing sh
 }
 
 TEST(PlanHashCorpus, TexturePlansAreUnchanged) {
-    EXPECT_EQ(corpus_hash(Corpus::Textures, "paper", SpecSharing::Equal, PassOrder::Declared), 0x3e33e217ef90d5c0ull);
-    EXPECT_EQ(corpus_hash(Corpus::Textures, "interval", SpecSharing::Equal, PassOrder::Declared), 0xf6ec50e5ae468c34ull);
-    EXPECT_EQ(corpus_hash(Corpus::Textures, "heap", SpecSharing::Equal, PassOrder::Declared), 0x8e8420041a855e4cull);
-    EXPECT_EQ(corpus_hash(Corpus::Textures, "interval", SpecSharing::Joinable, PassOrder::Declared), 0x69adf352d14d2d42ull);
-    EXPECT_EQ(corpus_hash(Corpus::Textures, "heap", SpecSharing::Joinable, PassOrder::Memory), 0x43a315b7ddc8cf59ull);
+    EXPECT_EQ(corpus_hash(Corpus::Textures, AllocatorKind::Paper, SpecSharing::Equal, PassOrder::Declared), 0x3e33e217ef90d5c0ull);
+    EXPECT_EQ(corpus_hash(Corpus::Textures, AllocatorKind::Interval, SpecSharing::Equal, PassOrder::Declared), 0xf6ec50e5ae468c34ull);
+    EXPECT_EQ(corpus_hash(Corpus::Textures, AllocatorKind::Heap, SpecSharing::Equal, PassOrder::Declared), 0x8e8420041a855e4cull);
+    EXPECT_EQ(corpus_hash(Corpus::Textures, AllocatorKind::Interval, SpecSharing::Joinable, PassOrder::Declared), 0x69adf352d14d2d42ull);
+    EXPECT_EQ(corpus_hash(Corpus::Textures, AllocatorKind::Heap, SpecSharing::Joinable, PassOrder::Memory), 0x43a315b7ddc8cf59ull);
 }
 
 TEST(PlanHashCorpus, BufferAndSubresourcePlansAreUnchanged) {
-    EXPECT_EQ(corpus_hash(Corpus::Mixed, "interval", SpecSharing::Equal, PassOrder::Declared), 0x6e82c040172e8fb0ull);
-    EXPECT_EQ(corpus_hash(Corpus::Mixed, "heap", SpecSharing::Equal, PassOrder::Memory), 0x24b1e4d36c16cacaull);
+    EXPECT_EQ(corpus_hash(Corpus::Mixed, AllocatorKind::Interval, SpecSharing::Equal, PassOrder::Declared), 0x6e82c040172e8fb0ull);
+    EXPECT_EQ(corpus_hash(Corpus::Mixed, AllocatorKind::Heap, SpecSharing::Equal, PassOrder::Memory), 0x24b1e4d36c16cacaull);
 }
 
 TEST(PlanHashCorpus, AsyncComputePlansAreUnchanged) {
-    EXPECT_EQ(corpus_hash(Corpus::Async, "interval", SpecSharing::Equal, PassOrder::Declared), 0x9d9e6355016bb9b5ull);
-    EXPECT_EQ(corpus_hash(Corpus::Async, "heap", SpecSharing::Equal, PassOrder::Memory), 0x06fd52b264dda6cfull);
+    EXPECT_EQ(corpus_hash(Corpus::Async, AllocatorKind::Interval, SpecSharing::Equal, PassOrder::Declared), 0x9d9e6355016bb9b5ull);
+    EXPECT_EQ(corpus_hash(Corpus::Async, AllocatorKind::Heap, SpecSharing::Equal, PassOrder::Memory), 0x06fd52b264dda6cfull);
 }
 
 // One large graph (3,000 passes declared in frame order), where the heap allocator keeps many
@@ -88,12 +88,12 @@ TEST(PlanHashCorpus, LargeGraphPlansAreUnchanged) {
     options.side_effect_percent = 10;
     options.shuffle_declarations = false;
     const FrameGraph graph = testing::random_graph(7, options);
-    for (const char* allocator : {"interval", "heap"}) {
+    for (AllocatorKind allocator : {AllocatorKind::Interval, AllocatorKind::Heap}) {
         PlanOptions plan_options;
         plan_options.allocator = allocator;
         auto plan = build_plan(graph, plan_options);
         ASSERT_TRUE(plan) << plan.error().to_string();
-        EXPECT_EQ(plan_hash(*plan), std::string(allocator) == "heap" ? 0xa9df76f6a8130fc9ull : 0xa3cfb5f8abd00c64ull) << allocator;
+        EXPECT_EQ(plan_hash(*plan), allocator == AllocatorKind::Heap ? 0xa9df76f6a8130fc9ull : 0xa3cfb5f8abd00c64ull) << allocator_name(allocator);
     }
 }
 

@@ -113,13 +113,13 @@ TEST(InOut, ChainedModificationsShareOneTexture) {
     ASSERT_TRUE(graph.connect(port("scene", "color"), port("decals", "color")).ok());
     ASSERT_TRUE(graph.connect(port("decals", "color"), port("particles", "color")).ok());
     ASSERT_TRUE(graph.mark_output(port("particles", "color")).ok());
-    for (const char* allocator : {"paper", "interval", "heap"}) {
+    for (AllocatorKind allocator : allocator_kinds()) {
         PlanOptions options;
         options.allocator = allocator;
         const Plan plan = must_plan(graph, options);
-        EXPECT_EQ(order_of(plan), (std::vector<std::string>{"scene", "decals", "particles"})) << allocator;
-        ASSERT_EQ(plan.resources.size(), 1u) << allocator;
-        EXPECT_EQ(plan.summary.textures, 1u) << allocator;
+        EXPECT_EQ(order_of(plan), (std::vector<std::string>{"scene", "decals", "particles"})) << allocator_name(allocator);
+        ASSERT_EQ(plan.resources.size(), 1u) << allocator_name(allocator);
+        EXPECT_EQ(plan.summary.textures, 1u) << allocator_name(allocator);
         EXPECT_TRUE(plan.resources[0].graph_output);
         EXPECT_EQ(plan.resources[0].lifetime, (Lifetime{0, 2}));
     }
@@ -222,7 +222,7 @@ constexpr uint64_t kKiB = 1024;
 TEST(SpecSharingMode, JoinableSpecsMayShareATextureOfTheJoinedSpec) {
     PlanOptions options;
     options.frame = {256, 256};  // R16Float: 128 KiB; RGBA16Float: 512 KiB
-    options.allocator = "interval";
+    options.allocator = AllocatorKind::Interval;
     const Plan equal = must_plan(mixed_chain(), options);
     ASSERT_EQ(equal.spec_classes.size(), 2u);
     // Two narrow ones overlap (p3, p4) and two wide ones (p1, p2): two textures of each.
@@ -242,7 +242,7 @@ TEST(SpecSharingMode, JoinableSpecsMayShareATextureOfTheJoinedSpec) {
               (std::vector<uint32_t>{0, 2, 4}));  // p0.out, p2.out, p4.out
 
     PlanOptions paper = options;
-    paper.allocator = "paper";
+    paper.allocator = AllocatorKind::Paper;
     EXPECT_EQ(must_plan(mixed_chain(), paper).summary.textures, 2u);
 }
 
@@ -267,7 +267,7 @@ TEST(SpecSharingMode, SharingJoinableSpecsCanCostBytes) {
 TEST(Heap, CappedHeapsSplitIntoSeveral) {
     PlanOptions options;
     options.frame = {256, 256};
-    options.allocator = "heap";
+    options.allocator = AllocatorKind::Heap;
     const Plan one = must_plan(mixed_chain(), options);
     ASSERT_EQ(one.heaps.size(), 1u);
     EXPECT_EQ(one.summary.bytes, one.summary.lower_bound_bytes);
@@ -299,7 +299,7 @@ TEST(MemoryModels, ThePlanUsesTheModelItIsGiven) {
     PlanOptions options;
     options.frame = {100, 100};
     options.memory_model = model;
-    options.allocator = "heap";
+    options.allocator = AllocatorKind::Heap;
     const Plan plan = must_plan(mixed_chain(), options);
     EXPECT_GT(model->calls, 0);
     EXPECT_EQ(plan.resource_of("p0", "out")->bytes, 20224u);  // 100 x 100 x 2 = 20000, aligned to 256

@@ -28,7 +28,7 @@ testing::RandomGraphOptions options_for(uint64_t seed) {
     return options;
 }
 
-PlanOptions plan_options(const std::string& allocator, SpecSharing sharing = SpecSharing::Equal) {
+PlanOptions plan_options(AllocatorKind allocator, SpecSharing sharing = SpecSharing::Equal) {
     PlanOptions options;
     options.frame = {1920, 1080};
     options.allocator = allocator;
@@ -47,7 +47,7 @@ protected:
         graphs_ = new std::vector<FrameGraph>();
         graphs_->reserve(kGraphs);
         for (uint64_t seed = 1; seed <= kGraphs; ++seed) graphs_->push_back(testing::random_graph(seed, options_for(seed)));
-        plans_ = new std::map<std::pair<std::string, SpecSharing>, Plans>();
+        plans_ = new std::map<std::pair<AllocatorKind, SpecSharing>, Plans>();
     }
     static void TearDownTestSuite() {
         delete graphs_;
@@ -58,14 +58,14 @@ protected:
 
     static uint64_t seed_of(std::size_t index) { return index + 1; }
 
-    static const Plans& plans(const std::string& allocator, SpecSharing sharing = SpecSharing::Equal) {
+    static const Plans& plans(AllocatorKind allocator, SpecSharing sharing = SpecSharing::Equal) {
         Plans& out = (*plans_)[{allocator, sharing}];
         if (!out.empty()) return out;
         out.reserve(graphs_->size());
         for (std::size_t i = 0; i < graphs_->size(); ++i) {
             auto plan = build_plan((*graphs_)[i], plan_options(allocator, sharing));
             if (!plan) {
-                ADD_FAILURE() << "seed " << seed_of(i) << " " << allocator << ": " << plan.error().to_string();
+                ADD_FAILURE() << "seed " << seed_of(i) << " " << allocator_name(allocator) << ": " << plan.error().to_string();
                 out.emplace_back();
             } else {
                 out.push_back(std::move(*plan));
@@ -76,11 +76,11 @@ protected:
 
 private:
     static std::vector<FrameGraph>* graphs_;
-    static std::map<std::pair<std::string, SpecSharing>, Plans>* plans_;
+    static std::map<std::pair<AllocatorKind, SpecSharing>, Plans>* plans_;
 };
 
 std::vector<FrameGraph>* RandomGraphs::graphs_ = nullptr;
-std::map<std::pair<std::string, SpecSharing>, Plans>* RandomGraphs::plans_ = nullptr;
+std::map<std::pair<AllocatorKind, SpecSharing>, Plans>* RandomGraphs::plans_ = nullptr;
 
 // No two resources alive at the same position share a texture (or a buffer).
 void expect_no_shared_live_texture(const Plan& plan, uint64_t seed) {
@@ -155,7 +155,7 @@ TEST_F(RandomGraphs, CorpusIsVaried) {
     uint32_t culled = 0;
     uint32_t in_place = 0;
     uint32_t max_resources = 0;
-    for (const Plan& plan : plans("interval")) {
+    for (const Plan& plan : plans(AllocatorKind::Interval)) {
         culled += plan.culled.empty() ? 0 : 1;
         for (const PlanPass& pass : plan.order) {
             for (const PlanPort& port : pass.ports) in_place += port.kind == PortKind::InOut ? 1 : 0;
@@ -168,9 +168,9 @@ TEST_F(RandomGraphs, CorpusIsVaried) {
 }
 
 TEST_F(RandomGraphs, NoTwoLiveResourcesShareATexture) {
-    for (const auto& [allocator, sharing] : {std::pair{"paper", SpecSharing::Equal}, std::pair{"interval", SpecSharing::Equal},
-                                             std::pair{"paper", SpecSharing::Joinable},
-                                             std::pair{"interval", SpecSharing::Joinable}}) {
+    for (const auto& [allocator, sharing] : {std::pair{AllocatorKind::Paper, SpecSharing::Equal}, std::pair{AllocatorKind::Interval, SpecSharing::Equal},
+                                             std::pair{AllocatorKind::Paper, SpecSharing::Joinable},
+                                             std::pair{AllocatorKind::Interval, SpecSharing::Joinable}}) {
         const Plans& all = plans(allocator, sharing);
         for (std::size_t i = 0; i < all.size(); ++i) {
             expect_no_shared_live_texture(all[i], seed_of(i));
@@ -180,7 +180,7 @@ TEST_F(RandomGraphs, NoTwoLiveResourcesShareATexture) {
 }
 
 TEST_F(RandomGraphs, NoTwoLiveResourcesOverlapInHeapBytes) {
-    const Plans& all = plans("heap");
+    const Plans& all = plans(AllocatorKind::Heap);
     for (std::size_t i = 0; i < all.size(); ++i) {
         expect_placements_disjoint(all[i], seed_of(i));
     }
@@ -188,8 +188,8 @@ TEST_F(RandomGraphs, NoTwoLiveResourcesOverlapInHeapBytes) {
 
 TEST_F(RandomGraphs, IntervalMeetsTheLowerBoundAndNeverLosesToPaper) {
     for (SpecSharing sharing : {SpecSharing::Equal, SpecSharing::Joinable}) {
-        const Plans& interval = plans("interval", sharing);
-        const Plans& paper = plans("paper", sharing);
+        const Plans& interval = plans(AllocatorKind::Interval, sharing);
+        const Plans& paper = plans(AllocatorKind::Paper, sharing);
         for (std::size_t i = 0; i < interval.size(); ++i) {
             EXPECT_EQ(interval[i].summary.textures, interval[i].summary.lower_bound_textures) << "seed " << seed_of(i);
             EXPECT_LE(interval[i].summary.textures, paper[i].summary.textures) << "seed " << seed_of(i);
@@ -202,17 +202,17 @@ TEST_F(RandomGraphs, IntervalMeetsTheLowerBoundAndNeverLosesToPaper) {
 }
 
 TEST_F(RandomGraphs, BytesRespectTheLowerBound) {
-    for (const auto& [allocator, sharing] : {std::pair{"paper", SpecSharing::Equal}, std::pair{"interval", SpecSharing::Equal},
-                                             std::pair{"heap", SpecSharing::Equal},
-                                             std::pair{"interval", SpecSharing::Joinable}}) {
+    for (const auto& [allocator, sharing] : {std::pair{AllocatorKind::Paper, SpecSharing::Equal}, std::pair{AllocatorKind::Interval, SpecSharing::Equal},
+                                             std::pair{AllocatorKind::Heap, SpecSharing::Equal},
+                                             std::pair{AllocatorKind::Interval, SpecSharing::Joinable}}) {
         const Plans& all = plans(allocator, sharing);
         for (std::size_t i = 0; i < all.size(); ++i) {
             const PlanSummary& summary = all[i].summary;
-            EXPECT_GE(summary.bytes, summary.lower_bound_bytes) << "seed " << seed_of(i) << " " << allocator;
+            EXPECT_GE(summary.bytes, summary.lower_bound_bytes) << "seed " << seed_of(i) << " " << allocator_name(allocator);
             EXPECT_LE(summary.lower_bound_bytes, summary.naive_bytes) << "seed " << seed_of(i);
             EXPECT_EQ(summary.naive_textures, all[i].resources.size());
             EXPECT_EQ(summary.textures, all[i].textures.size());
-            if (std::string_view(allocator) == "heap") {
+            if (allocator == AllocatorKind::Heap) {
                 EXPECT_LE(summary.bytes, summary.naive_bytes) << "seed " << seed_of(i);
             }
         }
@@ -220,7 +220,7 @@ TEST_F(RandomGraphs, BytesRespectTheLowerBound) {
 }
 
 TEST_F(RandomGraphs, OrderIsTopologicalAndLifetimesCoverEveryUse) {
-    const Plans& all = plans("interval");
+    const Plans& all = plans(AllocatorKind::Interval);
     for (std::size_t i = 0; i < all.size(); ++i) {
         const Plan& plan = all[i];
         const uint64_t seed = seed_of(i);
@@ -251,13 +251,13 @@ TEST_F(RandomGraphs, OrderIsTopologicalAndLifetimesCoverEveryUse) {
 }
 
 TEST_F(RandomGraphs, PlansAreDeterministic) {
-    for (const char* allocator : {"paper", "interval", "heap"}) {
+    for (AllocatorKind allocator : allocator_kinds()) {
         const Plans& all = plans(allocator);
         for (std::size_t i = 0; i < all.size(); i += 4) {  // a quarter of the corpus, rebuilt from its seed
             const FrameGraph graph = testing::random_graph(seed_of(i), options_for(seed_of(i)));
             auto again = build_plan(graph, plan_options(allocator));
             ASSERT_TRUE(again.ok());
-            EXPECT_EQ(*again, all[i]) << "seed " << seed_of(i) << " " << allocator;
+            EXPECT_EQ(*again, all[i]) << "seed " << seed_of(i) << " " << allocator_name(allocator);
             EXPECT_EQ(plan_hash(*again), plan_hash(all[i])) << "seed " << seed_of(i);
         }
     }
@@ -299,12 +299,12 @@ protected:
         delete graphs_;
         graphs_ = nullptr;
     }
-    static Plans plan_all(const std::string& allocator, SpecSharing sharing = SpecSharing::Equal) {
+    static Plans plan_all(AllocatorKind allocator, SpecSharing sharing = SpecSharing::Equal) {
         Plans out;
         for (std::size_t i = 0; i < graphs_->size(); ++i) {
             auto plan = build_plan((*graphs_)[i], plan_options(allocator, sharing));
             if (!plan) {
-                ADD_FAILURE() << "seed " << i + 1 << " " << allocator << ": " << plan.error().to_string();
+                ADD_FAILURE() << "seed " << i + 1 << " " << allocator_name(allocator) << ": " << plan.error().to_string();
                 out.emplace_back();
             } else {
                 out.push_back(std::move(*plan));
@@ -321,7 +321,7 @@ TEST_F(MixedRandomGraphs, CorpusHasBuffersAndSubresourceAccess) {
     uint32_t buffers = 0;
     uint32_t ranged_ports = 0;
     uint32_t read_and_modified = 0;  // a pass reading one subresource and writing another of one texture
-    for (const Plan& plan : plan_all("interval")) {
+    for (const Plan& plan : plan_all(AllocatorKind::Interval)) {
         buffers += plan.summary.naive_buffers;
         for (const PlanPass& pass : plan.order) {
             for (const PlanPort& port : pass.ports) {
@@ -342,8 +342,8 @@ TEST_F(MixedRandomGraphs, CorpusHasBuffersAndSubresourceAccess) {
 
 TEST_F(MixedRandomGraphs, NoTwoLiveResourcesShareAnObjectAndIntervalMeetsBothBounds) {
     for (SpecSharing sharing : {SpecSharing::Equal, SpecSharing::Joinable}) {
-        const Plans interval = plan_all("interval", sharing);
-        const Plans paper = plan_all("paper", sharing);
+        const Plans interval = plan_all(AllocatorKind::Interval, sharing);
+        const Plans paper = plan_all(AllocatorKind::Paper, sharing);
         for (std::size_t i = 0; i < interval.size(); ++i) {
             for (const Plan* plan : {&interval[i], &paper[i]}) {
                 expect_no_shared_live_texture(*plan, i + 1);
@@ -358,7 +358,7 @@ TEST_F(MixedRandomGraphs, NoTwoLiveResourcesShareAnObjectAndIntervalMeetsBothBou
 }
 
 TEST_F(MixedRandomGraphs, HeapsPlaceBuffersAndTexturesWithoutOverlap) {
-    const Plans heap = plan_all("heap");
+    const Plans heap = plan_all(AllocatorKind::Heap);
     for (std::size_t i = 0; i < heap.size(); ++i) {
         expect_placements_disjoint(heap[i], i + 1);
         EXPECT_GE(heap[i].summary.bytes, heap[i].summary.lower_bound_bytes) << "seed " << i + 1;
@@ -367,7 +367,7 @@ TEST_F(MixedRandomGraphs, HeapsPlaceBuffersAndTexturesWithoutOverlap) {
 }
 
 TEST_F(MixedRandomGraphs, EveryPortRangeIsInsideItsResourceAndSchedulesBuild) {
-    const Plans plans = plan_all("interval");
+    const Plans plans = plan_all(AllocatorKind::Interval);
     for (std::size_t i = 0; i < plans.size(); ++i) {
         const Plan& plan = plans[i];
         for (const PlanPass& pass : plan.order) {
@@ -390,10 +390,10 @@ TEST_F(MixedRandomGraphs, EveryPortRangeIsInsideItsResourceAndSchedulesBuild) {
 }
 
 TEST_F(MixedRandomGraphs, PlansAreDeterministic) {
-    const Plans first = plan_all("heap");
+    const Plans first = plan_all(AllocatorKind::Heap);
     for (std::size_t i = 0; i < first.size(); i += 8) {
         const FrameGraph graph = testing::random_graph(i + 1, mixed_options_for(i + 1));
-        auto again = build_plan(graph, plan_options("heap"));
+        auto again = build_plan(graph, plan_options(AllocatorKind::Heap));
         ASSERT_TRUE(again.ok());
         EXPECT_EQ(*again, first[i]) << "seed " << i + 1;
         EXPECT_EQ(plan_hash(*again), plan_hash(first[i])) << "seed " << i + 1;

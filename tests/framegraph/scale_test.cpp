@@ -16,7 +16,7 @@ using rhi::Format;
 
 TextureSpec small_texture() { return TextureSpec::of(Format::RGBA8Unorm).with_size(16, 16); }
 
-PlanOptions options_for(const char* allocator, uint64_t max_heap_bytes = 0) {
+PlanOptions options_for(AllocatorKind allocator, uint64_t max_heap_bytes = 0) {
     PlanOptions options;
     options.frame = {64, 64};
     options.allocator = allocator;
@@ -45,7 +45,7 @@ TEST(Scale, PassWithTenThousandPortsMergesAndPlansEveryPort) {
     ASSERT_TRUE(graph.mark_output(port("wide", "o7")).ok());  // marking twice lists it once
     EXPECT_EQ(graph.outputs().size(), kPorts);
 
-    auto plan = build_plan(graph, options_for("interval"));
+    auto plan = build_plan(graph, options_for(AllocatorKind::Interval));
     ASSERT_TRUE(plan.ok()) << plan.error().to_string();
     EXPECT_EQ(plan->resources.size(), kPorts);
     EXPECT_EQ(plan->summary.textures, kPorts);  // all live to the end of the frame
@@ -62,7 +62,7 @@ TEST(Scale, FiveThousandResourcesOfFiftyShapesFormFiftyClasses) {
     FrameGraph graph;
     ASSERT_TRUE(graph.add_pass(std::move(wide)).ok());
     for (uint32_t i = 0; i < kPorts; ++i) ASSERT_TRUE(graph.mark_output(port("wide", numbered("o", i))).ok());
-    auto plan = build_plan(graph, options_for("interval"));
+    auto plan = build_plan(graph, options_for(AllocatorKind::Interval));
     ASSERT_TRUE(plan.ok()) << plan.error().to_string();
     ASSERT_EQ(plan->spec_classes.size(), 50u);
     EXPECT_EQ(plan->resources[1234].spec_class, 34u);
@@ -95,7 +95,7 @@ TEST(Scale, TenThousandOutputsFeedTenThousandInputs) {
     EXPECT_EQ(second.error().message, "connect producer.o0 -> consumer.i9999: consumer.i9999 is already connected to "
                                       "producer.o0; an input takes one source");
 
-    auto plan = build_plan(graph, options_for("interval"));
+    auto plan = build_plan(graph, options_for(AllocatorKind::Interval));
     ASSERT_TRUE(plan.ok()) << plan.error().to_string();
     EXPECT_EQ(plan->resources.size(), kPorts + 1);
     EXPECT_EQ(plan->edges.size(), kPorts);
@@ -127,7 +127,7 @@ FrameGraph live_graph(uint32_t producers) {
 
 TEST(Scale, TwoThousandLiveResourcesUnderATinyHeapBudgetGetAHeapEach) {
     const FrameGraph graph = live_graph(2000);
-    auto plan = build_plan(graph, options_for("heap", 1));
+    auto plan = build_plan(graph, options_for(AllocatorKind::Heap, 1));
     ASSERT_TRUE(plan.ok()) << plan.error().to_string();
     ASSERT_EQ(plan->resources.size(), 2001u);
     const uint64_t bytes = plan->resources[0].bytes;
@@ -146,11 +146,11 @@ TEST(Scale, TwoThousandLiveResourcesUnderATinyHeapBudgetGetAHeapEach) {
 
 TEST(Scale, TwoThousandLiveResourcesFillHeapsOfFour) {
     const FrameGraph graph = live_graph(2000);
-    auto probe = build_plan(graph, options_for("heap", 1));
+    auto probe = build_plan(graph, options_for(AllocatorKind::Heap, 1));
     ASSERT_TRUE(probe.ok()) << probe.error().to_string();
     const uint64_t bytes = probe->resources[0].bytes;  // every resource has the same size
 
-    auto plan = build_plan(graph, options_for("heap", 4 * bytes));
+    auto plan = build_plan(graph, options_for(AllocatorKind::Heap, 4 * bytes));
     ASSERT_TRUE(plan.ok()) << plan.error().to_string();
     // 2,001 resources, four to a heap: 500 full heaps and one with a single resource.
     ASSERT_EQ(plan->heaps.size(), 501u);
@@ -176,7 +176,7 @@ TEST(Scale, TenThousandPassCycleIsNamedEdgeByEdge) {
         ASSERT_TRUE(graph.connect(port(numbered("p", i), "out"), port(numbered("p", (i + 1) % kPasses), "in")).ok());
     }
     ASSERT_TRUE(graph.mark_output(port("p0", "out")).ok());
-    auto plan = build_plan(graph, options_for("interval"));
+    auto plan = build_plan(graph, options_for(AllocatorKind::Interval));
     ASSERT_FALSE(plan.ok());
     const std::string& message = plan.error().message;
     EXPECT_EQ(message.rfind("cycle: p0 -> p1 -> p2 -> ", 0), 0u) << message.substr(0, 200);
@@ -202,7 +202,7 @@ TEST(Scale, HeapOffsetsThatOverflowAreAnErrorNotAWrap) {
     ASSERT_TRUE(graph.add_pass(Pass("a").output("x", small_texture()).output("y", small_texture())).ok());
     ASSERT_TRUE(graph.mark_output(port("a", "x")).ok());
     ASSERT_TRUE(graph.mark_output(port("a", "y")).ok());
-    PlanOptions options = options_for("heap");
+    PlanOptions options = options_for(AllocatorKind::Heap);
     options.memory_model = std::make_shared<HugeMemoryModel>();
     auto plan = build_plan(graph, options);
     // a.y cannot follow a.x in one heap (the offset would pass 2^64), so it gets a second
@@ -220,7 +220,7 @@ TEST(Scale, TenThousandPassChainStreamsTheSameJson) {
         ASSERT_TRUE(graph.connect(port(numbered("p", i - 1), "out"), port(numbered("p", i), "in")).ok());
     }
     ASSERT_TRUE(graph.mark_output(port(numbered("p", kPasses - 1), "out")).ok());
-    auto plan = build_plan(graph, options_for("interval"));
+    auto plan = build_plan(graph, options_for(AllocatorKind::Interval));
     ASSERT_TRUE(plan.ok()) << plan.error().to_string();
     EXPECT_EQ(plan->order.size(), kPasses);
     EXPECT_EQ(plan->resources.size(), kPasses);

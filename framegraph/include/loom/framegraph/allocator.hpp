@@ -1,7 +1,7 @@
 #pragma once
 // Allocators decide which logical resources share which physical texture (and, for APIs that
 // can alias memory, where each texture lives inside a heap). They all see the same problem
-// and are selectable by name:
+// and are chosen by AllocatorKind in C++ (a name in graph files and on command lines):
 //   "paper"    — the port colouring of Hafner (ELS 2019) §6.2, the reference;
 //   "interval" — interval-graph colouring per spec class: for the given order, the fewest
 //                textures (the peak number of live resources of each class);
@@ -19,6 +19,24 @@
 #include "loom/rhi/result.hpp"
 
 namespace loom::fg {
+
+/// The allocators loom has, as C++ chooses them (PlanOptions::allocator): a misspelt kind does
+/// not compile, where a misspelt name is found only when it is parsed.
+enum class AllocatorKind : uint8_t {
+    Paper,     ///< "paper"
+    Interval,  ///< "interval"
+    Heap,      ///< "heap"
+};
+
+/// The name graph files, command lines and Plan::allocator use: "paper", "interval", "heap".
+std::string_view allocator_name(AllocatorKind kind);
+
+/// The kind called `name`; an InvalidArgument error quotes the value and lists the known names.
+/// For names that come from users (command lines, settings files).
+Result<AllocatorKind> parse_allocator(std::string_view name);
+
+/// Every kind, in the order of allocator_names().
+std::span<const AllocatorKind> allocator_kinds();
 
 /// A scheduled pass as an allocator sees it: resource indices, each list in port order.
 struct AllocationPass {
@@ -55,7 +73,7 @@ struct Allocation {
     std::vector<uint64_t> heap_sizes;
 };
 
-/// Assigns physical textures (or heap offsets) to the resources of a plan; implementations are chosen by name (make_allocator).
+/// Assigns physical textures (or heap offsets) to the resources of a plan; implementations are chosen by kind (make_allocator).
 class Allocator {
 public:
     /// Allocators are used through this interface.
@@ -70,7 +88,10 @@ public:
 /// "paper", "interval", "heap".
 std::span<const std::string_view> allocator_names();
 
-/// The allocator called `name`; an InvalidArgument error lists the known names.
+/// The allocator of that kind.
+std::unique_ptr<Allocator> make_allocator(AllocatorKind kind);
+
+/// The allocator called `name`; an InvalidArgument error lists the known names (parse_allocator).
 Result<std::unique_ptr<Allocator>> make_allocator(std::string_view name);
 
 }  // namespace loom::fg
