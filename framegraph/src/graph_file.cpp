@@ -645,25 +645,57 @@ private:
 
 }  // namespace
 
+namespace {
+
+bool equals_ignoring_case(std::string_view a, std::string_view lower) {
+    return a.size() == lower.size() && std::equal(a.begin(), a.end(), lower.begin(), [](char x, char y) {
+               return std::tolower(static_cast<unsigned char>(x)) == static_cast<unsigned char>(y);
+           });
+}
+
+// Every rhi format name in lower case, in rhi::all_formats() order: made once, because a graph
+// file names a format on every port, and lower-casing every known name for every port cost
+// some sixty allocations per port.
+const std::vector<std::pair<std::string, rhi::Format>>& lowercase_format_names() {
+    static const auto names = [] {
+        std::vector<std::pair<std::string, rhi::Format>> out;
+        for (rhi::Format format : rhi::all_formats()) out.emplace_back(lowercase(rhi::format_name(format)), format);
+        return out;
+    }();
+    return names;
+}
+
+}  // namespace
+
 std::optional<rhi::Format> parse_format_alias(std::string_view name) {
     if (auto exact = rhi::parse_format(name)) return exact;
     static constexpr std::array<std::pair<std::string_view, rhi::Format>, 6> kDepth{{
-        {"D16", rhi::Format::Depth16},
-        {"D24", rhi::Format::Depth24},
-        {"D32F", rhi::Format::Depth32F},
-        {"D24S8", rhi::Format::Depth24Stencil8},
-        {"D32FS8", rhi::Format::Depth32FStencil8},
-        {"S8", rhi::Format::Stencil8},
+        {"d16", rhi::Format::Depth16},
+        {"d24", rhi::Format::Depth24},
+        {"d32f", rhi::Format::Depth32F},
+        {"d24s8", rhi::Format::Depth24Stencil8},
+        {"d32fs8", rhi::Format::Depth32FStencil8},
+        {"s8", rhi::Format::Stencil8},
     }};
-    const std::string wanted = lowercase(name);
     for (const auto& [alias, format] : kDepth) {
-        if (lowercase(alias) == wanted) return format;
+        if (equals_ignoring_case(name, alias)) return format;
     }
-    std::vector<std::string> candidates{wanted, wanted + "unorm"};
-    if (!wanted.empty() && wanted.back() == 'f') candidates.push_back(wanted.substr(0, wanted.size() - 1) + "float");
-    for (rhi::Format format : rhi::all_formats()) {
-        const std::string known = lowercase(rhi::format_name(format));
-        if (std::find(candidates.begin(), candidates.end(), known) != candidates.end()) return format;
+    // The first format whose name, ignoring case, is the name itself, the name + "unorm", or
+    // (for a trailing 'f') the name with "float" for the 'f'; compared in place, no copies.
+    constexpr std::string_view kUnorm = "unorm";
+    constexpr std::string_view kFloat = "float";
+    const bool trailing_f = !name.empty() && std::tolower(static_cast<unsigned char>(name.back())) == 'f';
+    const std::string_view without_f = trailing_f ? name.substr(0, name.size() - 1) : std::string_view();
+    for (const auto& [known_name, format] : lowercase_format_names()) {
+        const std::string_view known = known_name;
+        if (equals_ignoring_case(name, known)) return format;
+        if (known.ends_with(kUnorm) && equals_ignoring_case(name, known.substr(0, known.size() - kUnorm.size()))) {
+            return format;
+        }
+        if (trailing_f && known.ends_with(kFloat) &&
+            equals_ignoring_case(without_f, known.substr(0, known.size() - kFloat.size()))) {
+            return format;
+        }
     }
     return std::nullopt;
 }

@@ -6,6 +6,8 @@
 // BM_EngineFrame plans the three engine frames of samples/plan/graphs with each allocator.
 // BM_PlanOrder and BM_EngineFrameOrder plan the same graphs in declared and in memory order
 // (PassOrder): the cost of the memory order's search (docs/BENCHMARKS.md, "Pass order").
+// BM_LoadGraphJson parses the JSON text of the compile benchmark's layered graphs
+// (compile_graph.hpp) into a FrameGraph, without planning (issue 16: 10,000 passes in 30 ms).
 //
 //   loom_framegraph_bench [--corpus=N] [google benchmark flags]
 //
@@ -21,7 +23,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include "compile_graph.hpp"
 #include "loom/framegraph/framegraph.hpp"
+#include "loom/framegraph/graph_file.hpp"
 #include "random_graph.hpp"
 
 namespace {
@@ -375,8 +379,63 @@ void BM_ScalePlanJson(benchmark::State& state) {
     state.SetComplexityN(passes);
 }
 
+// The graph file of make_compile_graph(passes): pass p<i> with inputs i0.. (connected to the
+// outputs they read) and outputs o0/o1 in one of three formats at full or half the frame size;
+// the last layer has side effects. Written the way a tool or a person writes graph files, one
+// object per port with its own keys.
+std::string layered_graph_json(uint32_t passes) {
+    static constexpr const char* kFormats[] = {"RGBA16F", "RGBA8", "R32F"};
+    const loom::bench::CompileGraph graph = loom::bench::make_compile_graph(passes);
+    std::string text = "{\"frame\": {\"width\": 1920, \"height\": 1080},\n \"passes\": [";
+    std::string connections;
+    for (uint32_t index = 0; index < graph.passes.size(); ++index) {
+        const loom::bench::CompilePass& pass = graph.passes[index];
+        const std::string name = std::to_string(index);
+        text += index == 0 ? "\n  " : ",\n  ";
+        text += "{\"name\": \"p" + name + "\"";
+        if (pass.read_count > 0) {
+            text += ", \"inputs\": [";
+            for (uint32_t r = 0; r < pass.read_count; ++r) {
+                const loom::bench::CompileTexture& read = graph.textures[graph.reads[pass.first_read + r]];
+                text += (r == 0 ? "" : ", ") + std::string("{\"name\": \"i") + std::to_string(r) + "\"}";
+                connections += connections.empty() ? "\n  " : ",\n  ";
+                connections += "[\"p" + std::to_string(read.pass) + ".o" + std::to_string(read.output) + "\", \"p" + name + ".i" +
+                               std::to_string(r) + "\"]";
+            }
+            text += "]";
+        }
+        text += ", \"outputs\": [";
+        for (uint32_t o = 0; o < pass.create_count; ++o) {
+            const loom::bench::CompileTexture& created = graph.textures[pass.first_texture + o];
+            text += (o == 0 ? "" : ", ") + std::string("{\"name\": \"o") + std::to_string(o) + "\", \"format\": \"" +
+                    kFormats[created.format] + "\", \"scale\": " + (created.halved ? "0.5" : "1.0") + "}";
+        }
+        text += "]";
+        if (pass.side_effect) text += ", \"side_effect\": true";
+        text += "}";
+    }
+    text += "],\n \"connections\": [" + connections + "]}\n";
+    return text;
+}
+
+void BM_LoadGraphJson(benchmark::State& state) {
+    const auto passes = static_cast<uint32_t>(state.range(0));
+    const std::string text = layered_graph_json(passes);
+    for (auto _ : state) {
+        auto file = parse_graph_json(text, "layered.json");
+        // A graph that does not load would make the timing meaningless: stop loudly.
+        if (!file || file->graph.pass_count() != passes) std::abort();
+        benchmark::DoNotOptimize(file->graph);
+    }
+    state.counters["per_pass"] = benchmark::Counter(passes, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["json_bytes"] = static_cast<double>(text.size());
+    state.SetBytesProcessed(static_cast<int64_t>(text.size()) * state.iterations());
+    state.SetComplexityN(passes);
+}
+
 }  // namespace
 
+BENCHMARK(BM_LoadGraphJson)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK_CAPTURE(BM_BuildAndPlan, paper, AllocatorKind::Paper)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK_CAPTURE(BM_BuildAndPlan, interval, AllocatorKind::Interval)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
 BENCHMARK_CAPTURE(BM_BuildAndPlan, heap, AllocatorKind::Heap)->RangeMultiplier(10)->Range(100, 10000)->Unit(benchmark::kMillisecond)->Complexity();
