@@ -167,4 +167,21 @@ Status write_input_file(const std::filesystem::path& path, const fg::Plan& plan,
     return {};
 }
 
+Status write_executor_input(const std::filesystem::path& path, const fg::Executor& executor, const fg::FrameGraph& graph,
+                            const fg::PlanOptions& options, std::string source) {
+    const auto plan = executor.plan();
+    if (!plan || !executor.schedule()) {
+        return make_error(ErrorCode::InvalidState, "no frame was executed: nothing to write to " + path.string());
+    }
+    RunRecord run;
+    run.source = std::move(source);
+    run.schedule = executor.schedule();
+    run.timings = executor.timings();
+    run.allocations = executor.stats();
+    auto allocators = compare_allocators(graph, options);
+    if (!allocators) return allocators.take_error();
+    run.allocators = std::move(*allocators);
+    return write_input_file(path, *plan, run);
+}
+
 }  // namespace loom::inspect

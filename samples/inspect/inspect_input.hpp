@@ -55,4 +55,11 @@ void write_input(std::ostream& out, const fg::Plan& plan, const RunRecord& run);
 /// write_input into the file `path`; Io error naming the file when it cannot be written.
 Status write_input_file(const std::filesystem::path& path, const fg::Plan& plan, const RunRecord& run);
 
+/// The inspector input of `executor`'s latest frame into `path`: its plan, schedule, per-pass
+/// timings and what it created, with every allocator's figures for `graph` planned with
+/// `options` (the options the frame was planned with; the allocator is replaced). InvalidState
+/// before the first frame; planning errors of the comparison; Io naming the file.
+Status write_executor_input(const std::filesystem::path& path, const fg::Executor& executor, const fg::FrameGraph& graph,
+                            const fg::PlanOptions& options, std::string source);
+
 }  // namespace loom::inspect

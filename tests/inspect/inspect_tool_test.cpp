@@ -127,4 +127,40 @@ TEST(InspectTool, BadArgumentsAreArgumentErrors) {
     EXPECT_NE(allocator.err.find("nope"), std::string::npos) << allocator.err;
 }
 
+// The input a rendering sample writes: the plan of the frame it rendered with the schedule, a
+// timing per pass, what the executor created and every allocator's figures; loom-inspect reads it.
+void check_sample_input(const std::string& program, const std::string& arguments) {
+    const auto dir = test_dir();
+    const ToolRun rendered = run(program, "--backend gl --out " + quoted(dir / "out") + " --inspect " + quoted(dir / "in.json") + " " + arguments);
+    ASSERT_EQ(rendered.status, 0) << rendered.err;
+    const auto input = nlohmann::json::parse(read_file(dir / "in.json"));
+    const auto& passes = input.at("plan").at("passes");
+    EXPECT_EQ(input.at("schedule").size(), passes.size());
+    ASSERT_EQ(input.at("timings").size(), passes.size());
+    for (std::size_t i = 0; i < passes.size(); ++i) EXPECT_EQ(input.at("timings")[i].at("pass"), passes[i].at("name"));
+    EXPECT_GT(input.at("allocations").at("textures"), 0);
+    EXPECT_EQ(input.at("allocators").size(), 3u);
+    EXPECT_NE(input.at("source").get<std::string>().find(" on gl, "), std::string::npos) << input.at("source");
+    // The same plan the sample wrote as plan.json.
+    EXPECT_EQ(input.at("plan"), nlohmann::json::parse(read_file(dir / "out" / "plan.json")));
+    const ToolRun made = run(LOOM_INSPECT_TOOL, quoted(dir / "in.json") + " --out " + quoted(dir / "page.html"));
+    EXPECT_EQ(made.status, 0) << made.err;
+}
+
+TEST(InspectTool, DeferredSampleWritesItsFramesInput) {
+#ifdef LOOM_DEFERRED_EXE
+    check_sample_input(LOOM_DEFERRED_EXE, "--size 64x48");
+#else
+    GTEST_SKIP() << "loom-deferred is not built (LOOM_WITH_GLTF=OFF)";
+#endif
+}
+
+TEST(InspectTool, EngineSampleWritesItsFramesInput) {
+#ifdef LOOM_ENGINE_EXE
+    check_sample_input(LOOM_ENGINE_EXE, "--size 128x96 --shadow-size 256 --lights 32");
+#else
+    GTEST_SKIP() << "loom-engine is not built (LOOM_WITH_GLTF=OFF)";
+#endif
+}
+
 }  // namespace

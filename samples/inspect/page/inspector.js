@@ -37,7 +37,11 @@
 
   function main() {
     phases.before_script = Math.round(performance.now());
-    const input = timed("parse", () => JSON.parse(document.getElementById("loom-input").textContent));
+    const data = document.getElementById("loom-input");
+    const input = timed("parse", () => JSON.parse(data.textContent));
+    // The parsed objects are all the page needs: dropping the text keeps one copy of a large
+    // plan in memory instead of two (the file itself still holds it: view the page's source).
+    data.textContent = "";
     model = timed("model", () => buildModel(input));
     document.getElementById("title").textContent = document.title.replace(/^loom inspector: /, "");
     writeSubtitle();
@@ -77,7 +81,13 @@
 
   function buildModel(input) {
     const plan = input.plan;
-    const passes = plan.passes.map((pass, index) => Object.assign({ index: index, culled: false }, pass));
+    // The plan's own objects, with their position added (no copies: a large plan has tens of
+    // thousands of them).
+    const passes = plan.passes;
+    passes.forEach((pass, index) => {
+      pass.index = index;
+      pass.culled = false;
+    });
     const culled = plan.culled.map((name) => ({ name: name, index: -1, culled: true, ports: [] }));
     const passByName = new Map();
     const portOwner = new Map();
@@ -87,7 +97,8 @@
     }
     for (const pass of culled) passByName.set(pass.name, pass);
 
-    const resources = plan.resources.map((resource, index) => Object.assign({ index: index }, resource));
+    const resources = plan.resources;
+    resources.forEach((resource, index) => { resource.index = index; });
     const resourceByName = new Map(resources.map((r) => [r.name, r]));
     const edges = [];
     for (const edge of plan.edges) {
@@ -665,23 +676,24 @@
   }
 
   // Two resources overlap when they hold the same bytes of a band at the same position in the
-  // order: an allocator bug, drawn in red. Rectangles sorted by offset: each is compared with
-  // the following ones that start inside it.
+  // order: an allocator bug, drawn in red. A sweep along the order: each rectangle is compared
+  // only with those still alive where it starts (few, unless many resources live at once).
   function checkOverlaps(bands) {
     let overlaps = 0;
     const examples = [];
     for (const band of bands) {
-      const rects = band.rects.slice().sort((a, b) => a.offset - b.offset || a.first - b.first);
-      for (let i = 0; i < rects.length; ++i) {
-        const a = rects[i];
-        for (let j = i + 1; j < rects.length && rects[j].offset < a.offset + a.bytes; ++j) {
-          const b = rects[j];
-          if (a.first <= b.last && b.first <= a.last) {
-            a.overlap = b.overlap = true;
+      const rects = band.rects.slice().sort((a, b) => a.first - b.first);
+      let alive = [];
+      for (const rect of rects) {
+        alive = alive.filter((other) => other.last >= rect.first);
+        for (const other of alive) {
+          if (rect.offset < other.offset + other.bytes && other.offset < rect.offset + rect.bytes) {
+            rect.overlap = other.overlap = true;
             overlaps += 1;
-            if (examples.length < 3) examples.push(a.resource.name + " and " + b.resource.name);
+            if (examples.length < 3) examples.push(other.resource.name + " and " + rect.resource.name);
           }
         }
+        alive.push(rect);
       }
     }
     return { overlaps: overlaps, examples: examples };
@@ -768,7 +780,8 @@
     out.dataset.rectangles = String(model.rectCount);
     if (check.overlaps) {
       out.className = "bad";
-      out.textContent = "Check: " + check.overlaps + " pairs of resources share bytes at the same time (" + check.examples.join("; ") + "), outlined in red.";
+      out.textContent = "Check: " + check.overlaps + (check.overlaps === 1 ? " pair of resources shares" : " pairs of resources share") +
+        " bytes at the same time (" + check.examples.join("; ") + "), outlined in red.";
     } else {
       out.className = "good";
       out.textContent = "Check: no two of the " + model.rectCount + " rectangles share bytes at the same time.";
