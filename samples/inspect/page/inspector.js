@@ -165,6 +165,10 @@
     return (unit === 0 ? String(value) : value.toFixed(1)) + " " + units[unit];
   }
 
+  function plural(count, noun) {
+    return count + " " + noun + (count === 1 ? "" : "s");
+  }
+
   function formatMs(ms) {
     return ms === null || ms === undefined ? "–" : ms.toFixed(3);
   }
@@ -281,25 +285,26 @@
   function writeMemoryBars() {
     const plan = model.plan;
     const summary = plan.summary;
-    const rows = [{ key: "naive", label: "naive", bytes: summary.naive_bytes, note: summary.naive_textures + " textures, one per resource" }];
+    const rows = [{ key: "naive", label: "naive", bytes: summary.naive_bytes, note: plural(summary.naive_textures, "texture") + " and " + plural(summary.naive_buffers || 0, "buffer") + ", one per resource" }];
     const allocators = model.input.allocators || [];
     if (allocators.length) {
       for (const row of allocators) {
         if (row.refused !== undefined) {
           rows.push({ key: row.allocator, label: row.allocator, bytes: null, note: "refuses: " + row.refused });
         } else {
-          rows.push({ key: row.allocator, label: row.allocator, bytes: row.bytes, note: row.textures + " textures, " + row.buffers + " buffers" });
+          rows.push({ key: row.allocator, label: row.allocator, bytes: row.bytes, note: plural(row.textures, "texture") + ", " + plural(row.buffers, "buffer") });
         }
       }
     } else {
-      rows.push({ key: plan.allocator, label: plan.allocator, bytes: summary.bytes, note: summary.textures + " textures, " + summary.buffers + " buffers" });
+      rows.push({ key: plan.allocator, label: plan.allocator, bytes: summary.bytes, note: plural(summary.textures, "texture") + ", " + plural(summary.buffers, "buffer") });
     }
     rows.push({ key: "lower-bound", label: "lower bound", bytes: summary.lower_bound_bytes, note: "the peak of live bytes over the order" });
     const created = model.input.allocations;
     if (created) {
       const bytes = (created.heap_bytes || 0) + (created.texture_bytes || 0) + (created.buffer_bytes || 0);
       rows.push({ key: "device", label: "device", bytes: bytes,
-        note: "created: " + (created.textures || 0) + " textures (" + (created.placed_textures || 0) + " placed), " + (created.heaps || 0) + " heaps" });
+        note: "created: " + plural(created.textures || 0, "texture") + " (" + (created.placed_textures || 0) + " placed), " +
+          plural(created.buffers || 0, "buffer") + ", " + plural(created.heaps || 0, "heap") });
     }
     const most = Math.max(1, ...rows.map((row) => row.bytes || 0));
     const html = rows.map((row) => {
