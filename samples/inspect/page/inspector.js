@@ -50,6 +50,7 @@
     timed("graph", () => { views.graph = new CanvasView(document.getElementById("graph-view"), graphView()); });
     timed("lifetimes", () => { views.lifetimes = new CanvasView(document.getElementById("lifetime-view"), lifetimeView()); });
     timed("memory_map", () => { views.memory = new CanvasView(document.getElementById("memory-view"), memoryView()); });
+    wireZoom(views.graph);
     writeOverlapCheck();
     writeLegend();
     // The lists measured their height before the views below them were laid out.
@@ -376,8 +377,8 @@
     container.appendChild(this.canvas);
     container.appendChild(this.scroller);
     if (spec.height && spec.fitHeight) container.style.height = Math.min(spec.height + 20, spec.fitHeight) + "px";
-    this.sizer.style.width = spec.width + "px";
-    this.sizer.style.height = spec.height + "px";
+    this.scale = 1;
+    this.resize();
     let pending = false;
     const later = () => {
       if (pending) return;
@@ -392,7 +393,8 @@
     window.addEventListener("resize", later);
     this.scroller.addEventListener("click", (event) => {
       const box = this.scroller.getBoundingClientRect();
-      spec.click(event.clientX - box.left + this.scroller.scrollLeft, event.clientY - box.top + this.scroller.scrollTop);
+      spec.click((event.clientX - box.left + this.scroller.scrollLeft) / this.scale,
+        (event.clientY - box.top + this.scroller.scrollTop) / this.scale);
     });
     this.render();
   }
@@ -410,18 +412,54 @@
     const ctx = this.canvas.getContext("2d");
     ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
     ctx.clearRect(0, 0, width, height);
-    const x = this.scroller.scrollLeft;
-    const y = this.scroller.scrollTop;
+    // Drawing units: the scroll position and the view's size divided by the zoom.
+    const x = this.scroller.scrollLeft / this.scale;
+    const y = this.scroller.scrollTop / this.scale;
+    ctx.scale(this.scale, this.scale);
     ctx.translate(-x, -y);
-    this.spec.draw(ctx, { x: x, y: y, w: width, h: height });
+    this.spec.draw(ctx, { x: x, y: y, w: width / this.scale, h: height / this.scale });
   };
 
-  // Brings content point (x, y) into view, if it is not.
+  CanvasView.prototype.resize = function () {
+    this.sizer.style.width = Math.ceil(this.spec.width * this.scale) + "px";
+    this.sizer.style.height = Math.ceil(this.spec.height * this.scale) + "px";
+  };
+
+  // Zooms to `scale`, keeping the drawing point at the view's centre where it was.
+  CanvasView.prototype.zoom = function (scale) {
+    const s = this.scroller;
+    const cx = (s.scrollLeft + s.clientWidth / 2) / this.scale;
+    const cy = (s.scrollTop + s.clientHeight / 2) / this.scale;
+    this.scale = scale;
+    this.resize();
+    s.scrollLeft = Math.max(0, cx * scale - s.clientWidth / 2);
+    s.scrollTop = Math.max(0, cy * scale - s.clientHeight / 2);
+    this.render();
+  };
+
+  // The zoom at which the whole drawing fits the view, at most 1.
+  CanvasView.prototype.fitScale = function () {
+    return Math.min(1, this.scroller.clientWidth / this.spec.width, this.scroller.clientHeight / this.spec.height);
+  };
+
+  // Brings drawing point (x, y) into view, if it is not.
   CanvasView.prototype.reveal = function (x, y) {
+    x *= this.scale;
+    y *= this.scale;
     const s = this.scroller;
     if (x < s.scrollLeft || x > s.scrollLeft + s.clientWidth - 40) s.scrollLeft = Math.max(0, x - s.clientWidth / 3);
     if (y < s.scrollTop || y > s.scrollTop + s.clientHeight - 20) s.scrollTop = Math.max(0, y - s.clientHeight / 3);
   };
+
+  // The graph's zoom buttons: out and in by halves (down to a box a few pixels wide), or the
+  // whole graph in view.
+  function wireZoom(view) {
+    const smallest = 0.02;
+    const set = (scale) => view.zoom(Math.max(smallest, Math.min(2, scale)));
+    document.getElementById("zoom-out").addEventListener("click", () => set(view.scale / 2));
+    document.getElementById("zoom-in").addEventListener("click", () => set(view.scale * 2));
+    document.getElementById("zoom-fit").addEventListener("click", () => set(view.fitScale()));
+  }
 
   function fitText(ctx, text, width) {
     if (ctx.measureText(text).width <= width) return text;
@@ -538,8 +576,11 @@
         ctx.strokeRect(at.x + 1, at.y + 1, NODE_W - 2, NODE_H - 2);
         ctx.setLineDash([]);
       }
-      ctx.fillStyle = "#fff";
-      ctx.fillText(fitText(ctx, pass.name, NODE_W - 12), at.x + 6, at.y + NODE_H / 2);
+      // Names only where they can be read; zoomed far out the boxes and edges are the picture.
+      if (views.graph === undefined || views.graph.scale >= 0.4) {
+        ctx.fillStyle = "#fff";
+        ctx.fillText(fitText(ctx, pass.name, NODE_W - 12), at.x + 6, at.y + NODE_H / 2);
+      }
       ctx.globalAlpha = 1;
     }
 
