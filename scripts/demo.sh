@@ -3,8 +3,9 @@
 # pipeline) and the engine frame (samples/engine: prepass, hierarchical Z, light list, shadow
 # cascades, async SSAO, bloom) headless on every compiled-in backend and writes their pictures
 # under OUT: OUT/deferred-<backend>/ and OUT/engine-<backend>/ each hold final.png, every
-# intermediate texture, plan.json, plan.dot, summary.txt and, with Graphviz installed,
-# plan.svg. Usage: scripts/demo.sh BUILD_DIR OUT_DIR
+# intermediate texture, plan.json, plan.dot, summary.txt, inspect.html (the frame inspector,
+# docs/inspector.md: open it in a browser) with the inspect.json it was made from and, with
+# Graphviz installed, plan.svg. Usage: scripts/demo.sh BUILD_DIR OUT_DIR
 set -euo pipefail
 build=${1:?build directory}
 out=${2:?output directory}
@@ -20,7 +21,8 @@ fi
 
 sample="$build/samples/deferred/loom-deferred"
 engine="$build/samples/engine/loom-engine"
-for program in "$sample" "$engine"; do
+inspect="$build/samples/inspect/loom-inspect"
+for program in "$sample" "$engine" "$inspect"; do
   if [[ ! -x "$program" ]]; then
     echo "demo: $program was not built (LOOM_BUILD_SAMPLES=OFF?)" >&2
     exit 1
@@ -28,11 +30,13 @@ for program in "$sample" "$engine"; do
 done
 
 for b in "${backends[@]}"; do
-  "$sample" --backend "$b" --out "$out/deferred-$b"
-  "$engine" --backend "$b" --out "$out/engine-$b"
+  "$sample" --backend "$b" --out "$out/deferred-$b" --inspect "$out/deferred-$b/inspect.json"
+  "$engine" --backend "$b" --out "$out/engine-$b" --inspect "$out/engine-$b/inspect.json"
+  "$inspect" "$out/deferred-$b/inspect.json" --title "loom-deferred ($b)" --out "$out/deferred-$b/inspect.html"
+  "$inspect" "$out/engine-$b/inspect.json" --title "loom-engine ($b)" --out "$out/engine-$b/inspect.html"
   if command -v dot >/dev/null 2>&1; then
     dot -Tsvg "$out/deferred-$b/plan.dot" -o "$out/deferred-$b/plan.svg"
     dot -Tsvg "$out/engine-$b/plan.dot" -o "$out/engine-$b/plan.svg"
   fi
 done
-echo "demo: pictures written under $out/deferred-*/ and $out/engine-*/ (final.png, every intermediate, plan.json/.dot/.svg per backend)"
+echo "demo: pictures written under $out/deferred-*/ and $out/engine-*/ (final.png, every intermediate, plan.json/.dot/.svg and inspect.html per backend)"

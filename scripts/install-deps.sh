@@ -43,6 +43,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # Graphviz renders the plan DOT pictures (make demo; the DOT export tests)
   graphviz
+  # headless Chromium opens the inspector's pages in its tests (tests/inspect, docs/inspector.md)
+  chromium
 )
 
 # make fuzz: libFuzzer and the sanitizer runtimes come with Debian 12's clang 14.

@@ -23,6 +23,7 @@
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/image.hpp"
 #include "loom/sample_common/options.hpp"
+#include "inspect_input.hpp"
 #include "procedural_scene.hpp"
 #include "soak.hpp"
 #include "soak_plot.hpp"
@@ -50,6 +51,8 @@ struct Options {
     uint64_t soak = 0;
     uint32_t resize_every = 100;
     uint32_t rebuild_every = 10;
+    /// --inspect FILE: the inspector input of the last frame (headless); empty: none.
+    std::filesystem::path inspect;
 };
 
 const char* kUsage =
@@ -72,7 +75,9 @@ std::string extra_help() {
            "                        lit pass toggled (deferred <-> forward) every --rebuild-every frames\n"
            "                        (default 10); writes soak.csv, soak.svg and soak.txt into --out DIR and\n"
            "                        fails unless the live GPU objects repeat exactly once warmed up\n"
-           "                        (docs/soak.md); N must exceed two periods (400 frames by default)\n";
+           "                        (docs/soak.md); N must exceed two periods (400 frames by default)\n"
+           "  --inspect FILE        also write the inspector input of the last frame (plan, barriers, timings,\n"
+           "                        allocations, every allocator's memory) for loom-inspect (docs/inspector.md)\n";
 }
 
 loom::Result<Options> parse(int argc, char** argv) {
@@ -122,6 +127,11 @@ loom::Result<Options> parse(int argc, char** argv) {
                                         "--pipeline expects deferred or forward, got '" + *v + "'");
             }
             options.forward = *v == "forward";
+        } else if (name == "--inspect") {
+            auto v = take();
+            if (!v) return v.take_error();
+            if (v->empty()) return loom::make_error(loom::ErrorCode::InvalidArgument, "--inspect needs a file");
+            options.inspect = *v;
         } else if (name == "--scene") {
             auto v = take();
             if (!v) return v.take_error();
@@ -139,6 +149,9 @@ loom::Result<Options> parse(int argc, char** argv) {
         } else {
             return args.unknown();
         }
+    }
+    if (!options.inspect.empty() && (options.common.window || options.soak != 0)) {
+        return loom::make_error(loom::ErrorCode::InvalidArgument, "--inspect writes the headless frame's input (leave out --window and --soak)");
     }
     if (options.camera && options.scene.empty()) {
         return loom::make_error(loom::ErrorCode::InvalidArgument, "--camera needs a glTF scene (--scene FILE)");
@@ -422,8 +435,20 @@ int run_headless(const Options& options) {
     if (auto status = write_text(dir / "plan.dot", fg::plan_to_dot(*plan)); !status) return fail(status.error());
     const std::string text = summary(**pipeline, (*pipeline)->executor(), dev, options, scene_line);
     if (auto status = write_text(dir / "summary.txt", text); !status) return fail(status.error());
+    if (!options.inspect.empty()) {
+        // Compared on the options the frame was planned with, so the figures match the plan's.
+        fg::PlanOptions planned = (*pipeline)->executor().effective_options((*pipeline)->options());
+        planned.frame = plan->frame;
+        const std::string source = std::string(kName) + " on " + std::string(rhi::backend_name(dev.backend())) + ", " +
+                                   dev.capabilities().device_name;
+        if (auto status = inspect::write_executor_input(options.inspect, (*pipeline)->executor(), (*pipeline)->graph(), planned, source);
+            !status) {
+            return fail(status.error());
+        }
+    }
     std::printf("%s", text.c_str());
-    std::printf("wrote %zu pictures, plan.json, plan.dot and summary.txt to %s\n", written.size(), dir.string().c_str());
+    std::printf("wrote %zu pictures, plan.json, plan.dot and summary.txt to %s%s\n", written.size(), dir.string().c_str(),
+                options.inspect.empty() ? "" : (" and the inspector input to " + options.inspect.string()).c_str());
     return EXIT_SUCCESS;
 }
 

@@ -20,6 +20,7 @@
 #include "loom/image_io/image_io.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/sample_common/options.hpp"
+#include "inspect_input.hpp"
 
 namespace {
 
@@ -36,6 +37,8 @@ struct Options {
     uint64_t frames = 1;
     loom::engine::SceneSettings scene;
     loom::engine::FrameSettings frame;
+    /// --inspect FILE: the inspector input of the last frame (headless); empty: none.
+    std::filesystem::path inspect;
 };
 
 const char* kUsage =
@@ -54,7 +57,9 @@ std::string extra_help() {
            "  --allocator NAME      heap (default: aliasing in bytes), interval (whole textures), or paper\n"
            "                        (needs --async off)\n"
            "  --async on|off        SSAO on the async compute queue (default on; serial on one-queue devices)\n"
-           "  --shadow-size N       texels per side of each shadow cascade (default 1024)\n";
+           "  --shadow-size N       texels per side of each shadow cascade (default 1024)\n"
+           "  --inspect FILE        also write the inspector input of the last frame (plan, barriers, timings,\n"
+           "                        allocations, every allocator's memory) for loom-inspect (docs/inspector.md)\n";
 }
 
 loom::Result<uint64_t> number(const std::string& name, const std::string& text, uint64_t max) {
@@ -84,7 +89,7 @@ loom::Result<Options> parse(int argc, char** argv) {
     while (args.next()) {
         const std::string& name = args.name();
         const bool known = name == "--scene" || name == "--lights" || name == "--frames" || name == "--allocator" ||
-                           name == "--async" || name == "--shadow-size";
+                           name == "--async" || name == "--shadow-size" || name == "--inspect";
         if (!known) return args.unknown();
         auto v = args.value();
         if (!v) return v.take_error();
@@ -107,11 +112,17 @@ loom::Result<Options> parse(int argc, char** argv) {
         } else if (name == "--async") {
             if (*v != "on" && *v != "off") return loom::make_error(loom::ErrorCode::InvalidArgument, "--async expects on or off, got '" + *v + "'");
             options.frame.async_compute = *v == "on";
+        } else if (name == "--inspect") {
+            if (v->empty()) return loom::make_error(loom::ErrorCode::InvalidArgument, "--inspect needs a file");
+            options.inspect = *v;
         } else if (name == "--shadow-size") {
             auto n = number(name, *v, 16384);
             if (!n) return n.take_error();
             options.frame.shadow_size = static_cast<uint32_t>(*n);
         }
+    }
+    if (!options.inspect.empty() && options.common.window) {
+        return loom::make_error(loom::ErrorCode::InvalidArgument, "--inspect writes the headless frame's input (leave out --window)");
     }
     if (!options.common.window && options.frames == 0) {
         return loom::make_error(loom::ErrorCode::InvalidArgument, "--frames 0 only makes sense with --window");
@@ -275,9 +286,19 @@ int run_headless(const Options& options) {
     if (auto status = write_text(dir / "plan.dot", fg::plan_to_dot(*plan)); !status) return fail(status.error());
     const std::string text = summary(**frame, dev, options, size);
     if (auto status = write_text(dir / "summary.txt", text); !status) return fail(status.error());
+    if (!options.inspect.empty()) {
+        // Compared on the options the frame was planned with, as memory_report does.
+        const fg::PlanOptions planned = (*frame)->executor().effective_options((*frame)->plan_options(size));
+        const std::string source = std::string("loom-engine on ") + std::string(rhi::backend_name(dev.backend())) + ", " +
+                                   dev.capabilities().device_name;
+        if (auto status = inspect::write_executor_input(options.inspect, (*frame)->executor(), (*frame)->graph(), planned, source);
+            !status) {
+            return fail(status.error());
+        }
+    }
     std::printf("%s", text.c_str());
-    std::printf("wrote %zu pictures, intermediates.png, plan.json, plan.dot and summary.txt to %s\n", images->size(),
-                dir.string().c_str());
+    std::printf("wrote %zu pictures, intermediates.png, plan.json, plan.dot and summary.txt to %s%s\n", images->size(),
+                dir.string().c_str(), options.inspect.empty() ? "" : (" and the inspector input to " + options.inspect.string()).c_str());
     return EXIT_SUCCESS;
 }
 

@@ -1,8 +1,11 @@
 // loom-plan GRAPH.json [--allocator paper|interval|heap | --compare] [--sharing equal|joinable]
 //                      [--frame WxH] [--max-heap BYTES] [--order declared|memory] [--json] [--dot FILE]
+//                      [--inspect FILE]
 //
 // Plans a frame graph described in JSON and prints the plan: a readable table by default, or
-// one JSON object with --json. --dot also writes the plan as a Graphviz graph. --compare plans
+// one JSON object with --json. --dot also writes the plan as a Graphviz graph, --inspect the
+// inspector input (the plan, its barriers and every allocator's figures) that loom-inspect
+// turns into a page. --compare plans
 // with every allocator instead and prints their memory side by side with the naive figures and
 // the lower bound. --order picks the pass order (the graph file's "order" by default). Exit
 // status 0 on success, 1 for a bad graph or file, 2 for bad arguments; errors are one line on
@@ -18,6 +21,7 @@
 #include <vector>
 
 #include "loom/framegraph/framegraph.hpp"
+#include "inspect_input.hpp"
 #include "plan_arguments.hpp"
 
 namespace {
@@ -149,6 +153,20 @@ int main(int argc, char** argv) {
         std::ofstream dot(args.dot, std::ios::binary);
         loom::fg::write_plan_dot(dot, *plan);
         if (!dot) return fail(1, "Io: cannot write " + args.dot);
+    }
+    if (!args.inspect.empty()) {
+        loom::inspect::RunRecord run;
+        run.source = "loom-plan " + args.graph;
+        // A graph file binds no imports or histories: the schedule of the plan alone.
+        auto schedule = loom::fg::build_execution_schedule(*plan, {}, {});
+        if (!schedule) return fail(1, loom::fg::locate_in_graph_file(*file, schedule.take_error()).to_string());
+        run.schedule = &*schedule;
+        auto allocators = loom::inspect::compare_allocators(file->graph, args.options);
+        if (!allocators) return fail(1, loom::fg::locate_in_graph_file(*file, allocators.take_error()).to_string());
+        run.allocators = std::move(*allocators);
+        if (auto written = loom::inspect::write_input_file(args.inspect, *plan, run); !written) {
+            return fail(1, written.error().to_string());
+        }
     }
     if (args.json) {
         loom::fg::write_plan_json(std::cout, *plan);

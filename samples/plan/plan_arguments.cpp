@@ -41,7 +41,7 @@ Result<Arguments> parse_arguments(std::span<const std::string> argv) {
         } else if (arg == "--compare") {
             args.compare = true;
         } else if (arg == "--allocator" || arg == "--sharing" || arg == "--frame" || arg == "--max-heap" ||
-                   arg == "--order" || arg == "--dot") {
+                   arg == "--order" || arg == "--dot" || arg == "--inspect") {
             auto v = value();
             if (!v) return bad(std::string(arg) + " needs a value");
             if (arg == "--allocator") {
@@ -70,6 +70,8 @@ Result<Arguments> parse_arguments(std::span<const std::string> argv) {
                 if (!parse_number(*v, args.options.max_heap_bytes)) {
                     return bad("--max-heap must be a byte count, not '" + std::string(*v) + "'");
                 }
+            } else if (arg == "--inspect") {
+                args.inspect = std::string(*v);
             } else {
                 args.dot = std::string(*v);
             }
@@ -86,6 +88,7 @@ Result<Arguments> parse_arguments(std::span<const std::string> argv) {
     if (args.graph.empty() && !args.help) return bad("no graph file given; " + std::string(kUsage));
     if (args.compare && allocator_given) return bad("--compare plans with every allocator; leave out --allocator");
     if (args.compare && !args.dot.empty()) return bad("--compare prints figures, not one plan: leave out --dot");
+    if (args.compare && !args.inspect.empty()) return bad("--compare prints figures, not one plan: leave out --inspect");
     return args;
 }
 

@@ -15,7 +15,7 @@ namespace loom::plan {
 /// The one-line usage text (--help prints it; a missing graph file quotes it).
 inline constexpr std::string_view kUsage =
     "usage: loom-plan GRAPH.json [--allocator paper|interval|heap | --compare] [--sharing equal|joinable] "
-    "[--frame WxH] [--max-heap BYTES] [--order declared|memory] [--json] [--dot FILE]";
+    "[--frame WxH] [--max-heap BYTES] [--order declared|memory] [--json] [--dot FILE] [--inspect FILE]";
 
 /// What the command line asks for.
 struct Arguments {
@@ -31,6 +31,9 @@ struct Arguments {
     bool compare = false;
     /// --dot's file; empty: no DOT output.
     std::string dot;
+    /// --inspect's file: the inspector input for loom-inspect (the plan, its barriers and every
+    /// allocator's figures); empty: none.
+    std::string inspect;
 };
 
 /// "WxH" with each side in 1..fg::kMaxTextureExtent, or nullopt.

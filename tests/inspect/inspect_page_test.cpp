@@ -1,0 +1,204 @@
+// The inspector's pages opened in headless Chromium: the page's script must finish without an
+// error (the page writes data-status and data-errors on <body>) and show exactly the plan's
+// passes and resources, its timings, memory figures and the selected pass's barriers.
+#include <algorithm>
+#include <iostream>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "inspect_test_support.hpp"
+#include "loom_test/test_support.hpp"
+
+namespace {
+
+using namespace loom::inspect_test;
+using nlohmann::json;
+
+std::string graph(std::string_view name) { return quoted(std::filesystem::path(LOOM_PLAN_GRAPHS) / name); }
+
+// The part of the DOM from the element `id` to the end of its list (the lists are <ol>s).
+std::string_view list_of(std::string_view dom, std::string_view id) {
+    std::string_view from = from_element(dom, id);
+    return from.substr(0, from.find("</ol>"));
+}
+
+std::vector<std::string> names(const json& array, const char* key = nullptr) {
+    std::vector<std::string> out;
+    for (const json& item : array) out.push_back(key ? item.at(key).get<std::string>() : item.get<std::string>());
+    return out;
+}
+
+// Opens the page and checks that its script ran to the end without an error.
+std::string open_page(const std::string& chromium, const std::filesystem::path& page, std::string_view fragment) {
+    const ToolRun dom = dump_dom(chromium, page, fragment, page.parent_path());
+    EXPECT_EQ(dom.status, 0) << dom.err;
+    EXPECT_EQ(attribute_of(dom.out, "body", "data-status"), "ok") << from_element(dom.out, "errors").substr(0, 2000);
+    EXPECT_EQ(attribute_of(dom.out, "body", "data-errors"), "0");
+    return dom.out;
+}
+
+TEST(InspectPage, Figure2ShowsEveryPassResourceTimingAndAllocator) {
+    LOOM_REQUIRE_CHROMIUM(chromium);
+    const auto dir = test_dir();
+    const ToolRun plan_json = run(LOOM_PLAN_TOOL, graph("figure2.json") + " --json");
+    ASSERT_EQ(plan_json.status, 0) << plan_json.err;
+    const json plan = json::parse(plan_json.out);
+    // Timings as a sample records them; the deferred pass has no GPU time yet.
+    write_file(dir / "timings.json", R"([{"pass": "shadow", "cpu_ms": 0.25, "gpu_ms": 1.5},
+                                         {"pass": "geometry", "cpu_ms": 0.5, "gpu_ms": 2.0},
+                                         {"pass": "deferred", "cpu_ms": 0.125, "gpu_ms": null},
+                                         {"pass": "blur", "cpu_ms": 0.0625, "gpu_ms": 0.75},
+                                         {"pass": "composite", "cpu_ms": 0.03125, "gpu_ms": 0.5}])");
+    const ToolRun made = run(LOOM_INSPECT_TOOL, graph("figure2.json") + " --timings " + quoted(dir / "timings.json") +
+                                                    " --out " + quoted(dir / "figure2.html"));
+    ASSERT_EQ(made.status, 0) << made.err;
+
+    const std::string dom = open_page(chromium, dir / "figure2.html", "");
+    EXPECT_EQ(attribute_values(list_of(dom, "pass-list"), "data-pass"), names(plan.at("order")));
+    EXPECT_EQ(attribute_values(list_of(dom, "resource-list"), "data-resource"), names(plan.at("resources"), "name"));
+    const std::string_view timings = from_element(dom, "timing-table");
+    EXPECT_EQ(attribute_values(timings.substr(0, timings.find("</table>")), "data-timing"),
+              (std::vector<std::string>{"shadow", "geometry", "deferred", "blur", "composite"}));
+    const std::string_view memory = from_element(dom, "memory-bars");
+    const std::string_view bars = memory.substr(0, memory.find("</table>"));
+    EXPECT_EQ(attribute_values(bars, "data-memory"),
+              (std::vector<std::string>{"naive", "paper", "interval", "heap", "lower-bound"}));
+    EXPECT_EQ(attribute_values(bars, "data-bytes")[0], std::to_string(plan.at("summary").at("naive_bytes").get<uint64_t>()));
+    EXPECT_EQ(attribute_values(bars, "data-bytes")[2], std::to_string(plan.at("summary").at("bytes").get<uint64_t>()));
+    EXPECT_EQ(attribute_values(from_element(dom, "overlap-check").substr(0, 200), "data-overlaps"), std::vector<std::string>{"0"});
+}
+
+TEST(InspectPage, AsyncHeapFrameShowsTheSelectedPassesPortsAndBarriers) {
+    LOOM_REQUIRE_CHROMIUM(chromium);
+    const auto dir = test_dir();
+    const ToolRun planned = run(LOOM_PLAN_TOOL, graph("unreal_deferred_frame.json") + " --allocator heap --inspect " +
+                                                    quoted(dir / "input.json"));
+    ASSERT_EQ(planned.status, 0) << planned.err;
+    const json input = json::parse(read_file(dir / "input.json"));
+    const ToolRun made = run(LOOM_INSPECT_TOOL, quoted(dir / "input.json") + " --out " + quoted(dir / "frame.html"));
+    ASSERT_EQ(made.status, 0) << made.err;
+
+    // The first pass with barriers before and after it, if any, else before it.
+    const json& schedule = input.at("schedule");
+    std::size_t chosen = schedule.size();
+    for (std::size_t i = 0; i < schedule.size() && chosen == schedule.size(); ++i) {
+        if (!schedule[i].at("before").empty()) chosen = i;
+    }
+    ASSERT_LT(chosen, schedule.size()) << "the frame has no pass with barriers";
+    const json& entry = schedule[chosen];
+    const json& pass = input.at("plan").at("passes")[chosen];
+    const std::string name = pass.at("name");
+
+    const std::string dom = open_page(chromium, dir / "frame.html", "#pass=" + name);
+    const json& plan = input.at("plan");
+    EXPECT_EQ(attribute_values(list_of(dom, "pass-list"), "data-pass"), names(plan.at("order")));
+    EXPECT_EQ(attribute_values(list_of(dom, "resource-list"), "data-resource"), names(plan.at("resources"), "name"));
+    // The heap placements never share bytes at the same time.
+    EXPECT_EQ(attribute_values(from_element(dom, "overlap-check").substr(0, 200), "data-overlaps"), std::vector<std::string>{"0"});
+
+    const std::string_view details = from_element(dom, "details-body");
+    EXPECT_EQ(attribute_values(details.substr(0, details.find('>')), "data-selected"), std::vector<std::string>{"pass:" + name});
+    const std::string_view ports = from_element(details, "detail-ports");
+    EXPECT_EQ(attribute_values(ports.substr(0, ports.find("</table>")), "data-port"), names(pass.at("ports"), "name"));
+    const auto barriers = attribute_values(details.substr(0, details.find("</aside>")), "data-barrier");
+    const std::size_t before = entry.at("before").size() + entry.at("buffers_before").size();
+    const std::size_t after = entry.at("after").size() + entry.at("buffers_after").size();
+    EXPECT_EQ(std::count(barriers.begin(), barriers.end(), "before"), static_cast<long>(before));
+    EXPECT_EQ(std::count(barriers.begin(), barriers.end(), "after"), static_cast<long>(after));
+    // The first barrier as the schedule has it: its texture and state.
+    const std::string first = entry.at("before")[0].at("slot").get<std::string>() + " → " + entry.at("before")[0].at("state").get<std::string>();
+    EXPECT_NE(details.substr(0, details.find("</aside>")).find(first), std::string_view::npos) << first;
+}
+
+TEST(InspectPage, MemoryMapFlagsResourcesThatShareBytesAtOnce) {
+    LOOM_REQUIRE_CHROMIUM(chromium);
+    const auto dir = test_dir();
+    const ToolRun planned = run(LOOM_PLAN_TOOL, graph("figure2.json") + " --allocator heap --json");
+    ASSERT_EQ(planned.status, 0) << planned.err;
+    json plan = json::parse(planned.out);
+    // A broken placement: geometry.normal's texture moved onto geometry.position's bytes while
+    // both are alive (the G-buffer is written by one pass and read by the next).
+    const auto texture_of = [&](std::string_view name) -> json& {
+        for (const json& r : plan.at("resources")) {
+            if (r.at("name") == name) return plan.at("textures")[r.at("texture").get<std::size_t>()];
+        }
+        throw std::runtime_error("no resource " + std::string(name));
+    };
+    ASSERT_TRUE(texture_of("geometry.position").contains("offset"));
+    texture_of("geometry.normal")["offset"] = texture_of("geometry.position").at("offset");
+    write_file(dir / "broken.json", plan.dump());
+    const ToolRun made = run(LOOM_INSPECT_TOOL, quoted(dir / "broken.json") + " --out " + quoted(dir / "broken.html"));
+    ASSERT_EQ(made.status, 0) << made.err;
+
+    const std::string dom = open_page(chromium, dir / "broken.html", "");
+    const std::string_view check = from_element(dom, "overlap-check");
+    EXPECT_EQ(attribute_values(check.substr(0, 200), "data-overlaps"), std::vector<std::string>{"1"});
+    EXPECT_NE(check.substr(0, check.find("</span>")).find("geometry.position and geometry.normal"), std::string_view::npos)
+        << check.substr(0, 400);
+}
+
+// A chain of passes, every third one also reading the pass seven back, and one pass in a
+// hundred whose output nobody reads (culled): ten thousand passes that run.
+json big_graph(int passes) {
+    json list = json::array();
+    json connections = json::array();
+    for (int i = 0; i < passes; ++i) {
+        json pass = {{"name", "p" + std::to_string(i)},
+                     {"outputs", {{{"name", "out"}, {"format", "RGBA8"}, {"size", {16, 16}}}}}};
+        json inputs = json::array();
+        if (i > 0) {
+            inputs.push_back({{"name", "a"}});
+            connections.push_back({"p" + std::to_string(i - 1) + ".out", "p" + std::to_string(i) + ".a"});
+        }
+        if (i >= 7 && i % 3 == 0) {
+            inputs.push_back({{"name", "b"}});
+            connections.push_back({"p" + std::to_string(i - 7) + ".out", "p" + std::to_string(i) + ".b"});
+        }
+        if (!inputs.empty()) pass["inputs"] = inputs;
+        list.push_back(pass);
+    }
+    for (int i = 0; i < passes / 100; ++i) {
+        list.push_back({{"name", "unused" + std::to_string(i)},
+                        {"inputs", {{{"name", "in"}}}},
+                        {"outputs", {{{"name", "out"}, {"format", "RGBA8"}, {"size", {16, 16}}}}}});
+        connections.push_back({"p" + std::to_string(i * 50) + ".out", "unused" + std::to_string(i) + ".in"});
+    }
+    return {{"passes", list}, {"connections", connections}, {"outputs", {"p" + std::to_string(passes - 1) + ".out"}}};
+}
+
+TEST(InspectPage, TenThousandPassesOpen) {
+    LOOM_REQUIRE_CHROMIUM(chromium);
+    const auto dir = test_dir();
+    constexpr int kPasses = 10000;
+    write_file(dir / "big.json", big_graph(kPasses).dump());
+    // --no-compare: planning it three more times would only slow the test down.
+    const ToolRun made = run(LOOM_INSPECT_TOOL, quoted(dir / "big.json") + " --no-compare --out " + quoted(dir / "big.html"));
+    ASSERT_EQ(made.status, 0) << made.err;
+
+    const std::string last = "p" + std::to_string(kPasses - 1);
+    const std::string dom = open_page(chromium, dir / "big.html", "#pass=" + last);
+    const std::string_view count = from_element(dom, "pass-count");
+    EXPECT_TRUE(count.substr(count.find('>') + 1).starts_with(std::to_string(kPasses) + " + " + std::to_string(kPasses / 100) + " culled"))
+        << count.substr(0, 80);
+    // The list shows the rows in view: selecting the last pass scrolled it there.
+    const auto shown = attribute_values(list_of(dom, "pass-list"), "data-pass");
+    EXPECT_NE(std::find(shown.begin(), shown.end(), last), shown.end());
+    EXPECT_LT(shown.size(), 1000u) << "the list draws only the rows in view";
+    const std::string_view details = from_element(dom, "details-body");
+    EXPECT_EQ(attribute_values(details.substr(0, details.find('>')), "data-selected"), std::vector<std::string>{"pass:" + last});
+
+    // The time from navigation to the end of the page's script, as the page measured it:
+    // reported, and bounded only loosely (CI machines are slow and shared).
+    const auto load_ms = attribute_of(dom, "body", "data-load-ms");
+    ASSERT_TRUE(load_ms.has_value());
+    const double ms = std::stod(*load_ms);
+    std::cout << "inspector page of " << kPasses << " passes opened in " << ms << " ms; steps (ms): "
+              << attribute_of(dom, "body", "data-phases").value_or("?") << "\n";
+    ::testing::Test::RecordProperty("load_ms", *load_ms);
+    EXPECT_LT(ms, 20000.0);
+}
+
+}  // namespace
