@@ -4,7 +4,7 @@ PRESET ?= release
 JOBS ?= $(shell nproc)
 OUT ?= out
 
-.PHONY: demo test deps configure build asan asan-gpu-free fuzz clean
+.PHONY: demo test deps configure build asan asan-gpu-free fuzz draw-cost clean
 
 deps:
 	./scripts/install-deps.sh
@@ -38,6 +38,13 @@ fuzz:
 	./scripts/install-deps.sh --fuzz
 	cmake --preset fuzz
 	cmake --build --preset fuzz -j $(JOBS)
+
+# Instructions and heap allocations per draw, loom's RHI against raw GL and raw Vulkan doing the
+# same work, counted by callgrind (installed by install-deps.sh --bench); prints the table of
+# docs/BENCHMARKS.md, "The RHI per draw".
+draw-cost: build
+	./scripts/install-deps.sh --bench
+	python3 tests/bench/draw_cost/draw_cost.py build/$(PRESET)
 
 clean:
 	rm -rf build $(OUT)

@@ -5,6 +5,7 @@
 #   scripts/install-deps.sh           install what is missing
 #   scripts/install-deps.sh --list    print every package with "installed" or "missing"; install nothing
 #   scripts/install-deps.sh --fuzz    also the fuzzing toolchain (clang with libFuzzer; make fuzz)
+#   scripts/install-deps.sh --bench   also valgrind and Python (make draw-cost)
 #
 # Packages are installed with --no-install-recommends, so every package whose files loom's
 # build touches must be named here, even when another package's config file refers to it.
@@ -12,11 +13,13 @@ set -euo pipefail
 
 mode=install
 with_fuzz=0
+with_bench=0
 for arg in "$@"; do
   case $arg in
     --list) mode=list ;;
     --fuzz) with_fuzz=1 ;;
-    *) echo "install-deps: unknown option '$arg' (expected --list or --fuzz)" >&2; exit 2 ;;
+    --bench) with_bench=1 ;;
+    *) echo "install-deps: unknown option '$arg' (expected --list, --fuzz or --bench)" >&2; exit 2 ;;
   esac
 done
 
@@ -49,6 +52,8 @@ packages=(
 
 # make fuzz: libFuzzer and the sanitizer runtimes come with Debian 12's clang 14.
 (( with_fuzz )) && packages+=(clang-14 libclang-rt-14-dev)
+# make draw-cost: callgrind counts the instructions, a Python script splits them by object.
+(( with_bench )) && packages+=(valgrind python3)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -126,6 +126,29 @@ Status plan_framegraph_examples() {
                                                                "high_pass"},
                              "the composed pass has the port sets' ports in order"));
     }
+    {
+        using namespace fg;
+        fg::PlanOptions options;
+        // [docs:typed]
+        FrameGraph graph;
+        graph.reserve(3, 8);   // passes, and ports in all: no array grows while declaring
+        const PassId geometry = *graph.add_pass(Pass("geometry").output("albedo", TextureSpec::of(rhi::Format::RGBA8Unorm)));
+        // read() declares an input reading what a port writes and connects it when the pass is added:
+        // one step, no port name to invent (the input is called read0, read1, ... in its pass).
+        const PassId blur = *graph.add_pass(Pass("blur").read(port_of(geometry, 0)).output("out"));
+        const PassId composite = *graph.add_pass(Pass("composite").input("color").input("blurred").output("final"));
+        LOOM_TRY(graph.connect(port_of(geometry, 0), port_of(composite, 0)));   // by PortAddress
+        LOOM_TRY(graph.connect(port_of(blur, 1), port_of(composite, 1)));
+        LOOM_TRY(graph.mark_output(port_of(composite, 2)));
+        LOOM_TRY(graph.set_side_effect(blur));                                  // by PassId
+        auto plan = graph.plan(options);
+        // Next frame: graph.clear() keeps the memory; declare again.
+        // [/docs:typed]
+        if (!plan) return plan.take_error();
+        LOOM_TRY(fail_unless((*plan)->order.size() == 3, "the typed graph schedules its three passes"));
+        LOOM_TRY(fail_unless((*plan)->texture_of("geometry", "albedo") == (*plan)->texture_of("composite", "color"),
+                             "the connection by handles joins the two ports"));
+    }
     return {};
 }
 

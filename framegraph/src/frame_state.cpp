@@ -85,26 +85,36 @@ void PassCommandList::set_pipeline(rhi::PipelineHandle pipeline) {
 void PassCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
     // A null handle here is usually an unconnected optional port (PassContext::texture is null).
     for (const rhi::BindingEntry& entry : group.entries) {
-        const std::string where = "set_bind_group: set " + std::to_string(set) + " binding " + std::to_string(entry.binding);
+        // Built only for an error: passes bind groups for every draw.
+        const auto where = [&] { return "set_bind_group: set " + std::to_string(set) + " binding " + std::to_string(entry.binding); };
         if (const auto* t = std::get_if<rhi::TextureBinding>(&entry.resource)) {
             if (t->texture.is_null() || t->sampler.is_null()) {
-                frame_.fail(make_error(ErrorCode::InvalidHandle, where + ": null " + (t->texture.is_null() ? "texture" : "sampler") +
+                frame_.fail(make_error(ErrorCode::InvalidHandle, where() + ": null " + (t->texture.is_null() ? "texture" : "sampler") +
                                                                      " (an unconnected optional port has no texture)"));
                 return;
             }
         } else if (const auto* st = std::get_if<rhi::StorageTextureBinding>(&entry.resource)) {
             if (st->texture.is_null()) {
-                frame_.fail(make_error(ErrorCode::InvalidHandle, where + ": null storage texture"));
+                frame_.fail(make_error(ErrorCode::InvalidHandle, where() + ": null storage texture"));
                 return;
             }
         } else if (const auto* b = std::get_if<rhi::BufferBinding>(&entry.resource)) {
             if (b->buffer.is_null()) {
-                frame_.fail(make_error(ErrorCode::InvalidHandle, where + ": null buffer"));
+                frame_.fail(make_error(ErrorCode::InvalidHandle, where() + ": null buffer"));
                 return;
             }
         }
     }
     inner_->set_bind_group(set, group);
+}
+
+void PassCommandList::set_buffer(uint32_t set, uint32_t binding, const rhi::BufferBinding& range) {
+    if (range.buffer.is_null()) {
+        frame_.fail(make_error(ErrorCode::InvalidHandle, "set_buffer: set " + std::to_string(set) + " binding " +
+                                                             std::to_string(binding) + ": null buffer"));
+        return;
+    }
+    inner_->set_buffer(set, binding, range);
 }
 
 void PassCommandList::transition(rhi::TextureHandle texture, rhi::ResourceState state) {

@@ -35,6 +35,7 @@ public:
     void set_viewport(const rhi::Viewport& viewport) override { inner_->set_viewport(viewport); }
     void set_scissor(const rhi::Rect& rect) override { inner_->set_scissor(rect); }
     void set_bind_group(uint32_t set, const rhi::BindGroup& group) override;
+    void set_buffer(uint32_t set, uint32_t binding, const rhi::BufferBinding& range) override;
     void push_constants(std::span<const std::byte> data, uint32_t offset) override { inner_->push_constants(data, offset); }
     void set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, uint64_t offset) override {
         inner_->set_vertex_buffer(slot, buffer, offset);

@@ -167,6 +167,21 @@ Status CommandListState::set_bind_group(uint32_t set, const BindGroup& group) {
     return {};
 }
 
+Status CommandListState::set_buffer(uint32_t set, uint32_t binding, const BufferBinding& range) {
+    LOOM_TRY(validation::buffer_slot(set, binding));
+    std::optional<BindGroup>& group = groups_[set];
+    if (!group) group.emplace();
+    // The last entry for a binding is the one draws use (as in a group given whole).
+    for (auto it = group->entries.rbegin(); it != group->entries.rend(); ++it) {
+        if (it->binding == binding) {
+            it->resource = range;
+            return {};
+        }
+    }
+    group->entries.push_back({binding, range});
+    return {};
+}
+
 const BindGroup* CommandListState::bind_group(uint32_t set) const {
     return set < groups_.size() && groups_[set] ? &*groups_[set] : nullptr;
 }

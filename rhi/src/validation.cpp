@@ -869,6 +869,15 @@ Status bind_group(uint32_t set, const BindGroup& group) {
     return {};
 }
 
+Status buffer_slot(uint32_t set, uint32_t binding) {
+    if (set >= kMaxBindGroups || binding >= kMaxBindingsPerGroup) {
+        return Error{ErrorCode::InvalidArgument, "set_buffer: set " + std::to_string(set) + " binding " + std::to_string(binding) +
+                                                     " is beyond the " + std::to_string(kMaxBindGroups) + " sets of " +
+                                                     std::to_string(kMaxBindingsPerGroup) + " bindings loom supports"};
+    }
+    return {};
+}
+
 Status vertex_buffer_slot(uint32_t slot) {
     if (slot >= kMaxVertexBuffers) {
         return Error{ErrorCode::InvalidArgument, "set_vertex_buffer: slot " + std::to_string(slot) + " is beyond the " +

@@ -127,13 +127,14 @@ json allocators_json(const std::vector<AllocatorFigures>& rows) {
 
 Result<std::vector<AllocatorFigures>> compare_allocators(const fg::FrameGraph& graph, fg::PlanOptions options) {
     std::vector<AllocatorFigures> rows;
-    for (std::string_view allocator : fg::allocator_names()) {
-        options.allocator = std::string(allocator);
+    for (const fg::AllocatorKind allocator : fg::allocator_kinds()) {
+        options.allocator = allocator;
+        const std::string name(fg::allocator_name(allocator));
         auto plan = fg::build_plan(graph, options);
         if (plan) {
-            rows.push_back({options.allocator, plan->summary, {}});
+            rows.push_back({name, plan->summary, {}});
         } else if (plan.error().code == ErrorCode::InvalidArgument) {
-            rows.push_back({options.allocator, std::nullopt, plan.error().message});
+            rows.push_back({name, std::nullopt, plan.error().message});
         } else {
             return plan.take_error();
         }

@@ -29,7 +29,7 @@ struct AllocatorFigures {
     std::string refused;
 };
 
-/// Plans `graph` with every allocator (allocator_names()) and `options` otherwise. An allocator
+/// Plans `graph` with every allocator (allocator_kinds()) and `options` otherwise. An allocator
 /// that refuses the graph with InvalidArgument (paper, for async compute) gets a row saying
 /// why; any other planning error is returned.
 Result<std::vector<AllocatorFigures>> compare_allocators(const fg::FrameGraph& graph, fg::PlanOptions options);

@@ -72,7 +72,9 @@ loom::Result<Arguments> parse(std::span<const std::string> words) {
             } else if (word == "--allocations") {
                 args.allocations = value;
             } else if (word == "--allocator") {
-                args.planning.options.allocator = value;
+                auto kind = loom::fg::parse_allocator(value);
+                if (!kind) return bad("--allocator: " + kind.error().message);
+                args.planning.options.allocator = *kind;
             } else if (word == "--sharing") {
                 if (value != "equal" && value != "joinable") return bad("--sharing must be equal or joinable, not '" + value + "'");
                 args.planning.options.sharing = value == "equal" ? loom::fg::SpecSharing::Equal : loom::fg::SpecSharing::Joinable;

@@ -99,6 +99,87 @@ TEST_P(UniformsTest, UniformRangeAtAlignedOffset) {
     EXPECT_EQ(image.load(2, 2), (std::array<double, 4>{0.5, 1.0, 1.5, 2.0}));
 }
 
+// Per-draw uniform data without bind groups: 16 draws, each into its own column with its own
+// `extra` block (set 1 binding 2) from set_uniforms_of, while set 0 keeps the group given whole.
+// After the first draw only the offset of `extra` changes: Vulkan binds the set it wrote with
+// another dynamic offset, GL binds another range. Every column shows its own draw's value.
+TEST_P(UniformsTest, PerDrawUniformsBySetBuffer) {
+    constexpr uint32_t kColumns = 16;
+    LOOM_ASSIGN_OR_FAIL(auto vs, make_shader(device(), rhi::ShaderStage::Vertex, "fullscreen.vert", kFullscreenVert));
+    LOOM_ASSIGN_OR_FAIL(auto fs, make_shader(device(), rhi::ShaderStage::Fragment, "uniform.frag", kUniformFrag));
+    rhi::GraphicsPipelineDesc pd;
+    pd.name = "per-draw uniforms";
+    pd.vertex = vs;
+    pd.fragment = fs;
+    pd.color_formats = {rhi::Format::RGBA32Float};
+    LOOM_ASSIGN_OR_FAIL(auto pipeline, device().create_graphics_pipeline(pd));
+    const Material material{{0.0f, 0.0f, 0.0f, 1.0f}, 1.0f, {}};
+    LOOM_ASSIGN_OR_FAIL(auto ubo, make_buffer(device(), "material", rhi::BufferUsage::Uniform, bytes_of(material)));
+    LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "per-draw target", rhi::Format::RGBA32Float, kColumns, 2));
+    for (int frame = 0; frame < 2; ++frame) {  // the second frame reuses the first one's memory
+        LOOM_ASSERT_OK(run_frame(device(), [&](rhi::CommandList& list) {
+            list.begin_render_pass(clear_pass("per-draw", target, {0, 0, 0, 0}));
+            list.set_pipeline(pipeline);
+            list.set_bind_group(0, rhi::BindGroup{}.buffer(0, ubo));
+            list.push_constants_of(std::array<float, 4>{});
+            for (uint32_t i = 0; i < kColumns; ++i) {
+                list.set_scissor(rhi::Rect{static_cast<int32_t>(i), 0, 1, 2});
+                list.set_uniforms_of(1, 2, std::array<float, 4>{static_cast<float>(i), static_cast<float>(frame), 0.5f, 0.0f});
+                list.draw(3);
+            }
+            list.end_render_pass();
+        }));
+        LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(target));
+        for (uint32_t i = 0; i < kColumns; ++i) {
+            EXPECT_EQ(image.load(i, 1), (std::array<double, 4>{static_cast<double>(i), static_cast<double>(frame), 0.5, 1.0}))
+                << "column " << i << ", frame " << frame;
+        }
+    }
+}
+
+// set_buffer is checked like a bind group at the draw: a destroyed buffer is a stale handle,
+// and a range past the buffer's end is refused although the set was bound before with a good one.
+TEST_P(UniformsTest, SetBufferIsCheckedAtTheDraw) {
+    LOOM_ASSIGN_OR_FAIL(auto vs, make_shader(device(), rhi::ShaderStage::Vertex, "fullscreen.vert", kFullscreenVert));
+    LOOM_ASSIGN_OR_FAIL(auto fs, make_shader(device(), rhi::ShaderStage::Fragment, "uniform.frag", kUniformFrag));
+    rhi::GraphicsPipelineDesc pd;
+    pd.name = "checked uniforms";
+    pd.vertex = vs;
+    pd.fragment = fs;
+    pd.color_formats = {rhi::Format::RGBA32Float};
+    LOOM_ASSIGN_OR_FAIL(auto pipeline, device().create_graphics_pipeline(pd));
+    const uint64_t alignment = device().capabilities().uniform_buffer_offset_alignment;
+    std::vector<std::byte> data(alignment * 2);
+    LOOM_ASSIGN_OR_FAIL(auto ubo, make_buffer(device(), "two blocks", rhi::BufferUsage::Uniform, data));
+    LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "checked target", rhi::Format::RGBA32Float, 4, 4));
+    auto frame = [&](uint64_t second_offset) {
+        return run_frame(device(), [&](rhi::CommandList& list) {
+            list.begin_render_pass(clear_pass("checked", target, {0, 0, 0, 0}));
+            list.set_pipeline(pipeline);
+            list.set_bind_group(0, rhi::BindGroup{}.buffer(0, ubo, 0, sizeof(Material)));
+            list.set_buffer(1, 2, rhi::BufferBinding{ubo, 0, 16});
+            list.push_constants_of(std::array<float, 4>{});
+            list.draw(3);
+            list.set_buffer(1, 2, rhi::BufferBinding{ubo, second_offset, 16});
+            list.draw(3);
+            list.end_render_pass();
+        });
+    };
+    LOOM_ASSERT_OK(frame(alignment));
+    const Status past_the_end = frame(alignment * 2);
+    ASSERT_FALSE(past_the_end.ok());
+    EXPECT_EQ(past_the_end.error().code, ErrorCode::InvalidArgument);
+    EXPECT_NE(past_the_end.error().message.find("binding 2"), std::string::npos) << past_the_end.error().message;
+    EXPECT_NE(past_the_end.error().message.find("'two blocks'"), std::string::npos) << past_the_end.error().message;
+
+    const Status beyond = run_frame(device(), [&](rhi::CommandList& list) {
+        list.set_buffer(rhi::kMaxBindGroups, 0, rhi::BufferBinding{ubo, 0, 16});
+    });
+    ASSERT_FALSE(beyond.ok());
+    EXPECT_NE(beyond.error().message.find("set_buffer: set " + std::to_string(rhi::kMaxBindGroups)), std::string::npos)
+        << beyond.error().message;
+}
+
 }  // namespace
 
 LOOM_INSTANTIATE_RENDER_TEST(UniformsTest);

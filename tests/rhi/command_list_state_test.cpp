@@ -310,3 +310,38 @@ TEST_F(CommandListStateTest, BoundStateLastsForOneFrame) {
 
 }  // namespace
 }  // namespace loom::rhi
+
+namespace loom::rhi {
+namespace {
+
+// set_buffer changes one binding of a set's group and keeps the others; the last entry of a
+// binding is the one draws use, so that is the one replaced.
+TEST_F(CommandListStateTest, SetBufferReplacesOneBindingOfTheGroup) {
+    state.begin_frame();
+    const BufferHandle ubo = buffer("ubo", 256, BufferUsage::Uniform);
+    ASSERT_TRUE(state.set_buffer(2, 1, BufferBinding{ubo, 0, 16}).ok());
+    ASSERT_NE(state.bind_group(2), nullptr);
+    ASSERT_EQ(state.bind_group(2)->entries.size(), 1u);
+
+    BindGroup group;
+    group.buffer(0, ubo, 0, 16).buffer(1, ubo, 0, 16).buffer(1, ubo, 32, 16);
+    ASSERT_TRUE(state.set_bind_group(0, group).ok());
+    ASSERT_TRUE(state.set_buffer(0, 1, BufferBinding{ubo, 64, 16}).ok());
+    const BindGroup& bound = *state.bind_group(0);
+    ASSERT_EQ(bound.entries.size(), 3u);
+    EXPECT_EQ(std::get<BufferBinding>(bound.entries[0].resource).offset, 0u);   // binding 0 kept
+    EXPECT_EQ(std::get<BufferBinding>(bound.entries[1].resource).offset, 0u);   // hidden by the later one
+    EXPECT_EQ(std::get<BufferBinding>(bound.entries[2].resource).offset, 64u);  // the one draws use
+    ASSERT_TRUE(state.set_buffer(0, 5, BufferBinding{ubo, 128, 16}).ok());
+    EXPECT_EQ(state.bind_group(0)->entries.size(), 4u);
+
+    expect_error(state.set_buffer(kMaxBindGroups, 0, BufferBinding{ubo, 0, 16}), ErrorCode::InvalidArgument,
+                 "set_buffer: set " + std::to_string(kMaxBindGroups) + " binding 0 is beyond the " +
+                     std::to_string(kMaxBindGroups) + " sets of " + std::to_string(kMaxBindingsPerGroup) +
+                     " bindings loom supports");
+    state.end_frame();
+    EXPECT_EQ(state.bind_group(0), nullptr);
+}
+
+}  // namespace
+}  // namespace loom::rhi

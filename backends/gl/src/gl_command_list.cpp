@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gl_device.hpp"
+#include "loom/rhi/binding_reuse.hpp"
 #include "loom/rhi/subresources.hpp"
 #include "loom/rhi/validation.hpp"
 
@@ -220,6 +221,7 @@ void GlCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
 }
 
 void GlCommandList::end_render_pass() {
+    invalidate_draw_state();  // draws need another render pass, which resolves them anew
     if (!accepted(state_.end_render_pass())) return;
     if (!pass_discard_after_.empty()) {
         record([fbo = pass_framebuffer_, discard = std::move(pass_discard_after_)](GlStateCache& cache) {
@@ -258,6 +260,11 @@ void GlCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
     accepted(state_.set_bind_group(set, group));
 }
 
+void GlCommandList::set_buffer(uint32_t set, uint32_t binding, const rhi::BufferBinding& range) {
+    binding_state_valid_ = false;
+    accepted(state_.set_buffer(set, binding, range));
+}
+
 void GlCommandList::push_constants(std::span<const std::byte> data, uint32_t offset) {
     if (accepted(state_.push_constants(data, offset))) push_dirty_ = true;
 }
@@ -282,6 +289,7 @@ rhi::BufferBinding GlCommandList::transient_uniforms(std::span<const std::byte> 
 bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view command) {
     // Every binding is checked before any state, as on Vulkan.
     const rhi::validation::ResourceLookup& lookup = device_->resource_lookup();
+    resolved_entries_.clear();
     for (const PipelineBinding& b : p.bindings) {
         const rhi::validation::PipelineSlot slot{b.set, b.binding, b.kind, b.name, b.texture_kind};
         auto entry =
@@ -298,6 +306,7 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
         for (const rhi::BindingEntry& e : state_.bind_group(b.set)->entries) {
             if (e.binding == b.binding) entry = &e;
         }
+        resolved_entries_.push_back(*entry);
         // The handles were found by the validation above.
         ResolvedBinding r;
         r.kind = b.kind;
@@ -457,6 +466,9 @@ bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool i
         invalidate_draw_state();  // checks that only these draws need, below
     }
     if (pipeline_state_valid_ && vertex_state_valid_ && binding_state_valid_) return true;
+    // Only the bindings changed (nothing recorded, destroyed, or bound but bind groups since
+    // they were resolved): they may be the same but for uniform offsets.
+    const bool reuse_allowed = pipeline_state_valid_ && !binding_states_.empty();
     if (!pipeline_state_valid_ || !vertex_state_valid_) {
         // The render pass, the pipeline against it, the vertex and index buffers it reads.
         if (!accepted(state_.check_draw(command, indexed))) return false;
@@ -509,6 +521,9 @@ bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool i
         }
         vertex_states_.push_back(v);
     }
+    if (!binding_state_valid_ && reuse_bindings(p, reuse_allowed)) {
+        binding_state_valid_ = true;
+    }
     if (!binding_state_valid_) {
         BindingState b;
         b.first_binding = static_cast<uint32_t>(bindings_.size());
@@ -557,6 +572,46 @@ void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_
     draws_.push_back(draw);
     // Small enough for std::function to hold without allocating.
     commands_.push_back([this, index](GlStateCache& cache) { replay_draw(cache, draws_[index]); });
+}
+
+bool GlCommandList::reuse_bindings(const GlPipeline& p, bool allowed) {
+    if (!allowed || resolved_entries_.size() != p.bindings.size()) return false;
+    const BindingState& last = binding_states_.back();
+    const uint64_t alignment = device_->capabilities().uniform_buffer_offset_alignment;
+    for (std::size_t i = 0; i < p.bindings.size(); ++i) {
+        const PipelineBinding& b = p.bindings[i];
+        const rhi::BindGroup* group = state_.bind_group(b.set);
+        if (!group) return false;
+        const rhi::BindingEntry* entry = nullptr;
+        for (const rhi::BindingEntry& e : group->entries) {
+            if (e.binding == b.binding) entry = &e;
+        }
+        if (!entry || !rhi::differs_only_in_buffer_offset(*entry, resolved_entries_[i])) return false;
+        const auto* range = std::get_if<rhi::BufferBinding>(&entry->resource);
+        if (!range) continue;
+        const auto& then = std::get<rhi::BufferBinding>(resolved_entries_[i].resource);
+        if (range->offset == then.offset) continue;
+        // A new offset of a uniform range in the same (living) buffer: checked here as the full
+        // check would; anything else is resolved anew (resolve_bindings starts these entries over).
+        const GlBuffer* buffer = device_->buffers().find(range->buffer);
+        if (b.kind != BindingKind::UniformBuffer || !buffer || !rhi::uniform_offset_fits(*range, buffer->desc.size, alignment)) {
+            return false;
+        }
+        resolved_entries_[i] = *entry;
+    }
+    // The same bindings with the new offsets.
+    BindingState next;
+    next.first_binding = static_cast<uint32_t>(bindings_.size());
+    next.binding_count = last.binding_count;
+    for (uint32_t i = 0; i < last.binding_count; ++i) {
+        ResolvedBinding r = bindings_[last.first_binding + i];
+        if (const auto* range = std::get_if<rhi::BufferBinding>(&resolved_entries_[i].resource)) {
+            r.offset = static_cast<GLintptr>(range->offset);
+        }
+        bindings_.push_back(r);
+    }
+    binding_states_.push_back(next);
+    return true;
 }
 
 void GlCommandList::replay_draw(GlStateCache& cache, const Draw& draw) {

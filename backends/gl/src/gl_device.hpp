@@ -47,6 +47,7 @@ public:
     void set_viewport(const rhi::Viewport& viewport) override;
     void set_scissor(const rhi::Rect& rect) override;
     void set_bind_group(uint32_t set, const rhi::BindGroup& group) override;
+    void set_buffer(uint32_t set, uint32_t binding, const rhi::BufferBinding& range) override;
     void push_constants(std::span<const std::byte> data, uint32_t offset) override;
     void set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, uint64_t offset) override;
     void set_index_buffer(rhi::BufferHandle buffer, rhi::IndexType type, uint64_t offset) override;
@@ -120,6 +121,10 @@ private:
     /// Resolves the current pipeline's bindings from the bound groups into bindings_; false
     /// (with an error recorded) when something is missing or in the wrong state.
     bool resolve_bindings(const GlPipeline& pipeline, std::string_view command);
+    /// The last bindings resolved (of the pipeline still bound) again with new offsets, when the
+    /// bound groups differ from what they were resolved from only in uniform offsets (see
+    /// rhi/binding_reuse.hpp); false, with nothing recorded, otherwise.
+    bool reuse_bindings(const GlPipeline& pipeline, bool allowed);
     /// The push-constant block of `pipeline` as a uniform range: a copy per change, so that
     /// every draw sees the values current when it was recorded.
     PushRange push_constant_range(const GlPipeline& pipeline);
@@ -197,6 +202,8 @@ private:
     std::vector<GlBlendState> blends_;
     std::vector<VertexBinding> vertex_bindings_;
     std::vector<ResolvedBinding> bindings_;
+    /// The entries binding_states_.back() was resolved from, one per pipeline binding.
+    std::vector<rhi::BindingEntry> resolved_entries_;
     /// The last of each kind of state still holds for the next draw: nothing of that kind was
     /// bound, nothing begun, recorded or destroyed since (a new pipeline changes all three).
     bool pipeline_state_valid_ = false;

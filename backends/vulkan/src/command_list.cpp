@@ -4,6 +4,7 @@
 
 #include "formats.hpp"
 #include "vulkan_device.hpp"
+#include "loom/rhi/binding_reuse.hpp"
 #include "loom/rhi/subresources.hpp"
 #include "loom/rhi/validation.hpp"
 
@@ -22,6 +23,8 @@ void VulkanCommandList::begin(VkCommandBuffer cmd, bool new_frame) {
     bound_layout_ = VK_NULL_HANDLE;
     group_dirty_.fill(true);
     push_dirty_ = true;
+    checked_pipeline_ = nullptr;
+    forget_written_sets();
     if (new_frame) {
         // The device has begun the frame on the state tracker: nothing is bound.
         error_.reset();
@@ -78,6 +81,8 @@ void VulkanCommandList::finish() {
 
 void VulkanCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
     const std::string pass = "render pass " + in_quotes(desc.label);
+    checked_pipeline_ = nullptr;
+    forget_written_sets();  // the attachments change state
     if (!accepted(state_.check_begin_render_pass(desc.label))) return;
     auto shape = rhi::validation::render_pass(desc, device_.capabilities(), device_.resource_lookup().texture);
     if (!shape.ok()) return fail(shape.error().code, shape.error().message);
@@ -155,6 +160,7 @@ void VulkanCommandList::begin_render_pass(const rhi::RenderPassDesc& desc) {
 }
 
 void VulkanCommandList::end_render_pass() {
+    checked_pipeline_ = nullptr;
     if (!accepted(state_.end_render_pass())) return;
     vkCmdEndRendering(cmd_);
     ++stats_.api_calls;
@@ -163,6 +169,7 @@ void VulkanCommandList::end_render_pass() {
 // ---- state ------------------------------------------------------------------------------------
 
 void VulkanCommandList::set_pipeline(rhi::PipelineHandle handle) {
+    checked_pipeline_ = nullptr;
     if (!accepted(state_.set_pipeline(handle))) return;
     const Pipeline* p = *device_.pipelines().get(handle);  // found by the tracker
     VkPipeline& bound = p->bind_point == VK_PIPELINE_BIND_POINT_GRAPHICS ? bound_graphics_ : bound_compute_;
@@ -202,11 +209,16 @@ void VulkanCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group
     if (accepted(state_.set_bind_group(set, group))) group_dirty_[set] = true;
 }
 
+void VulkanCommandList::set_buffer(uint32_t set, uint32_t binding, const rhi::BufferBinding& range) {
+    if (accepted(state_.set_buffer(set, binding, range))) group_dirty_[set] = true;
+}
+
 void VulkanCommandList::push_constants(std::span<const std::byte> data, uint32_t offset) {
     if (accepted(state_.push_constants(data, offset))) push_dirty_ = true;
 }
 
 void VulkanCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle handle, uint64_t offset) {
+    checked_pipeline_ = nullptr;
     if (!accepted(state_.set_vertex_buffer(slot, handle, offset))) return;
     VkDeviceSize o = offset;
     vkCmdBindVertexBuffers(cmd_, slot, 1, &(*device_.buffers().get(handle))->buffer, &o);
@@ -215,6 +227,7 @@ void VulkanCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle handl
 }
 
 void VulkanCommandList::set_index_buffer(rhi::BufferHandle handle, rhi::IndexType type, uint64_t offset) {
+    checked_pipeline_ = nullptr;
     if (!accepted(state_.set_index_buffer(handle, type, offset))) return;
     vkCmdBindIndexBuffer(cmd_, (*device_.buffers().get(handle))->buffer, offset, to_vk(type));
     ++stats_.buffer_binds;
@@ -253,7 +266,6 @@ bool VulkanCommandList::write_set(const Pipeline& pipeline, uint32_t set, VkDesc
     const rhi::BindGroup* group = state_.bind_group(set);
     const rhi::validation::ResourceLookup& lookup = device_.resource_lookup();
     // Every binding is checked before a descriptor set is allocated for them.
-    std::vector<const rhi::BindingEntry*> entries;
     for (const SetBinding& b : set_layout.bindings) {
         const rhi::validation::PipelineSlot slot{set, b.binding, binding_kind(b.type), b.name, b.kind};
         auto entry = rhi::validation::binding(what, pipeline.name, slot, group, device_.capabilities(), lookup);
@@ -261,7 +273,6 @@ bool VulkanCommandList::write_set(const Pipeline& pipeline, uint32_t set, VkDesc
             fail(entry.error().code, entry.error().message);
             return false;
         }
-        entries.push_back(*entry);
     }
     auto allocated = device_.current_frame().descriptors->allocate(set_layout.layout);
     if (!allocated.ok()) {
@@ -271,36 +282,53 @@ bool VulkanCommandList::write_set(const Pipeline& pipeline, uint32_t set, VkDesc
     out = *allocated;
 
     // Storage for the infos that the writes point to (reserved so the pointers stay valid).
-    std::vector<VkDescriptorBufferInfo> buffer_infos;
-    std::vector<VkDescriptorImageInfo> image_infos;
+    std::vector<VkDescriptorBufferInfo>& buffer_infos = buffer_infos_;
+    std::vector<VkDescriptorImageInfo>& image_infos = image_infos_;
+    std::vector<VkWriteDescriptorSet>& writes = writes_;
+    buffer_infos.clear();
+    image_infos.clear();
+    writes.clear();
     buffer_infos.reserve(set_layout.bindings.size());
+    dynamic_offsets_.clear();
+    WrittenSet& written = written_[set];
+    written.set = VK_NULL_HANDLE;
+    written.layout = &set_layout;
+    written.entries.clear();
     std::size_t image_count = 0;
     for (const SetBinding& b : set_layout.bindings) image_count += b.count;
     image_infos.reserve(image_count);
-    std::vector<VkWriteDescriptorSet> writes;
 
     for (std::size_t n = 0; n < set_layout.bindings.size(); ++n) {
         const SetBinding& b = set_layout.bindings[n];
         const rhi::validation::PipelineSlot slot{set, b.binding, binding_kind(b.type), b.name, b.kind};
-        const rhi::BindingEntry* entry = entries[n];
+        // Found by the check above.
+        const rhi::BindingEntry* entry = nullptr;
+        for (const rhi::BindingEntry& e : group->entries) {
+            if (e.binding == b.binding) entry = &e;
+        }
         // Built only for an error.
         auto where = [&] {
             return std::string(what) + ": pipeline " + in_quotes(pipeline.name) + " set " + std::to_string(set) +
                    " binding " + std::to_string(b.binding) + " (" + in_quotes(b.name) + ")";
         };
+        written.entries.push_back(*entry);
         auto w = vk_init<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
         w.dstSet = out;
         w.dstBinding = b.binding;
         w.descriptorType = b.type;
         w.descriptorCount = b.count;
-        if (b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER || b.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) {
+        const bool dynamic = b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC;
+        if (dynamic || b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER || b.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER) {
             const rhi::BufferBinding* binding = &std::get<rhi::BufferBinding>(entry->resource);
             const Buffer* buffer = *device_.buffers().get(binding->buffer);  // found by the validation above
-            const bool uniform = b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+            const bool uniform = b.type != VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
             // The whole rest of the buffer, for a uniform buffer at most what the device can bind.
             uint64_t range = binding->size ? binding->size : buffer->desc.size - binding->offset;
             if (!binding->size && uniform) range = std::min(range, device_.max_uniform_range());
-            buffer_infos.push_back({buffer->buffer, binding->offset, range});
+            // A dynamic uniform buffer's offset is given when the set is bound (checked aligned
+            // and inside the buffer above).
+            if (dynamic) dynamic_offsets_.push_back(static_cast<uint32_t>(binding->offset));
+            buffer_infos.push_back({buffer->buffer, dynamic ? 0 : binding->offset, range});
             w.descriptorCount = 1;
             w.pBufferInfo = &buffer_infos.back();
             ++stats_.buffer_binds;
@@ -368,6 +396,41 @@ bool VulkanCommandList::write_set(const Pipeline& pipeline, uint32_t set, VkDesc
         writes.push_back(w);
     }
     vkUpdateDescriptorSets(device_.context().device(), static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+    written.set = out;
+    return true;
+}
+
+void VulkanCommandList::forget_written_sets() {
+    for (WrittenSet& w : written_) w.set = VK_NULL_HANDLE;
+}
+
+bool VulkanCommandList::reuse_written_set(const SetLayout& layout, uint32_t set) {
+    const WrittenSet& written = written_[set];
+    if (written.set == VK_NULL_HANDLE || written.layout != &layout || layout.dynamic_count == 0) return false;
+    const rhi::BindGroup* group = state_.bind_group(set);
+    if (!group) return false;
+    dynamic_offsets_.clear();
+    const uint64_t alignment = device_.capabilities().uniform_buffer_offset_alignment;
+    for (std::size_t i = 0; i < layout.bindings.size(); ++i) {
+        const SetBinding& b = layout.bindings[i];
+        const rhi::BindingEntry* entry = nullptr;
+        for (const rhi::BindingEntry& e : group->entries) {
+            if (e.binding == b.binding) entry = &e;
+        }
+        const rhi::BindingEntry& then = written.entries[i];
+        if (!entry || !rhi::differs_only_in_buffer_offset(*entry, then)) return false;
+        const auto* range = std::get_if<rhi::BufferBinding>(&entry->resource);
+        if (!range) continue;
+        if (b.type != VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC) {
+            if (range->offset != std::get<rhi::BufferBinding>(then.resource).offset) return false;
+            continue;
+        }
+        // The range was fixed when the set was written; the buffer is alive (nothing was
+        // destroyed since the set was written).
+        const Buffer* buffer = device_.buffers().find(range->buffer);
+        if (!buffer || !rhi::uniform_offset_fits(*range, buffer->desc.size, alignment)) return false;
+        dynamic_offsets_.push_back(static_cast<uint32_t>(range->offset));
+    }
     return true;
 }
 
@@ -377,9 +440,12 @@ bool VulkanCommandList::flush_bindings(const Pipeline& pipeline, std::string_vie
     for (uint32_t s = 0; s < layout.set_count; ++s) {
         if (layout.sets[s]->bindings.empty()) continue;
         if (!group_dirty_[s] && !layout_changed) continue;
-        VkDescriptorSet set = VK_NULL_HANDLE;
-        if (!write_set(pipeline, s, set, what)) return false;
-        vkCmdBindDescriptorSets(cmd_, pipeline.bind_point, layout.layout, s, 1, &set, 0, nullptr);
+        VkDescriptorSet set = written_[s].set;
+        if (!reuse_written_set(*layout.sets[s], s)) {
+            if (!write_set(pipeline, s, set, what)) return false;
+        }
+        vkCmdBindDescriptorSets(cmd_, pipeline.bind_point, layout.layout, s, 1, &set,
+                                static_cast<uint32_t>(dynamic_offsets_.size()), dynamic_offsets_.data());
         ++stats_.api_calls;
         group_dirty_[s] = false;
     }
@@ -396,9 +462,32 @@ bool VulkanCommandList::flush_bindings(const Pipeline& pipeline, std::string_vie
     return true;
 }
 
+uint64_t VulkanCommandList::device_removals() const {
+    return device_.textures().removals() + device_.buffers().removals() + device_.samplers().removals() +
+           device_.pipelines().removals();
+}
+
+void VulkanCommandList::notice_removals() {
+    const uint64_t removals = device_removals();
+    if (removals == checked_removals_) return;
+    // Something was destroyed: every check and every written descriptor set is made again.
+    checked_pipeline_ = nullptr;
+    group_dirty_.fill(true);
+    forget_written_sets();
+    checked_removals_ = removals;
+}
+
 const Pipeline* VulkanCommandList::prepare_draw(std::string_view what, bool indexed) {
-    if (!accepted(state_.check_draw(what, indexed))) return nullptr;
-    const Pipeline* p = *device_.pipelines().get(state_.pipeline());  // found by the tracker
+    notice_removals();
+    // Nothing the tracker checks for a draw changed since the last one: its answer holds.
+    const Pipeline* p = checked_pipeline_;
+    if (!p || (indexed && !checked_indexed_)) {
+        checked_pipeline_ = nullptr;
+        if (!accepted(state_.check_draw(what, indexed))) return nullptr;
+        p = *device_.pipelines().get(state_.pipeline());  // found by the tracker
+        checked_pipeline_ = p;
+        checked_indexed_ = indexed;
+    }
     return flush_bindings(*p, what) ? p : nullptr;
 }
 
@@ -441,6 +530,7 @@ void VulkanCommandList::draw_indexed_indirect(rhi::BufferHandle handle, uint64_t
 
 void VulkanCommandList::dispatch(uint32_t x, uint32_t y, uint32_t z) {
     if (!accepted(state_.check_dispatch())) return;
+    notice_removals();
     if (!flush_bindings(**device_.pipelines().get(state_.pipeline()), "dispatch")) return;  // found by the tracker
     vkCmdDispatch(cmd_, x, y, z);
     ++stats_.dispatches;
@@ -485,6 +575,7 @@ void VulkanCommandList::copy_buffer(rhi::BufferHandle src_handle, uint64_t src_o
 }
 
 void VulkanCommandList::copy_texture(const rhi::TextureCopy& copy) {
+    forget_written_sets();
     if (!accepted(state_.check_outside_render_pass("copy_texture"))) return;
     auto src = device_.textures().get(copy.src);
     auto dst = device_.textures().get(copy.dst);
@@ -517,6 +608,7 @@ void VulkanCommandList::transition(rhi::TextureHandle handle, ResourceState stat
 }
 
 void VulkanCommandList::transition(rhi::TextureHandle handle, ResourceState state, const rhi::TextureRange& range) {
+    forget_written_sets();
     if (!accepted(state_.check_outside_render_pass("transition"))) return;
     auto texture = device_.textures().get(handle);
     if (!texture.ok()) return fail(ErrorCode::InvalidHandle, "transition: " + texture.error().message);

@@ -15,6 +15,7 @@
 #include "loom/rhi/command_list_state.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/result.hpp"
+#include "descriptors.hpp"
 #include "loom/vulkan/resource_states.hpp"
 
 namespace loom::vulkan {
@@ -50,6 +51,7 @@ public:
     void set_viewport(const rhi::Viewport& viewport) override;
     void set_scissor(const rhi::Rect& rect) override;
     void set_bind_group(uint32_t set, const rhi::BindGroup& group) override;
+    void set_buffer(uint32_t set, uint32_t binding, const rhi::BufferBinding& range) override;
     void push_constants(std::span<const std::byte> data, uint32_t offset = 0) override;
     void set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, uint64_t offset = 0) override;
     void set_index_buffer(rhi::BufferHandle buffer, rhi::IndexType type, uint64_t offset = 0) override;
@@ -81,9 +83,21 @@ private:
     bool accepted(Status status);
     /// Binds the pipeline's descriptor sets and push constants if anything changed.
     bool flush_bindings(const Pipeline& pipeline, std::string_view what);
+    /// Checks the group bound at `set` against the pipeline and writes a descriptor set for it
+    /// (its dynamic offsets into dynamic_offsets_); remembered in written_[set].
     bool write_set(const Pipeline& pipeline, uint32_t set, VkDescriptorSet& out, std::string_view what);
+    /// The set written last for `set` holds the group bound now but for the offsets of its
+    /// dynamic uniform buffers (which fit their buffers): those offsets go to dynamic_offsets_.
+    bool reuse_written_set(const SetLayout& layout, uint32_t set);
+    /// Written sets are not bound again after a texture's state changed or an object was destroyed.
+    void forget_written_sets();
     /// The state tracker's draw checks, then the bindings; the pipeline to draw with, or null.
     const Pipeline* prepare_draw(std::string_view what, bool indexed);
+    /// Objects the device has destroyed so far (bindings and draw checks made before a
+    /// destruction are made again: their objects may be gone).
+    [[nodiscard]] uint64_t device_removals() const;
+    /// After a destruction, forgets every draw check and written set (they are made again).
+    void notice_removals();
 
     VulkanDevice& device_;
     rhi::CommandListState state_;
@@ -97,6 +111,25 @@ private:
     bool push_dirty_ = false;
     VkPipeline bound_graphics_ = VK_NULL_HANDLE;
     VkPipeline bound_compute_ = VK_NULL_HANDLE;
+    /// The last draw's checks hold for the next one (indexed or not): no pipeline, vertex or
+    /// index buffer bound, no render pass begun or ended, nothing destroyed since.
+    const Pipeline* checked_pipeline_ = nullptr;
+    bool checked_indexed_ = false;
+    uint64_t checked_removals_ = 0;
+    /// The descriptor set last written for each set number, its layout and the entries it was
+    /// written from (one per layout binding, in its order), to be bound again with new dynamic
+    /// offsets when only those changed.
+    struct WrittenSet {
+        VkDescriptorSet set = VK_NULL_HANDLE;
+        const SetLayout* layout = nullptr;
+        std::vector<rhi::BindingEntry> entries;
+    };
+    std::array<WrittenSet, rhi::kMaxBindGroups> written_{};
+    std::vector<uint32_t> dynamic_offsets_;
+    // Storage for write_set's descriptor writes, kept so that steady-state recording allocates nothing.
+    std::vector<VkDescriptorBufferInfo> buffer_infos_;
+    std::vector<VkDescriptorImageInfo> image_infos_;
+    std::vector<VkWriteDescriptorSet> writes_;
     /// The open timer has a begin timestamp (there is none without timestamp queries, or past
     /// kMaxTimersPerFrame).
     bool timestamp_written_ = false;

@@ -9,7 +9,8 @@ namespace {
 
 std::string_view descriptor_type_name(VkDescriptorType type) {
     switch (type) {
-        case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER: return "uniform buffer";
+        case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+        case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC: return "uniform buffer";
         case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER: return "storage buffer";
         case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER: return "sampled texture";
         case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE: return "storage image";
@@ -57,6 +58,7 @@ loom::Result<const SetLayout*> LayoutCache::get_set_layout(std::vector<SetBindin
         return vk_error(r, "vkCreateDescriptorSetLayout");
     }
     layout->bindings = std::move(bindings);
+    for (const SetBinding& b : layout->bindings) layout->dynamic_count += b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC ? 1 : 0;
     const SetLayout* out = layout.get();
     set_layouts_.emplace(key, std::move(layout));
     return out;
@@ -109,6 +111,19 @@ loom::Result<const PipelineLayout*> LayoutCache::get(std::span<const StageReflec
         }
     }
 
+    // Uniform buffers take dynamic offsets (as many as the device allows in a layout, in set
+    // and binding order): per-draw uniform data at a new offset of the same buffer then binds
+    // the set written before with another offset instead of writing a new one.
+    uint32_t dynamic = 0;
+    for (auto& set : sets) {
+        std::sort(set.begin(), set.end(), [](const SetBinding& a, const SetBinding& b) { return a.binding < b.binding; });
+        for (SetBinding& b : set) {
+            if (b.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER && dynamic < max_dynamic_uniform_buffers_) {
+                b.type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC;
+                ++dynamic;
+            }
+        }
+    }
     uint32_t set_count = 0;
     for (uint32_t s = 0; s < rhi::kMaxBindGroups; ++s) {
         if (!sets[s].empty()) set_count = s + 1;
@@ -151,6 +166,7 @@ loom::Status FrameDescriptorPools::add_pool() {
     constexpr uint32_t kSets = 256;
     const VkDescriptorPoolSize sizes[] = {
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, kSets * 4},
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, kSets * 4},
         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSets * 2},
         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSets * 4},
         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kSets},

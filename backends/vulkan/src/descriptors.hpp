@@ -33,6 +33,8 @@ struct SetBinding {
 struct SetLayout {
     VkDescriptorSetLayout layout = VK_NULL_HANDLE;
     std::vector<SetBinding> bindings;  ///< sorted by binding
+    /// Bindings of type UNIFORM_BUFFER_DYNAMIC: each takes a dynamic offset when the set is bound.
+    uint32_t dynamic_count = 0;
 };
 
 struct PipelineLayout {
@@ -52,7 +54,9 @@ struct StageReflection {
 /// Owns every set layout and pipeline layout of a device (they live as long as it).
 class LayoutCache {
 public:
-    explicit LayoutCache(VkDevice device) : device_(device) {}
+    /// `max_dynamic_uniform_buffers`: the device's maxDescriptorSetUniformBuffersDynamic.
+    LayoutCache(VkDevice device, uint32_t max_dynamic_uniform_buffers)
+        : device_(device), max_dynamic_uniform_buffers_(max_dynamic_uniform_buffers) {}
     ~LayoutCache();
     LayoutCache(const LayoutCache&) = delete;
     LayoutCache& operator=(const LayoutCache&) = delete;
@@ -68,6 +72,7 @@ private:
     loom::Result<const SetLayout*> get_set_layout(std::vector<SetBinding> bindings);
 
     VkDevice device_;
+    uint32_t max_dynamic_uniform_buffers_;
     std::map<std::string, std::unique_ptr<SetLayout>> set_layouts_;
     std::map<std::string, std::unique_ptr<PipelineLayout>> pipeline_layouts_;
 };

@@ -59,7 +59,7 @@ loom::Status VulkanDevice::init_device(const rhi::DeviceDesc& desc) {
     submissions_ = std::make_unique<SubmissionTracker>(device);
     staging_ = std::make_unique<StagingRing>(device, *allocator_, kStagingRingSize);
     LOOM_TRY(staging_->init());
-    layouts_ = std::make_unique<LayoutCache>(device);
+    layouts_ = std::make_unique<LayoutCache>(device, context_->properties().limits.maxDescriptorSetUniformBuffersDynamic);
     auto cache_info = vk_init<VkPipelineCacheCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO);
     if (VkResult r = vkCreatePipelineCache(device, &cache_info, nullptr, &pipeline_cache_); r != VK_SUCCESS) {
         return vk_error(r, "vkCreatePipelineCache");

@@ -110,8 +110,8 @@ void record_draws(rhi::CommandList& list, Path path, const Resources& r, uint32_
             break;
         case Path::TransientUniforms:
             for (uint32_t i = 0; i < draws; ++i) {
-                const rhi::BufferBinding data = list.transient_uniforms_of(draw_cost::draw_constants(i));
-                list.set_bind_group(0, rhi::BindGroup{}.buffer(0, data));
+                // Per-draw data at set 0, binding 0 without building a BindGroup.
+                list.set_uniforms_of(0, 0, draw_cost::draw_constants(i));
                 list.draw(3);
             }
             break;

@@ -105,6 +105,9 @@ public:
     [[nodiscard]] PipelineHandle pipeline() const { return pipeline_; }
     /// set_bind_group (rhi::validation::bind_group); keeps a copy of `group`.
     Status set_bind_group(uint32_t set, const BindGroup& group);
+    /// set_buffer: `range` replaces the buffer at `binding` of the group bound to `set` (or
+    /// joins it; a set with no group gets one).
+    Status set_buffer(uint32_t set, uint32_t binding, const BufferBinding& range);
     /// The group bound to `set`, or null.
     [[nodiscard]] const BindGroup* bind_group(uint32_t set) const;
     /// push_constants (rhi::validation::push_constants); keeps the bytes.

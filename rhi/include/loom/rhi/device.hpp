@@ -167,6 +167,12 @@ public:
     virtual void set_scissor(const Rect& rect) = 0;
     /// Binds the resources of `layout(set = set)` for the following draws/dispatches.
     virtual void set_bind_group(uint32_t set, const BindGroup& group) = 0;
+    /// Binds `range` (a uniform or storage buffer range, e.g. one transient_uniforms returned)
+    /// at binding `binding` of set `set`, keeping the set's other bindings: per-draw data
+    /// without building a BindGroup. Checked like set_bind_group at the next draw or dispatch.
+    /// Where only the offset of a uniform range changed since the last draw, the backends bind
+    /// it again without checking or writing anything else (Vulkan: a dynamic offset).
+    virtual void set_buffer(uint32_t set, uint32_t binding, const BufferBinding& range) = 0;
     /// Vulkan push constants (emulated with a uniform buffer on GL).
     virtual void push_constants(std::span<const std::byte> data, uint32_t offset = 0) = 0;
     /// Binds `buffer` (from `offset`) to vertex buffer slot `slot` of the pipeline's layout.
@@ -245,6 +251,12 @@ public:
     template <class T>
     BufferBinding transient_uniforms_of(const T& value) {
         return transient_uniforms(std::as_bytes(std::span<const T, 1>(&value, 1)));
+    }
+    /// Convenience: `value` copied into transient uniform memory and bound at (set, binding),
+    /// the cheapest way to give each draw its own uniform block.
+    template <class T>
+    void set_uniforms_of(uint32_t set, uint32_t binding, const T& value) {
+        set_buffer(set, binding, transient_uniforms_of(value));
     }
 };
 

@@ -138,6 +138,8 @@ Result<TextureCopyRange> texture_copy(const TextureDesc& src, const TextureDesc&
 /// Tex3D texture has one layer, its depth slices are not layers) is an InvalidArgument error
 /// starting with `what` ("transition: texture 'x'").
 Result<TextureRange> texture_range(std::string_view what, const TextureDesc& texture, const TextureRange& range);
+/// set_buffer's set and binding are inside loom's limits.
+Status buffer_slot(uint32_t set, uint32_t binding);
 
 /// The layers a TextureRange addresses in `texture`: its array layers, 6 for a cube, 1 for 2D and 3D.
 uint32_t range_layers(const TextureDesc& texture);
