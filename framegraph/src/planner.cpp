@@ -64,25 +64,6 @@ Result<OrderProblem> order_problem_of(const FrameGraph& graph, const PlanOptions
 
 }  // namespace detail
 
-AllocatorChoice::AllocatorChoice(const std::string& name) : kind_(AllocatorKind::Interval) {
-    auto parsed = parse_allocator(name);
-    if (parsed) {
-        kind_ = *parsed;
-    } else {
-        unknown_name_ = name;  // build_plan's error quotes it
-    }
-}
-
-Result<AllocatorKind> AllocatorChoice::kind() const {
-    if (unknown_name_) return parse_allocator(*unknown_name_);
-    const auto kinds = allocator_kinds();
-    if (std::find(kinds.begin(), kinds.end(), kind_) == kinds.end()) {
-        return make_error(ErrorCode::InvalidArgument,
-                          "unknown allocator kind " + std::to_string(static_cast<unsigned>(kind_)));
-    }
-    return kind_;
-}
-
 // The phases in order, each a function of plain data (plan_phases.hpp); what they decide is
 // put together into the plan here.
 Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
@@ -90,9 +71,13 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
         return make_error(ErrorCode::InvalidArgument, "plan: frame size " + std::to_string(options.frame.width) + "x" +
                                                           std::to_string(options.frame.height) + " is empty");
     }
-    auto allocator_kind = options.allocator.kind();
-    if (!allocator_kind) return allocator_kind.take_error();
-    const std::unique_ptr<Allocator> allocator = make_allocator(*allocator_kind);
+    const auto kinds = allocator_kinds();
+    if (std::find(kinds.begin(), kinds.end(), options.allocator) == kinds.end()) {
+        return make_error(ErrorCode::InvalidArgument,
+                          "plan: unknown allocator kind " + std::to_string(static_cast<unsigned>(options.allocator)));
+    }
+    const AllocatorKind allocator_kind = options.allocator;
+    const std::unique_ptr<Allocator> allocator = make_allocator(allocator_kind);
     std::shared_ptr<MemoryModel> memory = options.memory_model;
     if (!memory) memory = std::make_shared<DefaultMemoryModel>();
 
@@ -114,7 +99,7 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
     plan.pass_order = options.order;
     plan.order = detail::plan_passes(graph, schedule, *resolved);
     detail::QueuePlan queues = detail::plan_queues(plan.order, resolved->resources, *dependencies, schedule);
-    if (!queues.syncs.empty() && *allocator_kind == AllocatorKind::Paper) {
+    if (!queues.syncs.empty() && allocator_kind == AllocatorKind::Paper) {
         const auto async = std::find_if(plan.order.begin(), plan.order.end(),
                                         [](const PlanPass& pass) { return pass.queue != Queue::Graphics; });
         return make_error(ErrorCode::InvalidArgument,

@@ -42,7 +42,7 @@ int fail(const loom::Error& error) { return fail(error.to_string()); }
 struct Options {
     loom::samples::CommonOptions common;
     uint64_t frames = 1;
-    std::string allocator = "interval";
+    loom::fg::AllocatorKind allocator = loom::fg::AllocatorKind::Interval;
     bool forward = false;
     /// A glTF file; empty: the built-in scene.
     std::filesystem::path scene;
@@ -118,7 +118,9 @@ loom::Result<Options> parse(int argc, char** argv) {
         } else if (name == "--allocator") {
             auto v = take();
             if (!v) return v.take_error();
-            options.allocator = *v;
+            auto kind = loom::fg::parse_allocator(*v);
+            if (!kind) return loom::make_error(loom::ErrorCode::InvalidArgument, "--allocator: " + kind.error().message);
+            options.allocator = *kind;
         } else if (name == "--pipeline") {
             auto v = take();
             if (!v) return v.take_error();

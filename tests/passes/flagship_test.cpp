@@ -91,7 +91,7 @@ TEST_P(FlagshipTest, PlanSharesSixColourTexturesAndTheBackendCreatesExactlyThePl
 
 TEST_P(FlagshipTest, ThePaperAllocatorAlsoNeedsSixColourTextures) {
     renderer::PipelineSettings settings;
-    settings.allocator = "paper";
+    settings.allocator = fg::AllocatorKind::Paper;
     auto frame = render_flagship(device(), 96, 64, settings);
     ASSERT_TRUE(frame.ok()) << frame.error().to_string();
     EXPECT_EQ(textures_of_format(frame->plan, Format::RGBA16Float), 6u);

@@ -16,37 +16,13 @@ namespace loom::fg {
 
 class FrameGraph;
 
-/// The allocator PlanOptions::allocator asks for: an AllocatorKind. It also takes a std::string
-/// name, a deprecated convenience kept only for callers that still hold names in their own
-/// settings (the renderer's DeferredPipelineSettings): a known name becomes its kind at once, an
-/// unknown one is kept so that build_plan reports it (InvalidArgument naming it). New code
-/// passes a kind, or parses a user's name with parse_allocator, which reports a typo there.
-class AllocatorChoice {
-public:
-    constexpr AllocatorChoice(AllocatorKind kind = AllocatorKind::Interval) : kind_(kind) {}  // NOLINT: implicit by design
-    /// Deprecated: see the class comment.
-    AllocatorChoice(const std::string& name);  // NOLINT: implicit, as the string field it replaces
-
-    /// The kind; an InvalidArgument error for a name that named no allocator (or a value
-    /// outside AllocatorKind).
-    [[nodiscard]] Result<AllocatorKind> kind() const;
-
-    friend bool operator==(const AllocatorChoice&, const AllocatorChoice&) = default;
-    /// True when it is that kind (never for an unknown name).
-    friend bool operator==(const AllocatorChoice& choice, AllocatorKind kind) {
-        return !choice.unknown_name_ && choice.kind_ == kind;
-    }
-
-private:
-    AllocatorKind kind_;
-    std::optional<std::string> unknown_name_;  ///< the name given when it named no allocator
-};
-
 /// How to plan: the frame size, the allocator, which specs may share, the memory model, the heap
 /// cap, the pass order.
 struct PlanOptions {
     Extent2D frame{1920, 1080};      ///< the size relative sizes scale
-    AllocatorChoice allocator = AllocatorKind::Interval;
+    /// Chosen by kind; a user's name is parsed once with parse_allocator (allocator.hpp), which
+    /// reports a typo where the name comes from.
+    AllocatorKind allocator = AllocatorKind::Interval;
     SpecSharing sharing = SpecSharing::Equal;
     /// Sizes and alignments; null means DefaultMemoryModel. Compared by identity.
     std::shared_ptr<MemoryModel> memory_model;

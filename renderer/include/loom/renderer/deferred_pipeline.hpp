@@ -47,7 +47,7 @@
 namespace loom::renderer {
 
 struct PipelineSettings {
-    std::string allocator = "interval";
+    fg::AllocatorKind allocator = fg::AllocatorKind::Interval;
     /// Light the objects as they are drawn (the forward pass, composed of the same
     /// "shadow-render" and "high-pass-render" parts) instead of the G-buffer and deferred passes.
     bool forward = false;
