@@ -14,6 +14,14 @@ bool same_range(const TextureRange& a, const TextureRange& b) {
 
 }  // namespace
 
+const BindingEntry* bound_entry(const BindGroup* group, uint32_t binding) {
+    if (!group) return nullptr;
+    for (auto it = group->entries.rbegin(); it != group->entries.rend(); ++it) {
+        if (it->binding == binding) return &*it;
+    }
+    return nullptr;
+}
+
 bool differs_only_in_buffer_offset(const BindingEntry& now, const BindingEntry& then) {
     if (now.binding != then.binding || now.resource.index() != then.resource.index()) return false;
     if (const auto* a = std::get_if<BufferBinding>(&now.resource)) {

@@ -8,6 +8,7 @@
 #include <variant>
 #include <vector>
 
+#include "loom/rhi/binding_reuse.hpp"
 #include "loom/rhi/checked_math.hpp"
 #include "loom/rhi/format.hpp"
 #include "loom/rhi/shader.hpp"
@@ -681,12 +682,7 @@ Result<const BindingEntry*> binding(std::string_view command, std::string_view p
                                     const Capabilities& caps, const ResourceLookup& lookup) {
     // Built only for an error: draws check every binding, and nearly all are fine.
     auto site = [&] { return slot_site(command, pipeline, slot); };
-    const BindingEntry* entry = nullptr;
-    if (group) {
-        for (const BindingEntry& e : group->entries) {
-            if (e.binding == slot.binding) entry = &e;
-        }
-    }
+    const BindingEntry* entry = bound_entry(group, slot.binding);
     if (!entry) return Error{ErrorCode::InvalidState, site() + " is not bound"};
     auto wrong_kind = [&] {
         return Error{ErrorCode::InvalidArgument, site() + " is " + std::string(binding_kind_name(slot.kind)) + " but the bind group has " +

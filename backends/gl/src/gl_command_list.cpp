@@ -302,10 +302,7 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
     for (const PipelineBinding& b : p.bindings) {
         const rhi::validation::PipelineSlot slot{b.set, b.binding, b.kind, b.name, b.texture_kind};
         // Found by the check above.
-        const rhi::BindingEntry* entry = nullptr;
-        for (const rhi::BindingEntry& e : state_.bind_group(b.set)->entries) {
-            if (e.binding == b.binding) entry = &e;
-        }
+        const rhi::BindingEntry* entry = rhi::bound_entry(state_.bind_group(b.set), b.binding);
         resolved_entries_.push_back(*entry);
         // The handles were found by the validation above.
         ResolvedBinding r;
@@ -580,12 +577,7 @@ bool GlCommandList::reuse_bindings(const GlPipeline& p, bool allowed) {
     const uint64_t alignment = device_->capabilities().uniform_buffer_offset_alignment;
     for (std::size_t i = 0; i < p.bindings.size(); ++i) {
         const PipelineBinding& b = p.bindings[i];
-        const rhi::BindGroup* group = state_.bind_group(b.set);
-        if (!group) return false;
-        const rhi::BindingEntry* entry = nullptr;
-        for (const rhi::BindingEntry& e : group->entries) {
-            if (e.binding == b.binding) entry = &e;
-        }
+        const rhi::BindingEntry* entry = rhi::bound_entry(state_.bind_group(b.set), b.binding);
         if (!entry || !rhi::differs_only_in_buffer_offset(*entry, resolved_entries_[i])) return false;
         const auto* range = std::get_if<rhi::BufferBinding>(&entry->resource);
         if (!range) continue;

@@ -302,10 +302,7 @@ bool VulkanCommandList::write_set(const Pipeline& pipeline, uint32_t set, VkDesc
         const SetBinding& b = set_layout.bindings[n];
         const rhi::validation::PipelineSlot slot{set, b.binding, binding_kind(b.type), b.name, b.kind};
         // Found by the check above.
-        const rhi::BindingEntry* entry = nullptr;
-        for (const rhi::BindingEntry& e : group->entries) {
-            if (e.binding == b.binding) entry = &e;
-        }
+        const rhi::BindingEntry* entry = rhi::bound_entry(group, b.binding);
         // Built only for an error.
         auto where = [&] {
             return std::string(what) + ": pipeline " + in_quotes(pipeline.name) + " set " + std::to_string(set) +
@@ -413,10 +410,7 @@ bool VulkanCommandList::reuse_written_set(const SetLayout& layout, uint32_t set)
     const uint64_t alignment = device_.capabilities().uniform_buffer_offset_alignment;
     for (std::size_t i = 0; i < layout.bindings.size(); ++i) {
         const SetBinding& b = layout.bindings[i];
-        const rhi::BindingEntry* entry = nullptr;
-        for (const rhi::BindingEntry& e : group->entries) {
-            if (e.binding == b.binding) entry = &e;
-        }
+        const rhi::BindingEntry* entry = rhi::bound_entry(group, b.binding);
         const rhi::BindingEntry& then = written.entries[i];
         if (!entry || !rhi::differs_only_in_buffer_offset(*entry, then)) return false;
         const auto* range = std::get_if<rhi::BufferBinding>(&entry->resource);
