@@ -257,6 +257,23 @@ private:
         OrderCost best = cost_;
         best_sequence_.clear();
         uint32_t best_first = 0;
+        // Positions `first` to `last` reordered with the dragged passes in front (a move earlier)
+        // or behind (a move later), the others keeping their order; kept when the cheapest yet.
+        auto consider = [&](uint32_t first, uint32_t last, bool dragged_in_front) {
+            sequence_.clear();
+            for (const bool dragged : {dragged_in_front, !dragged_in_front}) {
+                for (uint32_t k = first; k <= last; ++k) {
+                    if (dragged_[order_[k]] == dragged) sequence_.push_back(order_[k]);
+                }
+            }
+            const OrderCost moved = evaluate(first);
+            if (moved < best) {
+                best = moved;
+                best_sequence_ = sequence_;
+                best_movers_ = dragged_list_;
+                best_first = first;
+            }
+        };
         // Earlier: the passes between `to` and `from` that v depends on come along.
         dragged_[v] = true;
         dragged_list_.assign(1, v);
@@ -271,20 +288,7 @@ private:
             }
             if (dragged_list_.size() == from - to + 1) continue;  // everything moves: no change
             if (!reaches_peak(to, from)) continue;
-            sequence_.clear();
-            for (uint32_t k = to; k <= from; ++k) {
-                if (dragged_[order_[k]]) sequence_.push_back(order_[k]);
-            }
-            for (uint32_t k = to; k <= from; ++k) {
-                if (!dragged_[order_[k]]) sequence_.push_back(order_[k]);
-            }
-            const OrderCost moved = evaluate(to);
-            if (moved < best) {
-                best = moved;
-                best_sequence_ = sequence_;
-                best_movers_ = dragged_list_;
-                best_first = to;
-            }
+            consider(to, from, true);
         }
         for (uint32_t u : dragged_list_) dragged_[u] = false;
         // Later: the passes between `from` and `to` that depend on v come along.
@@ -301,20 +305,7 @@ private:
             }
             if (dragged_list_.size() == to - from + 1) continue;
             if (!reaches_peak(from, to)) continue;
-            sequence_.clear();
-            for (uint32_t k = from; k <= to; ++k) {
-                if (!dragged_[order_[k]]) sequence_.push_back(order_[k]);
-            }
-            for (uint32_t k = from; k <= to; ++k) {
-                if (dragged_[order_[k]]) sequence_.push_back(order_[k]);
-            }
-            const OrderCost moved = evaluate(from);
-            if (moved < best) {
-                best = moved;
-                best_sequence_ = sequence_;
-                best_movers_ = dragged_list_;
-                best_first = from;
-            }
+            consider(from, to, false);
         }
         for (uint32_t u : dragged_list_) dragged_[u] = false;
         if (best_sequence_.empty() || !(std::tie(best.peak, best.at_peak) < std::tie(cost_.peak, cost_.at_peak))) {
