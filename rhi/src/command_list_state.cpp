@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "loom/rhi/binding_reuse.hpp"
+
 namespace loom::rhi {
 
 using validation::in_quotes;
@@ -168,28 +170,16 @@ Status CommandListState::set_bind_group(uint32_t set, const BindGroup& group) {
 }
 
 Status CommandListState::set_buffer(uint32_t set, uint32_t binding, const BufferBinding& range) {
-    LOOM_TRY(validation::buffer_slot(set, binding));
+    // Per-draw data comes this way: the message is built only when the slot is out of range.
+    if (set >= kMaxBindGroups || binding >= kMaxBindingsPerGroup) return validation::buffer_slot(set, binding);
     std::optional<BindGroup>& group = groups_[set];
     if (!group) group.emplace();
     // The last entry for a binding is the one draws use (as in a group given whole).
-    for (auto it = group->entries.rbegin(); it != group->entries.rend(); ++it) {
-        if (it->binding == binding) {
-            it->resource = range;
-            return {};
-        }
+    if (BindingEntry* entry = bound_entry(&*group, binding)) {
+        entry->resource = range;
+    } else {
+        group->entries.push_back({binding, range});
     }
-    group->entries.push_back({binding, range});
-    return {};
-}
-
-const BindGroup* CommandListState::bind_group(uint32_t set) const {
-    return set < groups_.size() && groups_[set] ? &*groups_[set] : nullptr;
-}
-
-Status CommandListState::push_constants(std::span<const std::byte> data, uint32_t offset) {
-    LOOM_TRY(validation::push_constants(offset, data.size()));
-    std::copy(data.begin(), data.end(), push_data_.begin() + offset);
-    push_size_ = std::max(push_size_, offset + static_cast<uint32_t>(data.size()));
     return {};
 }
 

@@ -292,8 +292,9 @@ TEST_F(CommandListStateTest, BoundStateLastsForOneFrame) {
                  "push_constants: 8 bytes at offset 252 exceed the 256 bytes loom supports");
     ASSERT_TRUE(state.set_index_buffer(buffer("i", 12, BufferUsage::Index), IndexType::Uint32, 0).ok());
     EXPECT_EQ(state.pipeline(), pipeline);
-    ASSERT_NE(state.bind_group(1), nullptr);
-    EXPECT_EQ(state.bind_group(1)->entries.size(), 1u);
+    const BindGroup* group1 = state.bind_group(1);
+    ASSERT_NE(group1, nullptr);
+    EXPECT_EQ(group1->entries.size(), 1u);
     EXPECT_EQ(state.bind_group(0), nullptr);
     EXPECT_EQ(state.push_constant_size(), 16u);
     EXPECT_EQ(state.push_constant_data()[8], std::byte{7});
@@ -320,20 +321,23 @@ TEST_F(CommandListStateTest, SetBufferReplacesOneBindingOfTheGroup) {
     state.begin_frame();
     const BufferHandle ubo = buffer("ubo", 256, BufferUsage::Uniform);
     ASSERT_TRUE(state.set_buffer(2, 1, BufferBinding{ubo, 0, 16}).ok());
-    ASSERT_NE(state.bind_group(2), nullptr);
-    ASSERT_EQ(state.bind_group(2)->entries.size(), 1u);
+    const BindGroup* group2 = state.bind_group(2);
+    ASSERT_NE(group2, nullptr);
+    ASSERT_EQ(group2->entries.size(), 1u);
 
     BindGroup group;
     group.buffer(0, ubo, 0, 16).buffer(1, ubo, 0, 16).buffer(1, ubo, 32, 16);
     ASSERT_TRUE(state.set_bind_group(0, group).ok());
     ASSERT_TRUE(state.set_buffer(0, 1, BufferBinding{ubo, 64, 16}).ok());
-    const BindGroup& bound = *state.bind_group(0);
+    const BindGroup* group0 = state.bind_group(0);
+    ASSERT_NE(group0, nullptr);
+    const BindGroup& bound = *group0;
     ASSERT_EQ(bound.entries.size(), 3u);
     EXPECT_EQ(std::get<BufferBinding>(bound.entries[0].resource).offset, 0u);   // binding 0 kept
     EXPECT_EQ(std::get<BufferBinding>(bound.entries[1].resource).offset, 0u);   // hidden by the later one
     EXPECT_EQ(std::get<BufferBinding>(bound.entries[2].resource).offset, 64u);  // the one draws use
     ASSERT_TRUE(state.set_buffer(0, 5, BufferBinding{ubo, 128, 16}).ok());
-    EXPECT_EQ(state.bind_group(0)->entries.size(), 4u);
+    EXPECT_EQ(bound.entries.size(), 4u);  // the same group, one entry more
 
     expect_error(state.set_buffer(kMaxBindGroups, 0, BufferBinding{ubo, 0, 16}), ErrorCode::InvalidArgument,
                  "set_buffer: set " + std::to_string(kMaxBindGroups) + " binding 0 is beyond the " +

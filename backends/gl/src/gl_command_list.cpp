@@ -72,15 +72,17 @@ void GlCommandList::begin() {
     pass_framebuffer_ = 0;
     pass_discard_after_.clear();
     push_dirty_ = false;
-    push_binding_.reset();
+    push_range_ = {};
     timers_.clear();
     draws_.clear();
     indirect_draws_.clear();
+    draw_runs_.clear();
+    draw_run_open_ = false;
     pipeline_states_.clear();
     vertex_states_.clear();
     binding_states_.clear();
+    binding_state_drawn_ = false;
     draw_pipeline_ = nullptr;
-    push_buffer_ = 0;
     blends_.clear();
     vertex_bindings_.clear();
     bindings_.clear();
@@ -98,19 +100,13 @@ std::vector<GlCommand>& GlCommandList::finish() {
     return commands_;
 }
 
-uint64_t GlCommandList::device_removals() const {
+LOOM_GL_HOT uint64_t GlCommandList::device_removals() const {
     return device_->textures().removals() + device_->buffers().removals() + device_->samplers().removals() +
            device_->pipelines().removals();
 }
 
 void GlCommandList::fail(ErrorCode code, std::string message) {
     if (!first_error_) first_error_ = Error{code, std::move(message)};
-}
-
-bool GlCommandList::accepted(Status status) {
-    if (status.ok()) return true;
-    fail(status.take_error());
-    return false;
 }
 
 // ---- render passes ---------------------------------------------------------------------------
@@ -253,6 +249,32 @@ void GlCommandList::set_scissor(const rhi::Rect& r) {
     });
 }
 
+LOOM_GL_HOT bool GlCommandList::takes_new_offset(std::size_t i, const rhi::BufferBinding& range) {
+    auto* then = std::get_if<rhi::BufferBinding>(&resolved_entries_[i].resource);
+    // Size 0 means "to the end": its range moves with the offset, so it is resolved anew.
+    if (!then || then->buffer != range.buffer || then->size != range.size || range.size == 0) return false;
+    if (range.offset == then->offset) return true;
+    // A new offset of a uniform range in the same (living) buffer: checked here as the full
+    // check would.
+    const GlBuffer* buffer = device_->buffers().find(range.buffer);
+    if (draw_pipeline_->bindings[i].kind != BindingKind::UniformBuffer || !buffer ||
+        !rhi::uniform_offset_fits(range, buffer->desc.size, device_->capabilities().uniform_buffer_offset_alignment)) {
+        return false;
+    }
+    then->offset = range.offset;
+    return true;
+}
+
+LOOM_GL_HOT void GlCommandList::next_binding_state() {
+    const BindingState last = binding_states_.back();
+    BindingState next;
+    next.first_binding = static_cast<uint32_t>(bindings_.size());
+    next.binding_count = last.binding_count;
+    for (uint32_t i = 0; i < last.binding_count; ++i) bindings_.push_back(bindings_[last.first_binding + i]);
+    binding_states_.push_back(next);
+    binding_state_drawn_ = false;
+}
+
 // Bind groups, push constants and vertex and index buffers are kept by the tracker and
 // resolved to GL names at each draw or dispatch.
 void GlCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
@@ -261,8 +283,25 @@ void GlCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
 }
 
 void GlCommandList::set_buffer(uint32_t set, uint32_t binding, const rhi::BufferBinding& range) {
+    if (!accepted(state_.set_buffer(set, binding, range))) {
+        binding_state_valid_ = false;
+        return;
+    }
+    // Per-draw uniform data: while the bindings resolved for the draws before still hold, a new
+    // offset in the same buffer changes one offset of them, checked here, and the next draw
+    // stays on the short path.
+    if (binding_state_valid_ && pipeline_state_valid_ && draw_state_removals_ == device_removals()) {
+        const std::vector<PipelineBinding>& bindings = draw_pipeline_->bindings;
+        std::size_t i = 0;
+        while (i < bindings.size() && (bindings[i].set != set || bindings[i].binding != binding)) ++i;
+        if (i == bindings.size()) return;  // the pipeline does not read it: its draws are unchanged
+        if (takes_new_offset(i, range)) {
+            if (binding_state_drawn_) next_binding_state();  // drawn with the old offset
+            bindings_[binding_states_.back().first_binding + i].offset = static_cast<GLintptr>(range.offset);
+            return;
+        }
+    }
     binding_state_valid_ = false;
-    accepted(state_.set_buffer(set, binding, range));
 }
 
 void GlCommandList::push_constants(std::span<const std::byte> data, uint32_t offset) {
@@ -280,7 +319,10 @@ void GlCommandList::set_index_buffer(rhi::BufferHandle buffer, rhi::IndexType ty
 }
 
 rhi::BufferBinding GlCommandList::transient_uniforms(std::span<const std::byte> data) {
-    if (!accepted(state_.check_recording("transient_uniforms"))) return {};
+    if (!state_.recording()) [[unlikely]] {
+        accepted(state_.check_recording("transient_uniforms"));
+        return {};
+    }
     return device_->allocate_transient(data);
 }
 
@@ -401,32 +443,21 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
     return true;
 }
 
-GlCommandList::PushRange GlCommandList::push_constant_range(const GlPipeline& p) {
-    PushRange r;
-    if (p.push_constant_size == 0) return r;
-    if (push_dirty_ || !push_binding_ || push_binding_->size < p.push_constant_size) {
+LOOM_GL_HOT GlCommandList::PushRange GlCommandList::push_constant_range(const GlPipeline& p) {
+    if (p.push_constant_size == 0) return {};
+    if (push_dirty_ || push_range_.object == 0 || push_range_.size < static_cast<GLsizeiptr>(p.push_constant_size)) {
         const uint32_t size = std::max(p.push_constant_size, state_.push_constant_size());
-        push_binding_ = device_->allocate_transient(state_.push_constant_data().first(size), &push_buffer_);
+        const rhi::BufferBinding copy = device_->allocate_transient(state_.push_constant_data().first(size), &push_range_.object);
+        push_range_.offset = static_cast<GLintptr>(copy.offset);
+        push_range_.size = static_cast<GLsizeiptr>(copy.size);
         push_dirty_ = false;
     }
-    r.object = push_buffer_;
-    r.offset = static_cast<GLintptr>(push_binding_->offset);
-    r.size = static_cast<GLsizeiptr>(push_binding_->size);
-    return r;
+    return push_range_;
 }
 
 // ---- draws and dispatches --------------------------------------------------------------------
 
-void GlCommandList::draw(uint32_t vertex_count, uint32_t instance_count, uint32_t first_vertex, uint32_t first_instance) {
-    draw_common(false, vertex_count, instance_count, first_vertex, 0, first_instance);
-}
-
-void GlCommandList::draw_indexed(uint32_t index_count, uint32_t instance_count, uint32_t first_index, int32_t base_vertex,
-                                 uint32_t first_instance) {
-    draw_common(true, index_count, instance_count, first_index, base_vertex, first_instance);
-}
-
-void GlCommandList::apply_bindings(GlStateCache& cache, uint32_t first, uint32_t count) const {
+LOOM_GL_HOT void GlCommandList::apply_bindings(GlStateCache& cache, uint32_t first, uint32_t count) const {
     for (uint32_t i = first; i < first + count; ++i) {
         const ResolvedBinding& b = bindings_[i];
         switch (b.kind) {
@@ -441,17 +472,6 @@ void GlCommandList::apply_bindings(GlStateCache& cache, uint32_t first, uint32_t
                 break;
         }
     }
-}
-
-void GlCommandList::draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t offset, uint32_t draw_count,
-                                          uint32_t stride) {
-    const char* command = "draw_indexed_indirect";
-    auto found = device_->buffers().get(buffer);
-    if (!found.ok()) return fail(ErrorCode::InvalidHandle, std::string(command) + ": argument buffer: " + found.error().message);
-    const GlBuffer& b = **found;
-    if (!accepted(rhi::validation::indirect_draws(b.desc, offset, draw_count, stride))) return;
-    draw_common(true, 0, 0, 0, 0, 0,
-                IndirectDraw{b.name, static_cast<uintptr_t>(offset), static_cast<GLsizei>(draw_count), static_cast<GLsizei>(stride)});
 }
 
 bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool indirect) {
@@ -527,86 +547,19 @@ bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool i
         if (!resolve_bindings(p, command)) {
             bindings_.resize(b.first_binding);
             binding_states_.push_back(b);  // keeps the indices of the others in step; never drawn
+            binding_state_drawn_ = false;
             return false;
         }
         b.binding_count = static_cast<uint32_t>(bindings_.size()) - b.first_binding;
         binding_states_.push_back(b);
+        binding_state_drawn_ = false;
     }
     pipeline_state_valid_ = vertex_state_valid_ = binding_state_valid_ = true;
     draw_state_removals_ = device_removals();
     return true;
 }
 
-void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
-                                uint32_t first_instance, const std::optional<IndirectDraw>& indirect) {
-    const char* command = indirect ? "draw_indexed_indirect" : indexed ? "draw_indexed" : "draw";
-    if (!prepare_draw_state(command, indexed, indirect.has_value())) {
-        // A refused draw leaves state resolved in part: the next one starts again.
-        invalidate_draw_state();
-        return;
-    }
-    // Indirect draws' index ranges are in GPU memory: the GPU checks them.
-    if (indexed && !indirect && !accepted(state_.check_index_range(first, count))) return;
-    // Checked like any other draw (as Vulkan records it), then nothing to draw.
-    if (indirect ? indirect->count == 0 : (count == 0 || instance_count == 0)) return;
-    Draw draw;
-    draw.pipeline_state = static_cast<uint32_t>(pipeline_states_.size() - 1);
-    draw.vertex_state = static_cast<uint32_t>(vertex_states_.size() - 1);
-    draw.binding_state = static_cast<uint32_t>(binding_states_.size() - 1);
-    draw.indexed = indexed;
-    draw.count = count;
-    draw.instance_count = instance_count;
-    draw.first = first;
-    draw.base_vertex = base_vertex;
-    draw.first_instance = first_instance;
-    if (indirect) {
-        draw.indirect = static_cast<uint32_t>(indirect_draws_.size());
-        indirect_draws_.push_back(*indirect);
-    }
-    // The pipeline was found alive for this state (nothing destroyed since).
-    draw.push = push_constant_range(*draw_pipeline_);
-    const auto index = static_cast<uint32_t>(draws_.size());
-    draws_.push_back(draw);
-    // Small enough for std::function to hold without allocating.
-    commands_.push_back([this, index](GlStateCache& cache) { replay_draw(cache, draws_[index]); });
-}
-
-bool GlCommandList::reuse_bindings(const GlPipeline& p, bool allowed) {
-    if (!allowed || resolved_entries_.size() != p.bindings.size()) return false;
-    const BindingState& last = binding_states_.back();
-    const uint64_t alignment = device_->capabilities().uniform_buffer_offset_alignment;
-    for (std::size_t i = 0; i < p.bindings.size(); ++i) {
-        const PipelineBinding& b = p.bindings[i];
-        const rhi::BindingEntry* entry = rhi::bound_entry(state_.bind_group(b.set), b.binding);
-        if (!entry || !rhi::differs_only_in_buffer_offset(*entry, resolved_entries_[i])) return false;
-        const auto* range = std::get_if<rhi::BufferBinding>(&entry->resource);
-        if (!range) continue;
-        const auto& then = std::get<rhi::BufferBinding>(resolved_entries_[i].resource);
-        if (range->offset == then.offset) continue;
-        // A new offset of a uniform range in the same (living) buffer: checked here as the full
-        // check would; anything else is resolved anew (resolve_bindings starts these entries over).
-        const GlBuffer* buffer = device_->buffers().find(range->buffer);
-        if (b.kind != BindingKind::UniformBuffer || !buffer || !rhi::uniform_offset_fits(*range, buffer->desc.size, alignment)) {
-            return false;
-        }
-        resolved_entries_[i] = *entry;
-    }
-    // The same bindings with the new offsets.
-    BindingState next;
-    next.first_binding = static_cast<uint32_t>(bindings_.size());
-    next.binding_count = last.binding_count;
-    for (uint32_t i = 0; i < last.binding_count; ++i) {
-        ResolvedBinding r = bindings_[last.first_binding + i];
-        if (const auto* range = std::get_if<rhi::BufferBinding>(&resolved_entries_[i].resource)) {
-            r.offset = static_cast<GLintptr>(range->offset);
-        }
-        bindings_.push_back(r);
-    }
-    binding_states_.push_back(next);
-    return true;
-}
-
-void GlCommandList::replay_draw(GlStateCache& cache, const Draw& draw) {
+LOOM_GL_HOT void GlCommandList::replay_draw(GlStateCache& cache, const Draw& draw) {
     const PipelineState& p = pipeline_states_[draw.pipeline_state];
     const VertexState& v = vertex_states_[draw.vertex_state];
     if (draw.pipeline_state != replayed_pipeline_) {
@@ -658,6 +611,96 @@ void GlCommandList::replay_draw(GlStateCache& cache, const Draw& draw) {
     }
     cache.count_call();
     cache.count_draw();
+}
+
+LOOM_GL_HOT void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
+                                uint32_t first_instance, const std::optional<IndirectDraw>& indirect) {
+    // Most draws find the state checked and resolved for the previous one still current.
+    const bool current = pipeline_state_valid_ && vertex_state_valid_ && binding_state_valid_ && !indirect &&
+                         (!indexed || vertex_states_.back().index_buffer != 0) &&
+                         draw_state_removals_ == device_removals();
+    const char* command = indirect ? "draw_indexed_indirect" : indexed ? "draw_indexed" : "draw";
+    if (!current && !prepare_draw_state(command, indexed, indirect.has_value())) {
+        // A refused draw leaves state resolved in part: the next one starts again.
+        invalidate_draw_state();
+        return;
+    }
+    // Indirect draws' index ranges are in GPU memory: the GPU checks them.
+    if (indexed && !indirect && !accepted(state_.check_index_range(first, count))) return;
+    // Checked like any other draw (as Vulkan records it), then nothing to draw.
+    if (indirect ? indirect->count == 0 : (count == 0 || instance_count == 0)) return;
+    Draw& draw = draws_.emplace_back();
+    draw.pipeline_state = static_cast<uint32_t>(pipeline_states_.size() - 1);
+    draw.vertex_state = static_cast<uint32_t>(vertex_states_.size() - 1);
+    draw.binding_state = static_cast<uint32_t>(binding_states_.size() - 1);
+    draw.indexed = indexed;
+    draw.count = count;
+    draw.instance_count = instance_count;
+    draw.first = first;
+    draw.base_vertex = base_vertex;
+    draw.first_instance = first_instance;
+    if (indirect) {
+        draw.indirect = static_cast<uint32_t>(indirect_draws_.size());
+        indirect_draws_.push_back(*indirect);
+    }
+    // The pipeline was found alive for this state (nothing destroyed since).
+    draw.push = push_constant_range(*draw_pipeline_);
+    binding_state_drawn_ = true;
+    if (draw_run_open_) {
+        ++draw_runs_.back().count;
+        return;
+    }
+    const auto run = static_cast<uint32_t>(draw_runs_.size());
+    draw_runs_.push_back({static_cast<uint32_t>(draws_.size() - 1), 1});
+    draw_run_open_ = true;
+    // Small enough for std::function to hold without allocating.
+    commands_.push_back([this, run](GlStateCache& cache) {
+        const DrawRun& r = draw_runs_[run];
+        for (uint32_t i = r.first; i < r.first + r.count; ++i) replay_draw(cache, draws_[i]);
+    });
+}
+
+void GlCommandList::draw(uint32_t vertex_count, uint32_t instance_count, uint32_t first_vertex, uint32_t first_instance) {
+    draw_common(false, vertex_count, instance_count, first_vertex, 0, first_instance);
+}
+
+void GlCommandList::draw_indexed(uint32_t index_count, uint32_t instance_count, uint32_t first_index, int32_t base_vertex,
+                                 uint32_t first_instance) {
+    draw_common(true, index_count, instance_count, first_index, base_vertex, first_instance);
+}
+
+void GlCommandList::draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t offset, uint32_t draw_count,
+                                          uint32_t stride) {
+    const char* command = "draw_indexed_indirect";
+    auto found = device_->buffers().get(buffer);
+    if (!found.ok()) return fail(ErrorCode::InvalidHandle, std::string(command) + ": argument buffer: " + found.error().message);
+    const GlBuffer& b = **found;
+    if (!accepted(rhi::validation::indirect_draws(b.desc, offset, draw_count, stride))) return;
+    draw_common(true, 0, 0, 0, 0, 0,
+                IndirectDraw{b.name, static_cast<uintptr_t>(offset), static_cast<GLsizei>(draw_count), static_cast<GLsizei>(stride)});
+}
+
+bool GlCommandList::reuse_bindings(const GlPipeline& p, bool allowed) {
+    if (!allowed || resolved_entries_.size() != p.bindings.size()) return false;
+    for (std::size_t i = 0; i < p.bindings.size(); ++i) {
+        const PipelineBinding& b = p.bindings[i];
+        const rhi::BindingEntry* entry = rhi::bound_entry(state_.bind_group(b.set), b.binding);
+        if (!entry) return false;
+        const auto* range = std::get_if<rhi::BufferBinding>(&entry->resource);
+        // Anything else is resolved anew (resolve_bindings starts these entries over).
+        if (range ? !takes_new_offset(i, *range) : !rhi::differs_only_in_buffer_offset(*entry, resolved_entries_[i])) {
+            return false;
+        }
+    }
+    // The same bindings with the new offsets.
+    next_binding_state();
+    const BindingState& next = binding_states_.back();
+    for (uint32_t i = 0; i < next.binding_count; ++i) {
+        if (const auto* range = std::get_if<rhi::BufferBinding>(&resolved_entries_[i].resource)) {
+            bindings_[next.first_binding + i].offset = static_cast<GLintptr>(range->offset);
+        }
+    }
+    return true;
 }
 
 void GlCommandList::dispatch(uint32_t groups_x, uint32_t groups_y, uint32_t groups_z) {

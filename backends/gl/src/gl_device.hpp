@@ -7,6 +7,7 @@
 // of the frame still runs.
 
 #include <array>
+#include <cstring>
 #include <deque>
 #include <functional>
 #include <map>
@@ -27,6 +28,14 @@
 #include "loom/rhi/command_list_state.hpp"
 #include "loom/rhi/handle_pool.hpp"
 #include "loom/rhi/validation.hpp"
+
+// Functions of the per-draw path, inlined where they are called: they run for every draw, and
+// the calls between them cost more than their bodies (docs/BENCHMARKS.md, "The RHI per draw").
+#if defined(__GNUC__)
+#define LOOM_GL_HOT [[gnu::always_inline]] inline
+#else
+#define LOOM_GL_HOT inline
+#endif
 
 namespace loom::gl {
 
@@ -115,9 +124,14 @@ private:
     void record(GlCommand command) {
         commands_.push_back(std::move(command));
         invalidate_draw_state();
+        draw_run_open_ = false;
     }
     /// True when `status` is ok; else records its error (the command is then skipped).
-    bool accepted(Status status);
+    LOOM_GL_HOT bool accepted(Status status) {
+        if (status.ok()) [[likely]] return true;
+        fail(status.take_error());
+        return false;
+    }
     /// Resolves the current pipeline's bindings from the bound groups into bindings_; false
     /// (with an error recorded) when something is missing or in the wrong state.
     bool resolve_bindings(const GlPipeline& pipeline, std::string_view command);
@@ -125,6 +139,12 @@ private:
     /// bound groups differ from what they were resolved from only in uniform offsets (see
     /// rhi/binding_reuse.hpp); false, with nothing recorded, otherwise.
     bool reuse_bindings(const GlPipeline& pipeline, bool allowed);
+    /// Whether the resolved binding `i` of the draw pipeline (a buffer) takes `range` by a new
+    /// offset alone: the same buffer (alive) and size, a uniform range whose new offset is
+    /// aligned and inside. Keeps the new offset in resolved_entries_ when so.
+    bool takes_new_offset(std::size_t i, const rhi::BufferBinding& range);
+    /// A copy of the last binding state, to change without changing what earlier draws bound.
+    void next_binding_state();
     /// The push-constant block of `pipeline` as a uniform range: a copy per change, so that
     /// every draw sees the values current when it was recorded.
     PushRange push_constant_range(const GlPipeline& pipeline);
@@ -184,6 +204,11 @@ private:
     bool prepare_draw_state(const char* command, bool indexed, bool indirect);
     /// The GL calls of one draw (its shared state only when it differs from the last draw's).
     void replay_draw(GlStateCache& cache, const Draw& draw);
+    /// Consecutive draws with no other command between them: one entry of commands_ replays
+    /// them all (a draw appends to the run instead of adding a command of its own).
+    struct DrawRun {
+        uint32_t first = 0, count = 0;  ///< a range of draws_
+    };
     void apply_bindings(GlStateCache& cache, uint32_t first, uint32_t count) const;
     /// Objects the device has destroyed so far (a draw state resolved before a destruction is
     /// checked again: its objects may be gone).
@@ -196,6 +221,8 @@ private:
     // allocates nothing.
     std::vector<Draw> draws_;
     std::vector<IndirectDraw> indirect_draws_;
+    std::vector<DrawRun> draw_runs_;
+    bool draw_run_open_ = false;  ///< the last command is draw_runs_.back(): the next draw joins it
     std::vector<PipelineState> pipeline_states_;
     std::vector<VertexState> vertex_states_;
     std::vector<BindingState> binding_states_;
@@ -209,9 +236,9 @@ private:
     bool pipeline_state_valid_ = false;
     bool vertex_state_valid_ = false;
     bool binding_state_valid_ = false;
+    bool binding_state_drawn_ = false;  ///< a draw was recorded with binding_states_.back()
     uint64_t draw_state_removals_ = 0;
     const GlPipeline* draw_pipeline_ = nullptr;  ///< the pipeline of pipeline_states_.back()
-    GLuint push_buffer_ = 0;                     ///< the GL name of push_binding_'s buffer
     /// The states whose GL calls were replayed last (UINT32_MAX: none, or other commands since).
     uint32_t replayed_pipeline_ = UINT32_MAX;
     uint32_t replayed_vertex_ = UINT32_MAX;
@@ -222,8 +249,8 @@ private:
     // The GL side of the open render pass.
     GLuint pass_framebuffer_ = 0;
     std::vector<GLenum> pass_discard_after_;  ///< attachments whose store op is DontCare
-    bool push_dirty_ = false;                 ///< push constants changed since push_binding_ was made
-    std::optional<rhi::BufferBinding> push_binding_;
+    bool push_dirty_ = false;                 ///< push constants changed since push_range_ was made
+    PushRange push_range_;                    ///< the last copy of the push constants (object 0: none yet)
     std::vector<std::pair<std::string, GLuint>> timers_;
 };
 
@@ -307,7 +334,23 @@ public:
                            const GlTexture* depth, std::array<uint32_t, 2> depth_mip_layer);
     /// Copies `data` into this frame's transient uniform memory.
     /// `name`, when given, receives the GL name of the buffer the binding is in.
-    rhi::BufferBinding allocate_transient(std::span<const std::byte> data, GLuint* name = nullptr);
+    LOOM_GL_HOT rhi::BufferBinding allocate_transient(std::span<const std::byte> data, GLuint* name = nullptr) {
+        // The common case inline (per draw for push constants): room in the frame's last chunk.
+        if (!frame_chunks_.empty()) [[likely]] {
+            TransientChunk& chunk = frame_chunks_.back();
+            const uint64_t alignment = caps_.uniform_buffer_offset_alignment;  // at least 1
+            const uint64_t offset = (chunk.used + alignment - 1) / alignment * alignment;
+            const uint64_t size = data.empty() ? 1 : data.size();
+            if (offset + size <= chunk.size) [[likely]] {
+                if (!data.empty()) std::memcpy(chunk.data + offset, data.data(), data.size());
+                chunk.used = offset + size;
+                pending_uploads_ += data.size();
+                if (name) *name = chunk.name;
+                return rhi::BufferBinding{chunk.buffer, offset, size};
+            }
+        }
+        return allocate_transient_chunk(data, name);
+    }
     GLuint acquire_query();
     void discard_first_timer_query();
     /// Counts upload bytes into the frame being prepared.
@@ -326,6 +369,9 @@ private:
     Status init(bool debug);
 
     void init_capabilities();
+    /// allocate_transient when the frame's last chunk has no room: another chunk (a free one, or
+    /// a new buffer), then the data in it.
+    rhi::BufferBinding allocate_transient_chunk(std::span<const std::byte> data, GLuint* name);
     /// Runs `destroy_gl` now, or after the recorded frame has executed.
     void delete_later(std::function<void()> destroy_gl);
     void forget_framebuffers_with(GLuint texture);
@@ -344,6 +390,10 @@ private:
         GLuint name = 0;
         uint64_t size = 0;
         uint64_t used = 0;
+        /// Where the data goes: the buffer mapped for the device's lifetime (persistent and
+        /// coherent: no upload call, as a hand-written ring would do), or, where GL refused
+        /// the mapping, `staging`, uploaded at end_frame.
+        std::byte* data = nullptr;
         std::vector<std::byte> staging;
         GLsync fence = nullptr;
     };

@@ -1,5 +1,6 @@
 // GlDevice: frames (recording, execution, presentation), transient uniform memory and timers.
 #include <algorithm>
+#include <cstring>
 
 #include "gl_device.hpp"
 #include "loom/rhi/log.hpp"
@@ -77,7 +78,7 @@ Status GlDevice::end_frame() {
     // which also makes the per-frame bind counts independent of earlier frames.
     cache_->invalidate();
     for (TransientChunk& chunk : frame_chunks_) {
-        if (chunk.used == 0) continue;
+        if (chunk.used == 0 || chunk.staging.empty()) continue;  // mapped chunks hold their data already
         glNamedBufferSubData(chunk.name, 0, static_cast<GLsizeiptr>(chunk.used), chunk.staging.data());
         cache_->count_call();
     }
@@ -142,45 +143,43 @@ Status GlDevice::wait_idle() {
 
 // ---- transient uniforms ----------------------------------------------------------------------
 
-rhi::BufferBinding GlDevice::allocate_transient(std::span<const std::byte> data, GLuint* name) {
-    // Copied into the frame's staging memory, uploaded at end_frame: GL is called (and this
-    // device's context made current) only for a new chunk.
+rhi::BufferBinding GlDevice::allocate_transient_chunk(std::span<const std::byte> data, GLuint* name) {
+    // Written into a chunk of mapped memory: GL is called (and this device's context made
+    // current) only for a new chunk.
     const uint64_t alignment = caps_.uniform_buffer_offset_alignment;
     const uint64_t size = std::max<uint64_t>(data.size(), 1);
-    TransientChunk* chunk = nullptr;
-    if (!frame_chunks_.empty() && align_up(frame_chunks_.back().used, alignment) + size <= frame_chunks_.back().size) {
-        chunk = &frame_chunks_.back();
+    auto reusable =
+        std::find_if(free_chunks_.begin(), free_chunks_.end(), [&](const TransientChunk& c) { return c.size >= size; });
+    if (reusable != free_chunks_.end()) {
+        frame_chunks_.push_back(std::move(*reusable));
+        free_chunks_.erase(reusable);
     } else {
-        auto reusable = std::find_if(free_chunks_.begin(), free_chunks_.end(),
-                                     [&](const TransientChunk& c) { return c.size >= size; });
-        if (reusable != free_chunks_.end()) {
-            frame_chunks_.push_back(std::move(*reusable));
-            free_chunks_.erase(reusable);
-        } else {
-            context_->make_current();  // recording may interleave with calls on another device
-            TransientChunk fresh;
-            fresh.size = std::max(kTransientChunkBytes, align_up(size, alignment));
-            GlBuffer b;
-            b.desc.name = "transient uniforms";
-            b.desc.size = fresh.size;
-            b.desc.usage = rhi::BufferUsage::Uniform;
-            b.internal = true;
-            glCreateBuffers(1, &b.name);
-            glNamedBufferStorage(b.name, static_cast<GLsizeiptr>(fresh.size), nullptr, GL_DYNAMIC_STORAGE_BIT);
-            fresh.name = b.name;
-            fresh.buffer = buffers_.insert(std::move(b));
+        context_->make_current();  // recording may interleave with calls on another device
+        TransientChunk fresh;
+        fresh.size = std::max(kTransientChunkBytes, align_up(size, alignment));
+        GlBuffer b;
+        b.desc.name = "transient uniforms";
+        b.desc.size = fresh.size;
+        b.desc.usage = rhi::BufferUsage::Uniform;
+        b.internal = true;
+        glCreateBuffers(1, &b.name);
+        constexpr GLbitfield kMapped = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        glNamedBufferStorage(b.name, static_cast<GLsizeiptr>(fresh.size), nullptr, kMapped | GL_DYNAMIC_STORAGE_BIT);
+        fresh.data = static_cast<std::byte*>(glMapNamedBufferRange(b.name, 0, static_cast<GLsizeiptr>(fresh.size), kMapped));
+        if (!fresh.data) {
             fresh.staging.resize(fresh.size);
-            frame_chunks_.push_back(std::move(fresh));
+            fresh.data = fresh.staging.data();
         }
-        chunk = &frame_chunks_.back();
-        chunk->used = 0;
+        fresh.name = b.name;
+        fresh.buffer = buffers_.insert(std::move(b));
+        frame_chunks_.push_back(std::move(fresh));
     }
-    const uint64_t offset = align_up(chunk->used, alignment);
-    std::copy(data.begin(), data.end(), chunk->staging.begin() + static_cast<std::ptrdiff_t>(offset));
-    chunk->used = offset + size;
+    TransientChunk& chunk = frame_chunks_.back();
+    if (!data.empty()) std::memcpy(chunk.data, data.data(), data.size());
+    chunk.used = size;
     count_upload(data.size());
-    if (name) *name = chunk->name;
-    return rhi::BufferBinding{chunk->buffer, offset, size};
+    if (name) *name = chunk.name;
+    return rhi::BufferBinding{chunk.buffer, 0, size};
 }
 
 void GlDevice::recycle_transient_chunks(bool wait) {

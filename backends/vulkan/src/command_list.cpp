@@ -57,13 +57,6 @@ void VulkanCommandList::fail(ErrorCode code, std::string message) {
     if (!error_) error_ = Error{code, std::move(message)};
 }
 
-bool VulkanCommandList::accepted(Status status) {
-    if (status.ok()) return true;
-    const Error& e = status.error();
-    fail(e.code, e.message);
-    return false;
-}
-
 std::optional<Error> VulkanCommandList::take_error() {
     auto e = std::move(error_);
     error_.reset();
@@ -235,7 +228,10 @@ void VulkanCommandList::set_index_buffer(rhi::BufferHandle handle, rhi::IndexTyp
 }
 
 rhi::BufferBinding VulkanCommandList::transient_uniforms(std::span<const std::byte> data) {
-    if (!accepted(state_.check_recording("transient_uniforms"))) return {};
+    if (!state_.recording()) [[unlikely]] {
+        accepted(state_.check_recording("transient_uniforms"));
+        return {};
+    }
     auto binding = device_.allocate_transient_uniforms(data);
     if (!binding.ok()) {
         fail(binding.error().code, "transient_uniforms: " + binding.error().message);

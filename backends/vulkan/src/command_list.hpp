@@ -80,7 +80,12 @@ public:
 private:
     void fail(ErrorCode code, std::string message);
     /// True when `status` is ok; else records its error (the command is then skipped).
-    bool accepted(Status status);
+    bool accepted(Status status) {
+        if (status.ok()) [[likely]] return true;  // inline: most commands ask it
+        const Error& e = status.error();
+        fail(e.code, e.message);
+        return false;
+    }
     /// Binds the pipeline's descriptor sets and push constants if anything changed.
     bool flush_bindings(const Pipeline& pipeline, std::string_view what);
     /// Checks the group bound at `set` against the pipeline and writes a descriptor set for it

@@ -165,29 +165,20 @@ std::vector<rhi::TimerResult> VulkanDevice::timer_results() {
     return timer_results_;
 }
 
-loom::Result<rhi::BufferBinding> VulkanDevice::allocate_transient_uniforms(std::span<const std::byte> data) {
-    // The command list has checked that a frame is being recorded.
-    FrameSlot& slot = current_frame();
-    const uint64_t alignment = std::max<uint64_t>(caps_.uniform_buffer_offset_alignment, 16);
-    const uint64_t size = std::max<uint64_t>(data.size(), 16);
-    uint64_t offset = (slot.uniform_ring_offset + alignment - 1) / alignment * alignment;
-    if (offset + size > slot.uniform_ring_size) {
-        // Grow: a bigger ring for the rest of this frame (and the next ones in this slot); the
-        // old one goes when this frame has finished with it.
-        const uint64_t new_size = std::max(slot.uniform_ring_size * 2, size * 2);
-        auto ring = create_buffer_internal({"transient uniforms", new_size, rhi::BufferUsage::Uniform}, true);
-        if (!ring.ok()) return ring.take_error();
-        auto old = buffers_.remove(slot.uniform_ring);
-        if (old.ok()) release_buffer(*old);
-        slot.uniform_ring = *ring;
-        slot.uniform_ring_size = new_size;
-        offset = 0;
-    }
-    Buffer* ring = buffers_.find(slot.uniform_ring);
-    if (!ring || !ring->memory.mapped) return Error{ErrorCode::Backend, "transient uniform ring is missing"};
-    std::memcpy(static_cast<std::byte*>(ring->memory.mapped) + offset, data.data(), data.size());
-    slot.uniform_ring_offset = offset + size;
-    return rhi::BufferBinding{slot.uniform_ring, offset, data.size()};
+loom::Status VulkanDevice::grow_uniform_ring(FrameSlot& slot, uint64_t size) {
+    // A bigger ring for the rest of this frame (and the next ones in this slot); the old one goes
+    // when this frame has finished with it.
+    const uint64_t new_size = std::max(slot.uniform_ring_size * 2, size * 2);
+    auto ring = create_buffer_internal({"transient uniforms", new_size, rhi::BufferUsage::Uniform}, true);
+    if (!ring.ok()) return ring.take_error();
+    auto old = buffers_.remove(slot.uniform_ring);
+    if (old.ok()) release_buffer(*old);
+    slot.uniform_ring = *ring;
+    slot.uniform_ring_data = mapped_bytes(*ring);
+    slot.uniform_ring_size = new_size;
+    slot.uniform_ring_offset = 0;
+    if (!slot.uniform_ring_data) return Error{ErrorCode::Backend, "the transient uniform ring is not mapped"};
+    return {};
 }
 
 // ---- swapchain ---------------------------------------------------------------------------------

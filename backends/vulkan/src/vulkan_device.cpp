@@ -114,6 +114,7 @@ loom::Status VulkanDevice::init_device(const rhi::DeviceDesc& desc) {
         auto ring = create_buffer_internal({"transient uniforms", kInitialUniformRing, rhi::BufferUsage::Uniform}, true);
         if (!ring.ok()) return ring.take_error();
         frame.uniform_ring = *ring;
+        frame.uniform_ring_data = mapped_bytes(*ring);
         frame.uniform_ring_size = kInitialUniformRing;
         if (caps_.timestamps) {
             auto qi = vk_init<VkQueryPoolCreateInfo>(VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO);

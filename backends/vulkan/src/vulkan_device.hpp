@@ -2,6 +2,7 @@
 // The Vulkan implementation of rhi::Device.
 
 #include <array>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <optional>
@@ -35,6 +36,7 @@ struct FrameSlot {
     uint64_t serial = 0;  ///< last submission of this frame
     std::unique_ptr<FrameDescriptorPools> descriptors;
     rhi::BufferHandle uniform_ring;
+    std::byte* uniform_ring_data = nullptr;  ///< the ring's persistent mapping (no lookup per draw)
     uint64_t uniform_ring_size = 0;
     uint64_t uniform_ring_offset = 0;
     VkQueryPool timestamps = VK_NULL_HANDLE;
@@ -149,7 +151,23 @@ public:
     loom::Result<VkImageView> range_view(Texture& texture, const rhi::TextureRange& range, rhi::TextureKind kind, bool storage);
 
     /// Copies `data` into this frame's uniform ring (growing it if needed).
-    loom::Result<rhi::BufferBinding> allocate_transient_uniforms(std::span<const std::byte> data);
+    loom::Result<rhi::BufferBinding> allocate_transient_uniforms(std::span<const std::byte> data) {
+        // The command list has checked that a frame is being recorded. Inline: per draw for
+        // per-draw uniform data, and nearly always the ring has room.
+        FrameSlot& slot = current_frame();
+        const uint64_t alignment = std::max<uint64_t>(caps_.uniform_buffer_offset_alignment, 16);
+        const uint64_t size = std::max<uint64_t>(data.size(), 16);
+        uint64_t offset = (slot.uniform_ring_offset + alignment - 1) / alignment * alignment;
+        if (offset + size > slot.uniform_ring_size || !slot.uniform_ring_data) [[unlikely]] {
+            LOOM_TRY(grow_uniform_ring(slot, size));
+            offset = 0;
+        }
+        std::memcpy(slot.uniform_ring_data + offset, data.data(), data.size());
+        slot.uniform_ring_offset = offset + size;
+        return rhi::BufferBinding{slot.uniform_ring, offset, data.size()};
+    }
+    /// A ring of at least twice `size` bytes for `slot` (allocate_transient_uniforms found no room).
+    loom::Status grow_uniform_ring(FrameSlot& slot, uint64_t size);
 
     /// Submits the frame's command buffer recorded so far and starts a new one, so that a
     /// readback in the middle of a frame sees the commands recorded before it.
@@ -196,6 +214,11 @@ private:
     VkBufferCreateInfo buffer_create_info(const rhi::BufferDesc& desc) const;
     std::optional<std::string> alias_owner_of(rhi::HeapHandle heap, uint64_t offset, uint64_t size, uint64_t stamp, const void* self);
     loom::Result<rhi::BufferHandle> create_buffer_internal(const rhi::BufferDesc& desc, bool internal);
+    /// Where a host-visible buffer is mapped (null for a missing or unmapped one).
+    std::byte* mapped_bytes(rhi::BufferHandle buffer) {
+        const Buffer* b = buffers_.find(buffer);
+        return b ? static_cast<std::byte*>(b->memory.mapped) : nullptr;
+    }
 
     // transfers (device_transfer.cpp)
     VkCommandBuffer setup_commands();

@@ -4,7 +4,9 @@ costs almost nothing per draw). Runs each program of tests/bench/draw_cost under
 `valgrind --tool=callgrind` for N and 2N draws and divides the difference by N, so that the
 fixed costs of a frame cancel; splits the instructions by the object that executed them:
 
-  loom      the program's own code: loom's RHI for loom_draw_cost, the loop alone for the raw ones
+  loom      loom's code (the RHI, what it inlines from loom's headers) in loom_draw_cost
+  bench     the benchmark's own code (tests/bench/draw_cost/: the loop, the per-draw constants);
+            all of a raw program's own code
   runtime   the C and C++ runtime it calls (libc, libstdc++, libm, libgcc)
   dispatch  the API's dispatch layer (libepoxy, libglvnd, the Vulkan loader)
   driver    Mesa (llvmpipe / lavapipe, their JIT code)
@@ -24,9 +26,9 @@ RUNTIME = re.compile(r"/(libc|libstdc\+\+|libm|libgcc_s|ld-linux[^/]*|libpthread
 DISPATCH = re.compile(r"/(libepoxy|libGLdispatch|libEGL|libGLX|libOpenGL|libGL|libvulkan)\.so[^/]*$")
 
 
-def categorise(obj, program):
+def categorise(obj, program, bench_source=False):
     if os.path.realpath(obj) == os.path.realpath(program):
-        return "loom"
+        return "bench" if bench_source or os.path.basename(program).startswith("raw_") else "loom"
     if RUNTIME.search(obj):
         return "runtime"
     if DISPATCH.search(obj):
@@ -35,22 +37,25 @@ def categorise(obj, program):
 
 
 def costs_by_object(path):
-    """Exclusive instruction counts per object of a callgrind output file, and the inclusive
-    cost of every call between two objects ({(caller, callee): instructions})."""
+    """Exclusive instruction counts per object of a callgrind output file ({(object, bench source):
+    instructions}, bench source: the code is the benchmark's own, in tests/bench/, inlined or not),
+    and the inclusive cost of every call between two objects ({(caller, callee): instructions})."""
     names = {}
     costs = {}
     calls = {}
     obj = "???"
+    function_file = current_file = "???"
     callee = None
     in_call = False
 
-    def name(value):
+    def name(value, kind):
+        # Objects and files are numbered apart ("(3) /usr/lib/...", then "(3)" alone).
         m = re.match(r"\((\d+)\)(?: (.*))?$", value)
         if not m:
             return value
         if m.group(2) is not None:
-            names[m.group(1)] = m.group(2)
-        return names.get(m.group(1), "???")
+            names[(kind, m.group(1))] = m.group(2)
+        return names.get((kind, m.group(1)), "???")
 
     with open(path) as f:
         for line in f:
@@ -67,11 +72,20 @@ def costs_by_object(path):
                     in_call = False
                     callee = None
                 else:
-                    costs[obj] = costs.get(obj, 0) + cost
+                    key = (obj, "/tests/bench/" in current_file)
+                    costs[key] = costs.get(key, 0) + cost
             elif line.startswith("ob="):
-                obj = name(line[3:])
+                obj = name(line[3:], "ob")
+            elif line.startswith("fl="):
+                function_file = current_file = name(line[3:], "fl")
+            elif line.startswith(("fi=", "fe=")):
+                current_file = name(line[3:], "fl")
+            elif line.startswith("fn="):
+                current_file = function_file
+            elif line.startswith(("cfi=", "cfl=")):
+                name(line[4:], "fl")  # a callee's file, maybe named here first
             elif line.startswith("cob="):
-                callee = name(line[4:])
+                callee = name(line[4:], "ob")
             elif line.startswith("calls="):
                 in_call = True
     return costs, calls
@@ -88,10 +102,10 @@ def run(program, args, draws):
         m = re.search(r"allocations=(\d+)", result.stdout)
         if not m:
             sys.exit(f"draw_cost: {' '.join(cmd)} printed no report:\n{result.stdout}")
-        split = {"loom": 0, "runtime": 0, "dispatch": 0, "driver": 0}
+        split = {"loom": 0, "bench": 0, "runtime": 0, "dispatch": 0, "driver": 0}
         costs, calls = costs_by_object(out)
-        for obj, cost in costs.items():
-            split[categorise(obj, program)] += cost
+        for (obj, bench_source), cost in costs.items():
+            split[categorise(obj, program, bench_source)] += cost
         # The runtime the driver and the dispatch layer call (malloc, memcpy) is theirs, not the
         # program's: only what the program itself calls stays in the runtime column.
         for (caller, callee), cost in calls.items():
@@ -130,12 +144,13 @@ def main():
             rows.append({"path": path, "program": label, **per_draw,
                          "allocations": (allocations_large - allocations_small) / n})
     print(f"Instructions per draw (callgrind, ({2 * n} draws - {n} draws) / {n}); allocations per draw (operator new)\n")
-    print("| path | program | loom's code | runtime | dispatch | driver | total | vs raw | allocations/draw |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
+    print("| path | program | loom's code | runtime | loom + runtime | benchmark's code | dispatch | driver | total | vs raw | allocations/draw |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for row in rows:
         raw = next((r for r in rows if r["path"] == row["path"] and r["program"] == "raw " + row["program"].split()[-1]), None)
         ratio = f"{row['total'] / raw['total']:.3f}" if raw and raw["total"] else "-"
-        print(f"| {row['path']} | {row['program']} | {row['loom']:,.0f} | {row['runtime']:,.0f} | {row['dispatch']:,.0f} | "
+        print(f"| {row['path']} | {row['program']} | {row['loom']:,.0f} | {row['runtime']:,.0f} | "
+              f"{row['loom'] + row['runtime']:,.0f} | {row['bench']:,.0f} | {row['dispatch']:,.0f} | "
               f"{row['driver']:,.0f} | {row['total']:,.0f} | {ratio} | {row['allocations']:.2f} |")
     if options.json:
         with open(options.json, "w") as f:

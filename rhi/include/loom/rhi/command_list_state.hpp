@@ -15,9 +15,11 @@
 // once it has succeeded (begin_frame, render_pass_begun). Resource states (of textures and
 // buffers) are not kept here: each backend tracks them at its own granularity.
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <optional>
 #include <span>
@@ -25,6 +27,7 @@
 #include <string_view>
 #include <vector>
 
+#include "loom/rhi/checked_math.hpp"
 #include "loom/rhi/descriptions.hpp"
 #include "loom/rhi/format.hpp"
 #include "loom/rhi/handles.hpp"
@@ -109,9 +112,19 @@ public:
     /// joins it; a set with no group gets one).
     Status set_buffer(uint32_t set, uint32_t binding, const BufferBinding& range);
     /// The group bound to `set`, or null.
-    [[nodiscard]] const BindGroup* bind_group(uint32_t set) const;
-    /// push_constants (rhi::validation::push_constants); keeps the bytes.
-    Status push_constants(std::span<const std::byte> data, uint32_t offset);
+    [[nodiscard]] const BindGroup* bind_group(uint32_t set) const {
+        return set < groups_.size() && groups_[set] ? &*groups_[set] : nullptr;
+    }
+    /// push_constants (rhi::validation::push_constants); keeps the bytes. Inline: it runs
+    /// before most draws, and the check in range costs two comparisons.
+    Status push_constants(std::span<const std::byte> data, uint32_t offset) {
+        if (!checked::range_fits(offset, data.size(), kMaxPushConstantBytes)) {
+            return validation::push_constants(offset, data.size());
+        }
+        std::memcpy(push_data_.data() + offset, data.data(), data.size());
+        push_size_ = std::max(push_size_, offset + static_cast<uint32_t>(data.size()));
+        return {};
+    }
     /// All kMaxPushConstantBytes bytes of the push-constant block (zero where never written).
     [[nodiscard]] std::span<const std::byte> push_constant_data() const { return push_data_; }
     /// The bytes of the block written so far in this frame (the end of the highest write).
