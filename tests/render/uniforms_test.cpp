@@ -137,6 +137,45 @@ TEST_P(UniformsTest, PerDrawUniformsBySetBuffer) {
     }
 }
 
+// Per-draw uniform data between draws with nothing else recorded between them (the path on
+// which GL moves the offset of the range it resolved instead of resolving the bindings again):
+// eight draws add their own `extra` into one pixel. A draw that saw a later draw's offset, the
+// value set and then replaced before a draw, or a set_buffer on a binding the pipeline does not
+// read changing anything, would change the sum.
+TEST_P(UniformsTest, PerDrawUniformsBetweenConsecutiveDraws) {
+    if (!device().capabilities().format(rhi::Format::RGBA32Float).blendable) GTEST_SKIP() << "RGBA32Float does not blend here";
+    LOOM_ASSIGN_OR_FAIL(auto vs, make_shader(device(), rhi::ShaderStage::Vertex, "fullscreen.vert", kFullscreenVert));
+    LOOM_ASSIGN_OR_FAIL(auto fs, make_shader(device(), rhi::ShaderStage::Fragment, "uniform.frag", kUniformFrag));
+    rhi::GraphicsPipelineDesc pd;
+    pd.name = "summed uniforms";
+    pd.vertex = vs;
+    pd.fragment = fs;
+    pd.color_formats = {rhi::Format::RGBA32Float};
+    pd.blend = {rhi::BlendState{.enabled = true, .dst_color = rhi::BlendFactor::One, .dst_alpha = rhi::BlendFactor::One}};
+    LOOM_ASSIGN_OR_FAIL(auto pipeline, device().create_graphics_pipeline(pd));
+    const Material material{{0.0f, 0.0f, 0.0f, 1.0f}, 1.0f, {}};
+    LOOM_ASSIGN_OR_FAIL(auto ubo, make_buffer(device(), "material", rhi::BufferUsage::Uniform, bytes_of(material)));
+    LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "sum target", rhi::Format::RGBA32Float, 1, 1));
+    for (int frame = 0; frame < 2; ++frame) {
+        LOOM_ASSERT_OK(run_frame(device(), [&](rhi::CommandList& list) {
+            list.begin_render_pass(clear_pass("sum", target, {0, 0, 0, 0}));
+            list.set_pipeline(pipeline);
+            list.set_bind_group(0, rhi::BindGroup{}.buffer(0, ubo));
+            list.push_constants_of(std::array<float, 4>{});
+            for (uint32_t i = 0; i < 8; ++i) {
+                if (i == 3) list.set_uniforms_of(1, 2, std::array<float, 4>{100.0f, 0.0f, 0.0f, 0.0f});  // replaced below
+                if (i == 5) list.set_uniforms_of(1, 7, std::array<float, 4>{1000.0f, 0.0f, 0.0f, 0.0f});  // not read
+                list.set_uniforms_of(1, 2, std::array<float, 4>{static_cast<float>(i), 1.0f, static_cast<float>(frame), 0.0f});
+                list.draw(3);
+            }
+            list.end_render_pass();
+        }));
+        LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(target));
+        // 0 + 1 + ... + 7, one per draw, the frame's number per draw, the material's alpha per draw.
+        EXPECT_EQ(image.load(0, 0), (std::array<double, 4>{28.0, 8.0, 8.0 * frame, 8.0})) << "frame " << frame;
+    }
+}
+
 // set_buffer is checked like a bind group at the draw: a destroyed buffer is a stale handle,
 // and a range past the buffer's end is refused although the set was bound before with a good one.
 TEST_P(UniformsTest, SetBufferIsCheckedAtTheDraw) {
