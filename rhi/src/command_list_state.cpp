@@ -196,7 +196,7 @@ Status CommandListState::set_index_buffer(BufferHandle buffer, IndexType type, u
     auto found = buffers_(buffer);
     if (!found.ok()) return Error{ErrorCode::InvalidHandle, "set_index_buffer: " + found.error().message};
     LOOM_TRY(validation::index_buffer(**found, type, offset));
-    index_buffer_ = {buffer, type, offset};
+    index_buffer_ = {buffer, type, offset, (*found)->size};
     return {};
 }
 
@@ -255,7 +255,7 @@ Status CommandListState::check_draw(std::string_view command, bool indexed) cons
     return {};
 }
 
-Status CommandListState::check_index_range(uint32_t first_index, uint32_t index_count) const {
+Status CommandListState::check_index_range_slow(uint32_t first_index, uint32_t index_count) const {
     auto found = buffers_(index_buffer_.buffer);
     if (!found.ok()) return stale("draw_indexed", "index buffer", found.error());
     return validation::index_range(**found, index_buffer_.type, index_buffer_.offset, first_index, index_count);

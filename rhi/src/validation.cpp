@@ -874,7 +874,7 @@ Status buffer_slot(uint32_t set, uint32_t binding) {
     return {};
 }
 
-Status vertex_buffer_slot(uint32_t slot) {
+Status vertex_buffer_slot_refused(uint32_t slot) {
     if (slot >= kMaxVertexBuffers) {
         return Error{ErrorCode::InvalidArgument, "set_vertex_buffer: slot " + std::to_string(slot) + " is beyond the " +
                                                      std::to_string(kMaxVertexBuffers) + " slots loom supports"};
@@ -882,8 +882,7 @@ Status vertex_buffer_slot(uint32_t slot) {
     return {};
 }
 
-Status vertex_buffer(uint32_t slot, const BufferDesc& buffer, uint64_t offset) {
-    // Built only on a failure (these run per bind or draw).
+Status vertex_buffer_refused(uint32_t slot, const BufferDesc& buffer, uint64_t offset) {
     const auto what = [&] { return std::string("set_vertex_buffer: slot " + std::to_string(slot) + ": buffer " + in_quotes(buffer.name)); };
     if (!has_all(buffer.usage, BufferUsage::Vertex)) return Error{ErrorCode::InvalidArgument, what() + " lacks usage Vertex"};
     if (offset >= buffer.size) {
@@ -893,8 +892,7 @@ Status vertex_buffer(uint32_t slot, const BufferDesc& buffer, uint64_t offset) {
     return {};
 }
 
-Status index_buffer(const BufferDesc& buffer, IndexType type, uint64_t offset) {
-    // Built only on a failure (these run per bind or draw).
+Status index_buffer_refused(const BufferDesc& buffer, IndexType type, uint64_t offset) {
     const auto what = [&] { return std::string("set_index_buffer: buffer " + in_quotes(buffer.name)); };
     if (!has_all(buffer.usage, BufferUsage::Index)) return Error{ErrorCode::InvalidArgument, what() + " lacks usage Index"};
     if (offset >= buffer.size || offset % index_bytes(type) != 0) {

@@ -835,6 +835,26 @@ void main() { result.value = textureLod(tex, vec2(0.5), 0.0); }
             list.draw_indexed(3);
         }),
         wrong_state("draw_indexed: no index buffer is bound; call set_index_buffer first"));
+    // Rebinding vertex or index buffers between draws keeps the checked draw (the backends skip
+    // the full check): the first indexed draw still checks the index buffer, and each indexed
+    // draw its range against the buffer and offset bound last.
+    add("draw_indexed without an index buffer after draws", in_pass([](rhi::CommandList& list, const Kit& k) {
+            list.set_pipeline(k.solid);
+            list.set_vertex_buffer(0, k.vertices);
+            list.draw(3);
+            list.set_vertex_buffer(0, k.vertices);
+            list.draw_indexed(3);
+        }),
+        wrong_state("draw_indexed: no index buffer is bound; call set_index_buffer first"));
+    add("draw_indexed past the index buffer bound again at a later offset", in_pass([](rhi::CommandList& list, const Kit& k) {
+            list.set_pipeline(k.solid);
+            list.set_vertex_buffer(0, k.vertices);
+            list.set_index_buffer(k.indices, rhi::IndexType::Uint16);
+            list.draw_indexed(4);
+            list.set_index_buffer(k.indices, rhi::IndexType::Uint16, 4);
+            list.draw_indexed(3);
+        }),
+        invalid("draw_indexed: 3 indices from index 0 run past the end of index buffer 'i' (8 bytes from offset 4)"));
     add("dispatch without a pipeline", outside_pass([](rhi::CommandList& list, const Kit&) { list.dispatch(1); }),
         wrong_state("dispatch: no pipeline is set; call set_pipeline first"));
     add("dispatch with a graphics pipeline", outside_pass([](rhi::CommandList& list, const Kit& k) {

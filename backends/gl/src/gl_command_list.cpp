@@ -486,9 +486,12 @@ bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool i
     // Only the bindings changed (nothing recorded, destroyed, or bound but bind groups since
     // they were resolved): they may be the same but for uniform offsets.
     const bool reuse_allowed = pipeline_state_valid_ && !binding_states_.empty();
-    if (!pipeline_state_valid_ || !vertex_state_valid_) {
-        // The render pass, the pipeline against it, the vertex and index buffers it reads.
+    // The render pass, the pipeline against it, the vertex and index buffers it reads. Binding
+    // vertex or index buffers (each found alive and fit when bound) keeps a checked draw valid,
+    // but for the index buffer of the first indexed draw after non-indexed ones.
+    if (!pipeline_state_valid_ || (indexed && !draw_checked_indexed_)) {
         if (!accepted(state_.check_draw(command, indexed))) return false;
+        draw_checked_indexed_ = indexed;
     }
     if (!pipeline_state_valid_) {
         // The tracker found the pipeline alive.

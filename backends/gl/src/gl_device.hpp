@@ -237,6 +237,7 @@ private:
     bool vertex_state_valid_ = false;
     bool binding_state_valid_ = false;
     bool binding_state_drawn_ = false;  ///< a draw was recorded with binding_states_.back()
+    bool draw_checked_indexed_ = false;  ///< the last check_draw was of an indexed draw
     uint64_t draw_state_removals_ = 0;
     const GlPipeline* draw_pipeline_ = nullptr;  ///< the pipeline of pipeline_states_.back()
     /// The states whose GL calls were replayed last (UINT32_MAX: none, or other commands since).

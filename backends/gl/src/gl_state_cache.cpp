@@ -14,6 +14,7 @@ void GlStateCache::invalidate() {
     storage_buffers_.fill(BufferRange{kUnknown, -1, -1});
     images_.fill(ImageBinding{kUnknown, -1, false, -1, 0, 0});
     vaos_.clear();
+    last_vao_state_ = nullptr;
     base_instances_.clear();
     viewport_known_ = false;
     scissor_known_ = false;
@@ -82,7 +83,7 @@ void GlStateCache::bind_image(uint32_t unit, GLuint texture, GLint level, bool l
 }
 
 void GlStateCache::vertex_buffer(GLuint vao, uint32_t slot, GLuint buffer, GLintptr offset, GLsizei stride) {
-    VaoState& state = vaos_[vao];
+    VaoState& state = vao_state(vao);
     if (slot < state.buffers.size() && !changed(state.buffers[slot], VertexBinding{buffer, offset, stride})) return;
     glVertexArrayVertexBuffer(vao, slot, buffer, offset, stride);
     ++counters_->api_calls;
@@ -90,7 +91,7 @@ void GlStateCache::vertex_buffer(GLuint vao, uint32_t slot, GLuint buffer, GLint
 }
 
 void GlStateCache::element_buffer(GLuint vao, GLuint buffer) {
-    VaoState& state = vaos_[vao];
+    VaoState& state = vao_state(vao);
     if (!changed(state.element, buffer)) return;
     glVertexArrayElementBuffer(vao, buffer);
     ++counters_->api_calls;

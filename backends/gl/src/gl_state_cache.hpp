@@ -138,6 +138,17 @@ private:
     std::array<BufferRange, kTrackedBindings> storage_buffers_{};
     std::array<ImageBinding, kTrackedBindings> images_{};
     std::unordered_map<GLuint, VaoState> vaos_;
+    /// The entry of vaos_ used last (draws change the buffers of one vertex array in a row):
+    /// found without hashing. Nodes of an unordered_map stay put until erased (invalidate).
+    GLuint last_vao_ = 0;
+    VaoState* last_vao_state_ = nullptr;
+    VaoState& vao_state(GLuint vao) {
+        if (last_vao_state_ == nullptr || last_vao_ != vao) {
+            last_vao_state_ = &vaos_[vao];
+            last_vao_ = vao;
+        }
+        return *last_vao_state_;
+    }
     std::unordered_map<GLuint, GLint> base_instances_;  ///< per program
     std::array<float, 6> viewport_{};
     bool viewport_known_ = false;

@@ -211,7 +211,7 @@ void VulkanCommandList::push_constants(std::span<const std::byte> data, uint32_t
 }
 
 void VulkanCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle handle, uint64_t offset) {
-    checked_pipeline_ = nullptr;
+    // A buffer found alive and fit here keeps the checked draw valid (prepare_draw).
     if (!accepted(state_.set_vertex_buffer(slot, handle, offset))) return;
     VkDeviceSize o = offset;
     vkCmdBindVertexBuffers(cmd_, slot, 1, &(*device_.buffers().get(handle))->buffer, &o);
@@ -220,7 +220,7 @@ void VulkanCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle handl
 }
 
 void VulkanCommandList::set_index_buffer(rhi::BufferHandle handle, rhi::IndexType type, uint64_t offset) {
-    checked_pipeline_ = nullptr;
+    // A buffer found alive and fit here keeps the checked draw valid (prepare_draw).
     if (!accepted(state_.set_index_buffer(handle, type, offset))) return;
     vkCmdBindIndexBuffer(cmd_, (*device_.buffers().get(handle))->buffer, offset, to_vk(type));
     ++stats_.buffer_binds;

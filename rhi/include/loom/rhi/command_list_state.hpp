@@ -66,6 +66,7 @@ public:
         BufferHandle buffer;
         IndexType type = IndexType::Uint32;
         uint64_t offset = 0;
+        uint64_t buffer_size = 0;  ///< the buffer's size when it was bound (check_index_range)
     };
 
     /// Pipelines and buffers are looked up on the device whose commands are recorded.
@@ -146,9 +147,21 @@ public:
     /// every slot it reads and, when `indexed`, a live index buffer. Bind groups against the
     /// pipeline are the backend's to check next (rhi::validation::binding).
     [[nodiscard]] Status check_draw(std::string_view command, bool indexed) const;
+    /// check_index_range with the buffer looked up: the message of a range that does not fit.
+    [[nodiscard]] Status check_index_range_slow(uint32_t first_index, uint32_t index_count) const;
     /// draw_indexed (after check_draw): the indices lie inside the bound index buffer
-    /// (rhi::validation::index_range).
-    [[nodiscard]] Status check_index_range(uint32_t first_index, uint32_t index_count) const;
+    /// (rhi::validation::index_range). Per draw, so the buffer is not looked up again while the
+    /// range fits the size it had when bound: the caller has checked the draw with check_draw
+    /// since anything was last destroyed, which found that buffer alive.
+    [[nodiscard]] Status check_index_range(uint32_t first_index, uint32_t index_count) const {
+        const uint64_t bytes = index_buffer_.type == IndexType::Uint16 ? 2 : 4;
+        // Unsigned 32-bit counts times 4 cannot overflow 64 bits; the offset is inside the buffer.
+        if (index_buffer_.offset <= index_buffer_.buffer_size &&
+            (uint64_t{first_index} + index_count) * bytes <= index_buffer_.buffer_size - index_buffer_.offset) [[likely]] {
+            return {};
+        }
+        return check_index_range_slow(first_index, index_count);
+    }
     /// dispatch: outside render passes, with a live compute pipeline.
     [[nodiscard]] Status check_dispatch() const;
 

@@ -242,14 +242,29 @@ Status viewport(const Viewport& viewport);
 Status push_constants(uint64_t offset, uint64_t size);
 /// CommandList::set_bind_group: set and bindings within kMaxBindGroups / kMaxBindingsPerGroup.
 Status bind_group(uint32_t set, const BindGroup& group);
+// The three checks below run at every bind of vertex and index buffers: inline, with their
+// errors (and messages) made out of line by the *_refused functions.
+Status vertex_buffer_slot_refused(uint32_t slot);
+Status vertex_buffer_refused(uint32_t slot, const BufferDesc& buffer, uint64_t offset);
+Status index_buffer_refused(const BufferDesc& buffer, IndexType type, uint64_t offset);
 /// CommandList::set_vertex_buffer: the slot is below kMaxVertexBuffers.
-Status vertex_buffer_slot(uint32_t slot);
+inline Status vertex_buffer_slot(uint32_t slot) {
+    if (slot < kMaxVertexBuffers) [[likely]] return {};
+    return vertex_buffer_slot_refused(slot);
+}
 /// CommandList::set_vertex_buffer with `buffer` (after vertex_buffer_slot): Vertex usage and
 /// the offset inside it.
-Status vertex_buffer(uint32_t slot, const BufferDesc& buffer, uint64_t offset);
+inline Status vertex_buffer(uint32_t slot, const BufferDesc& buffer, uint64_t offset) {
+    if (has_all(buffer.usage, BufferUsage::Vertex) && offset < buffer.size) [[likely]] return {};
+    return vertex_buffer_refused(slot, buffer, offset);
+}
 /// CommandList::set_index_buffer: Index usage; the offset inside the buffer and a multiple of
 /// the index size.
-Status index_buffer(const BufferDesc& buffer, IndexType type, uint64_t offset);
+inline Status index_buffer(const BufferDesc& buffer, IndexType type, uint64_t offset) {
+    const uint64_t index_size = type == IndexType::Uint16 ? 2 : 4;
+    if (has_all(buffer.usage, BufferUsage::Index) && offset < buffer.size && offset % index_size == 0) [[likely]] return {};
+    return index_buffer_refused(buffer, type, offset);
+}
 /// CommandList::draw_indexed: `index_count` indices from `first_index` lie inside the index
 /// buffer bound at `offset`.
 Status index_range(const BufferDesc& buffer, IndexType type, uint64_t offset, uint32_t first_index, uint32_t index_count);
