@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace loom::inspect_test {
 
 struct ToolRun {
@@ -43,6 +45,11 @@ std::vector<std::string> attribute_values(std::string_view text, std::string_vie
 
 /// The value of `attribute` in the first start tag of `tag` ("body") that has attributes.
 std::optional<std::string> attribute_of(std::string_view dom, std::string_view tag, std::string_view attribute);
+
+/// The inspector input a page written by loom-inspect embeds (#loom-input: the JSON text as a
+/// raw DEFLATE stream in base64, the text data-bytes long), decoded here with zlib. Fails the
+/// test and returns null when the element is missing or does not decode to its stated length.
+nlohmann::json embedded_input(std::string_view page);
 
 }  // namespace loom::inspect_test
 
