@@ -10,6 +10,8 @@
 #define ZLIB_CONST
 #include <zlib.h>
 
+#include "loom/sample_common/html.hpp"
+
 namespace loom::inspect {
 namespace assets {
 // page_assets.cpp, generated from page/ at build time (embed_page.cmake).
@@ -18,25 +20,6 @@ extern const char* const kCSS;
 extern const char* const kINFLATE;
 extern const char* const kJS;
 }  // namespace assets
-
-namespace {
-
-std::string escape_html(std::string_view text) {
-    std::string out;
-    out.reserve(text.size());
-    for (char c : text) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
-
-}  // namespace
 
 std::string deflate_raw(std::string_view bytes, int level, int strategy) {
     z_stream stream{};
@@ -96,7 +79,7 @@ void write_page(std::ostream& out, const nlohmann::json& input, std::string_view
     // The template marks each insertion with an HTML comment; each appears once, in this order.
     const std::string_view page = assets::kHTML;
     const std::pair<std::string_view, std::string> parts[] = {
-        {"<!--loom:title-->", escape_html(title)},
+        {"<!--loom:title-->", samples::escape_html(title)},
         {"<!--loom:style-->", assets::kCSS},
         {"<!--loom:data-bytes-->", std::to_string(text.size())},
         {"<!--loom:data-->", base64(deflate_raw(text))},
