@@ -35,11 +35,11 @@ std::vector<std::string> names(const json& array, const char* key = nullptr) {
 
 // Opens the page and checks that its script ran to the end without an error.
 std::string open_page(const std::string& chromium, const std::filesystem::path& page, std::string_view fragment) {
-    const ToolRun dom = dump_dom(chromium, page, fragment, page.parent_path());
-    EXPECT_EQ(dom.status, 0) << dom.err;
-    EXPECT_EQ(attribute_of(dom.out, "body", "data-status"), "ok") << from_element(dom.out, "errors").substr(0, 2000);
-    EXPECT_EQ(attribute_of(dom.out, "body", "data-errors"), "0");
-    return dom.out;
+    const loom::test::PageDump dump = dump_dom(chromium, page, fragment, page.parent_path());
+    EXPECT_EQ(dump.status, 0) << dump.log;
+    EXPECT_EQ(attribute_of(dump.dom, "body", "data-status"), "ok") << from_element(dump.dom, "errors").substr(0, 2000);
+    EXPECT_EQ(attribute_of(dump.dom, "body", "data-errors"), "0");
+    return dump.dom;
 }
 
 TEST(InspectPage, Figure2ShowsEveryPassResourceTimingAndAllocator) {
@@ -248,10 +248,10 @@ document.body.dataset.errors = String(window.loomErrors.length);
                                      "<ul id=\"results\"></ul>\n<script>\n" + inflate_js + "\n</script>\n<script>\nconst GOOD = " +
                                      cases.dump() + ";\nconst BROKEN = " + broken.dump() + ";\n" + checks + "</script></body></html>\n");
 
-    const ToolRun dom = dump_dom(chromium, dir / "inflate.html", "", dir);
-    ASSERT_EQ(dom.status, 0) << dom.err;
-    EXPECT_EQ(attribute_of(dom.out, "body", "data-errors"), "0");
-    std::string_view results = from_element(dom.out, "results");
+    const loom::test::PageDump dump = dump_dom(chromium, dir / "inflate.html", "", dir);
+    ASSERT_EQ(dump.status, 0) << dump.log;
+    EXPECT_EQ(attribute_of(dump.dom, "body", "data-errors"), "0");
+    std::string_view results = from_element(dump.dom, "results");
     results = results.substr(0, results.find("</ul>"));
     std::vector<std::string> expected_names, expected_results;
     for (const Vector& v : good) {
