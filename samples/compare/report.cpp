@@ -9,6 +9,7 @@
 
 #include "loom/framegraph/export.hpp"
 #include "loom/sample_common/html.hpp"
+#include "report_viewer.hpp"
 
 namespace loom::compare {
 namespace {
@@ -155,9 +156,9 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
     std::ostringstream html;
     std::string backends;
     for (rhi::Backend backend : run.backends) backends += (backends.empty() ? "" : ", ") + std::string(rhi::backend_name(backend));
-    html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>loom-compare: "
-         << run.summary.failed << " failed, " << run.summary.passed << " passed</title>\n<style>" << kStyle
-         << "</style>\n</head>\n<body>\n";
+    html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n" << viewer::kErrorCollector
+         << "<title>loom-compare: " << run.summary.failed << " failed, " << run.summary.passed << " passed</title>\n<style>"
+         << kStyle << viewer::kStyle << "</style>\n</head>\n<body>\n";
     html << "<h1>loom-compare: " << run.summary.cases << " case(s), <span class=\"pass\">" << run.summary.passed
          << " passed</span>, <span class=\"" << (run.summary.failed ? "fail" : "pass") << "\">" << run.summary.failed
          << " failed</span></h1>\n";
@@ -200,21 +201,25 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
             html << "</ul>\n";
         }
         if (!c->load_error.empty()) html << "<p>Error: <code>" << escape_html(c->load_error) << "</code></p>\n";
-        html << "<div class=\"pictures\">\n";
+        // Marked for the viewer (report_viewer.hpp): the case, and each picture's key and label.
+        html << "<div class=\"pictures\" data-case=\"" << escape_html(c->id) << "\" data-title=\""
+             << escape_html(c->scene + " — " + c->pipeline) << "\">\n";
         for (const BackendRun& backend_run : c->runs) {
             if (backend_run.image_file.empty()) continue;
             const std::string_view backend = rhi::backend_name(backend_run.backend);
-            html << "<figure><a href=\"" << escape_html(backend_run.image_file) << "\"><img src=\""
-                 << escape_html(backend_run.image_file) << "\" alt=\"" << backend << "\"></a><figcaption>" << backend << ", "
-                 << number(backend_run.milliseconds, 0) << " ms</figcaption></figure>\n";
+            html << "<figure data-image=\"" << backend << "\" data-label=\"" << backend << "\" data-backend><a href=\""
+                 << escape_html(backend_run.image_file) << "\"><img src=\"" << escape_html(backend_run.image_file) << "\" alt=\""
+                 << backend << "\"></a><figcaption>" << backend << ", " << number(backend_run.milliseconds, 0)
+                 << " ms</figcaption></figure>\n";
         }
         if (c->image && !c->image->diff_file.empty()) {
-            html << "<figure><a href=\"" << escape_html(c->image->diff_file) << "\"><img src=\"" << escape_html(c->image->diff_file)
+            html << "<figure data-image=\"difference\" data-label=\"difference\"><a href=\"" << escape_html(c->image->diff_file)
+                 << "\"><img src=\"" << escape_html(c->image->diff_file)
                  << "\" alt=\"difference\"></a><figcaption>difference (black: equal, bright: largest)</figcaption></figure>\n";
         }
         if (c->against_deferred && !c->against_deferred->diff_file.empty()) {
-            html << "<figure><a href=\"" << escape_html(c->against_deferred->diff_file) << "\"><img src=\""
-                 << escape_html(c->against_deferred->diff_file)
+            html << "<figure data-image=\"against-deferred\" data-label=\"forward against deferred\"><a href=\""
+                 << escape_html(c->against_deferred->diff_file) << "\"><img src=\"" << escape_html(c->against_deferred->diff_file)
                  << "\" alt=\"forward against deferred\"></a><figcaption>forward against deferred</figcaption></figure>\n";
         }
         html << "</div>\n";
@@ -244,7 +249,7 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
         }
         html << "</div>\n";
     }
-    html << "</body>\n</html>\n";
+    html << viewer::kBody << "</body>\n</html>\n";
     return html.str();
 }
 
