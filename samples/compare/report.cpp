@@ -8,11 +8,14 @@
 #include <nlohmann/json.hpp>
 
 #include "loom/framegraph/export.hpp"
+#include "loom/sample_common/html.hpp"
+#include "report_viewer.hpp"
 
 namespace loom::compare {
 namespace {
 
 using nlohmann::json;
+using samples::escape_html;
 
 json metrics_json(const std::optional<ImageMetrics>& metrics) {
     if (!metrics) return nullptr;
@@ -60,20 +63,6 @@ json case_json(const CaseResult& c) {
     for (const BackendRun& run : c.runs) out["backends"].push_back(run_json(run));
     out["image"] = metrics_json(c.image);
     out["against_deferred"] = metrics_json(c.against_deferred);
-    return out;
-}
-
-std::string escape(std::string_view text) {
-    std::string out;
-    for (char c : text) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
-        }
-    }
     return out;
 }
 
@@ -167,13 +156,13 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
     std::ostringstream html;
     std::string backends;
     for (rhi::Backend backend : run.backends) backends += (backends.empty() ? "" : ", ") + std::string(rhi::backend_name(backend));
-    html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>loom-compare: "
-         << run.summary.failed << " failed, " << run.summary.passed << " passed</title>\n<style>" << kStyle
-         << "</style>\n</head>\n<body>\n";
+    html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n" << viewer::kErrorCollector
+         << "<title>loom-compare: " << run.summary.failed << " failed, " << run.summary.passed << " passed</title>\n<style>"
+         << kStyle << viewer::kStyle << "</style>\n</head>\n<body>\n";
     html << "<h1>loom-compare: " << run.summary.cases << " case(s), <span class=\"pass\">" << run.summary.passed
          << " passed</span>, <span class=\"" << (run.summary.failed ? "fail" : "pass") << "\">" << run.summary.failed
          << " failed</span></h1>\n";
-    html << "<p>Backends: " << escape(backends) << ". Pictures " << options.width << "x" << options.height
+    html << "<p>Backends: " << escape_html(backends) << ". Pictures " << options.width << "x" << options.height
          << (options.expect_errors ? "; every file must fail to load with a one-line error naming it"
                                    : "; a pixel differs when a channel differs by more than " +
                                          number(options.threshold, 1) + " levels, and " +
@@ -187,7 +176,7 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
             "<th>PSNR</th><th>first failure / error</th></tr>\n";
     for (const CaseResult* c : order) {
         html << "<tr><td class=\"" << (c->passed() ? "pass\">pass" : "fail\">FAIL") << "</td><td><a href=\"#"
-             << escape(c->id) << "\">" << escape(c->scene) << "</a></td><td>" << escape(c->pipeline) << "</td>";
+             << escape_html(c->id) << "\">" << escape_html(c->scene) << "</a></td><td>" << escape_html(c->pipeline) << "</td>";
         if (c->image) {
             html << "<td>" << number(c->image->max_channel_diff, 0) << "</td><td>" << c->image->pixels_above_threshold
                  << " / " << c->image->pixel_count << "</td><td>" << psnr_text(*c->image) << "</td>";
@@ -195,38 +184,42 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
             html << "<td></td><td></td><td></td>";
         }
         const std::string note = !c->failures.empty() ? c->failures.front() : c->load_error;
-        html << "<td><code>" << escape(note) << "</code></td></tr>\n";
+        html << "<td><code>" << escape_html(note) << "</code></td></tr>\n";
     }
     html << "</table>\n";
 
     for (const CaseResult* c : order) {
-        html << "<div class=\"case" << (c->passed() ? "" : " failed") << "\" id=\"" << escape(c->id) << "\">\n<h2>"
-             << "<span class=\"" << (c->passed() ? "pass\">pass" : "fail\">FAIL") << "</span> " << escape(c->scene)
-             << " — " << escape(c->pipeline) << "</h2>\n";
-        html << "<p><code>" << escape(c->file) << "</code>";
-        if (!c->scene_info.empty()) html << "<br>" << escape(c->scene_info);
+        html << "<div class=\"case" << (c->passed() ? "" : " failed") << "\" id=\"" << escape_html(c->id) << "\">\n<h2>"
+             << "<span class=\"" << (c->passed() ? "pass\">pass" : "fail\">FAIL") << "</span> " << escape_html(c->scene)
+             << " — " << escape_html(c->pipeline) << "</h2>\n";
+        html << "<p><code>" << escape_html(c->file) << "</code>";
+        if (!c->scene_info.empty()) html << "<br>" << escape_html(c->scene_info);
         html << "</p>\n";
         if (!c->failures.empty()) {
             html << "<ul>\n";
-            for (const std::string& failure : c->failures) html << "<li class=\"fail\">" << escape(failure) << "</li>\n";
+            for (const std::string& failure : c->failures) html << "<li class=\"fail\">" << escape_html(failure) << "</li>\n";
             html << "</ul>\n";
         }
-        if (!c->load_error.empty()) html << "<p>Error: <code>" << escape(c->load_error) << "</code></p>\n";
-        html << "<div class=\"pictures\">\n";
+        if (!c->load_error.empty()) html << "<p>Error: <code>" << escape_html(c->load_error) << "</code></p>\n";
+        // Marked for the viewer (report_viewer.hpp): the case, and each picture's key and label.
+        html << "<div class=\"pictures\" data-case=\"" << escape_html(c->id) << "\" data-title=\""
+             << escape_html(c->scene + " — " + c->pipeline) << "\">\n";
         for (const BackendRun& backend_run : c->runs) {
             if (backend_run.image_file.empty()) continue;
             const std::string_view backend = rhi::backend_name(backend_run.backend);
-            html << "<figure><a href=\"" << escape(backend_run.image_file) << "\"><img src=\""
-                 << escape(backend_run.image_file) << "\" alt=\"" << backend << "\"></a><figcaption>" << backend << ", "
-                 << number(backend_run.milliseconds, 0) << " ms</figcaption></figure>\n";
+            html << "<figure data-image=\"" << backend << "\" data-label=\"" << backend << "\" data-backend><a href=\""
+                 << escape_html(backend_run.image_file) << "\"><img src=\"" << escape_html(backend_run.image_file) << "\" alt=\""
+                 << backend << "\"></a><figcaption>" << backend << ", " << number(backend_run.milliseconds, 0)
+                 << " ms</figcaption></figure>\n";
         }
         if (c->image && !c->image->diff_file.empty()) {
-            html << "<figure><a href=\"" << escape(c->image->diff_file) << "\"><img src=\"" << escape(c->image->diff_file)
+            html << "<figure data-image=\"difference\" data-label=\"difference\"><a href=\"" << escape_html(c->image->diff_file)
+                 << "\"><img src=\"" << escape_html(c->image->diff_file)
                  << "\" alt=\"difference\"></a><figcaption>difference (black: equal, bright: largest)</figcaption></figure>\n";
         }
         if (c->against_deferred && !c->against_deferred->diff_file.empty()) {
-            html << "<figure><a href=\"" << escape(c->against_deferred->diff_file) << "\"><img src=\""
-                 << escape(c->against_deferred->diff_file)
+            html << "<figure data-image=\"against-deferred\" data-label=\"forward against deferred\"><a href=\""
+                 << escape_html(c->against_deferred->diff_file) << "\"><img src=\"" << escape_html(c->against_deferred->diff_file)
                  << "\" alt=\"forward against deferred\"></a><figcaption>forward against deferred</figcaption></figure>\n";
         }
         html << "</div>\n";
@@ -242,7 +235,7 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
                  << " levels (at most " << number(kPipelineMaxDiffering * 100.0, 1) << "% may be), PSNR "
                  << psnr_text(*c->against_deferred) << ".</p>\n";
         }
-        if (!c->runs.empty()) html << "<p>" << escape(plan_line(*c)) << "</p>\n";
+        if (!c->runs.empty()) html << "<p>" << escape_html(plan_line(*c)) << "</p>\n";
         std::vector<std::string> notes = c->warnings;
         for (const BackendRun& backend_run : c->runs) {
             for (const std::string& message : backend_run.messages) {
@@ -251,12 +244,12 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
         }
         if (!notes.empty()) {
             html << "<ul>\n";
-            for (const std::string& note : notes) html << "<li><code>" << escape(note) << "</code></li>\n";
+            for (const std::string& note : notes) html << "<li><code>" << escape_html(note) << "</code></li>\n";
             html << "</ul>\n";
         }
         html << "</div>\n";
     }
-    html << "</body>\n</html>\n";
+    html << viewer::kBody << "</body>\n</html>\n";
     return html.str();
 }
 

@@ -23,7 +23,9 @@ struct RunInfo {
 std::string report_json(const std::vector<CaseResult>& cases, const RunInfo& run);
 
 /// The HTML page: the run's summary, a table of every case, then per case (failures first) the
-/// backends' pictures, the difference heat map, the metrics, the plans and the failures.
+/// backends' pictures, the difference heat map, the metrics, the plans and the failures. A click
+/// on a picture opens the viewer (report_viewer.hpp): the case's pictures one over the other, to
+/// flip between and zoom into pixel by pixel.
 std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run);
 
 /// The cases in report order: failed ones first, otherwise as run.

@@ -6,6 +6,8 @@
 #include <functional>
 #include <sstream>
 
+#include "loom/sample_common/html.hpp"
+
 namespace loom::deferred {
 namespace {
 
@@ -34,19 +36,6 @@ std::string label(double v) {
     return text;
 }
 
-std::string escape(const std::string& text) {
-    std::string out;
-    for (char c : text) {
-        switch (c) {
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '&': out += "&amp;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
-
 /// A "nice" upper bound for an axis (1, 2 or 5 times a power of ten, at least `max`).
 double axis_top(double max) {
     if (max <= 0) return 1;
@@ -68,7 +57,7 @@ void chart(std::ostringstream& svg, const std::vector<SoakSample>& samples, doub
     auto x_of = [&](double frame) { return kLeft + kPlotWidth * frame / frames; };
     auto y_of = [&](double v) { return top + kChartHeight * (1.0 - v / y_top); };
 
-    svg << "<text x=\"" << kLeft << "\" y=\"" << number(top - 10) << "\" font-weight=\"bold\">" << escape(heading)
+    svg << "<text x=\"" << kLeft << "\" y=\"" << number(top - 10) << "\" font-weight=\"bold\">" << samples::escape_html(heading)
         << "</text>\n";
     if (warm_up_frames > 0) {
         const double w = std::min(static_cast<double>(warm_up_frames), frames);
@@ -86,7 +75,7 @@ void chart(std::ostringstream& svg, const std::vector<SoakSample>& samples, doub
             << label(v) << "</text>\n";
     }
     svg << "<text x=\"14\" y=\"" << number(top + kChartHeight / 2) << "\" font-size=\"11\" transform=\"rotate(-90 14 "
-        << number(top + kChartHeight / 2) << ")\" text-anchor=\"middle\">" << escape(unit) << "</text>\n";
+        << number(top + kChartHeight / 2) << ")\" text-anchor=\"middle\">" << samples::escape_html(unit) << "</text>\n";
     // Frame numbers at round steps (0, 2000, 4000...), not at fifths of the run (1999, 3999...).
     const double step = std::max(1.0, axis_top(frames / 5));
     for (double frame = 0; frame <= frames; frame += step) {
@@ -134,7 +123,7 @@ std::string soak_svg(const std::vector<SoakSample>& samples, const std::string& 
     svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kWidth << "\" height=\"" << height
         << "\" font-family=\"sans-serif\" font-size=\"13\">\n";
     svg << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-    svg << "<text x=\"" << kLeft << "\" y=\"18\" font-size=\"15\">" << escape(title) << "</text>\n";
+    svg << "<text x=\"" << kLeft << "\" y=\"18\" font-size=\"15\">" << samples::escape_html(title) << "</text>\n";
     if (samples.empty()) {
         svg << "<text x=\"" << kLeft << "\" y=\"60\">no frames</text>\n</svg>\n";
         return svg.str();

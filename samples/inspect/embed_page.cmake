@@ -1,9 +1,9 @@
-# Writes OUT, a C++ file holding the inspector page's HTML, CSS and JS (HTML, CSS, JS) as raw
-# string literals (loom::inspect::assets in inspect_page.cpp). Run at build time by
+# Writes OUT, a C++ file holding the inspector page's HTML, CSS, inflater and script (HTML, CSS,
+# INFLATE, JS) as raw string literals (loom::inspect::assets in inspect_page.cpp). Run at build time by
 # samples/inspect/CMakeLists.txt whenever one of the files changes.
 set(delimiter "loom_page")
 set(text "// Generated from samples/inspect/page/ by embed_page.cmake; do not edit.\nnamespace loom::inspect::assets {\n")
-foreach(part HTML CSS JS)
+foreach(part HTML CSS INFLATE JS)
   file(READ "${${part}}" content)
   # A raw string ends at )delimiter" : a file containing it would end the literal early.
   string(FIND "${content}" ")${delimiter}\"" clash)

@@ -1,8 +1,9 @@
 #pragma once
-// The inspector page: page/inspector.html with its style, script and the inspector input
+// The inspector page: page/inspector.html with its style, scripts and the inspector input
 // embedded, so that one file opens offline in any browser (no network, no other file).
 
 #include <iosfwd>
+#include <string>
 #include <string_view>
 
 #include <nlohmann/json.hpp>
@@ -10,8 +11,17 @@
 namespace loom::inspect {
 
 /// Writes the page for `input` (an inspector input document, see input_files.hpp) titled
-/// `title`. The input is embedded as JSON inside a <script> element, with every '<' escaped so
-/// that no name in it can end the element.
+/// `title`. The input's JSON text is embedded compressed (deflate_raw) and in base64, which has
+/// no '<' and so cannot end the element it is in, whatever the names in it; the page inflates
+/// it (page/inflate.js). A 10,000-pass plan's page is a seventeenth of its JSON text.
 void write_page(std::ostream& out, const nlohmann::json& input, std::string_view title);
+
+/// `bytes` as a raw DEFLATE stream (RFC 1951: zlib's deflate without the zlib header), at zlib's
+/// compression `level` (0 writes stored blocks only) with zlib's `strategy` (0 is
+/// Z_DEFAULT_STRATEGY; Z_FIXED writes fixed Huffman codes only).
+std::string deflate_raw(std::string_view bytes, int level = 6, int strategy = 0);
+
+/// `bytes` in base64 (RFC 4648, the standard alphabet, padded with '=').
+std::string base64(std::string_view bytes);
 
 }  // namespace loom::inspect

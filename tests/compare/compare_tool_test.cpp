@@ -152,6 +152,11 @@ TEST(CompareReport, HtmlShowsFailuresFirstWithTheirPictures) {
     EXPECT_NE(html.find("<img src=\"cases/y/diff.png\""), std::string::npos);
     EXPECT_NE(html.find("2 case(s)"), std::string::npos);
     EXPECT_EQ(report_order(cases).front()->id, "models_Duck.gltf.forward");
+    // One file but for the pictures: inline scripts and style, nothing fetched.
+    EXPECT_EQ(html.find("<script src"), std::string::npos);
+    EXPECT_EQ(html.find("<link"), std::string::npos);
+    EXPECT_EQ(html.find("http"), std::string::npos);
+    EXPECT_NE(html.find("id=\"viewer\""), std::string::npos);
 }
 
 }  // namespace

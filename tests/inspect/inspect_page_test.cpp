@@ -8,7 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <zlib.h>
 
+#include "inspect_page.hpp"
 #include "inspect_test_support.hpp"
 #include "loom_test/test_support.hpp"
 
@@ -33,11 +35,11 @@ std::vector<std::string> names(const json& array, const char* key = nullptr) {
 
 // Opens the page and checks that its script ran to the end without an error.
 std::string open_page(const std::string& chromium, const std::filesystem::path& page, std::string_view fragment) {
-    const ToolRun dom = dump_dom(chromium, page, fragment, page.parent_path());
-    EXPECT_EQ(dom.status, 0) << dom.err;
-    EXPECT_EQ(attribute_of(dom.out, "body", "data-status"), "ok") << from_element(dom.out, "errors").substr(0, 2000);
-    EXPECT_EQ(attribute_of(dom.out, "body", "data-errors"), "0");
-    return dom.out;
+    const loom::test::PageDump dump = dump_dom(chromium, page, fragment, page.parent_path());
+    EXPECT_EQ(dump.status, 0) << dump.log;
+    EXPECT_EQ(attribute_of(dump.dom, "body", "data-status"), "ok") << from_element(dump.dom, "errors").substr(0, 2000);
+    EXPECT_EQ(attribute_of(dump.dom, "body", "data-errors"), "0");
+    return dump.dom;
 }
 
 TEST(InspectPage, Figure2ShowsEveryPassResourceTimingAndAllocator) {
@@ -138,6 +140,130 @@ TEST(InspectPage, MemoryMapFlagsResourcesThatShareBytesAtOnce) {
     EXPECT_EQ(attribute_values(check.substr(0, 200), "data-overlaps"), std::vector<std::string>{"1"});
     EXPECT_NE(check.substr(0, check.find("</span>")).find("geometry.position and geometry.normal"), std::string_view::npos)
         << check.substr(0, 400);
+}
+
+// Names as a hand-edited plan may have them, with markup and characters beyond ASCII: the page
+// is compressed and escaped on the way, and must show them exactly as written.
+TEST(InspectPage, NamesWithMarkupAndNonAsciiCharactersShowAsWritten) {
+    LOOM_REQUIRE_CHROMIUM(chromium);
+    const auto dir = test_dir();
+    // The Figure 2 graph with two passes renamed, everywhere their names and ports appear.
+    const std::vector<std::pair<std::string, std::string>> renamed = {
+        {"shadow", "shadow</script><script>alert(1)</script><!--"},
+        {"geometry", "g\u00e9om\u00e9trie \u2192 G-Puffer \u51e0\u4f55 \U0001f3a8"}};
+    const auto rename = [&](auto& self, json& value) -> void {
+        if (value.is_structured()) {
+            for (json& item : value) self(self, item);
+        } else if (value.is_string()) {
+            const std::string text = value;
+            for (const auto& [from, to] : renamed) {
+                if (text == from || text.starts_with(from + ".")) value = to + text.substr(from.size());
+            }
+        }
+    };
+    json graph_file = json::parse(read_file(std::filesystem::path(LOOM_PLAN_GRAPHS) / "figure2.json"));
+    rename(rename, graph_file);
+    write_file(dir / "names.json", graph_file.dump());
+    const ToolRun made = run(LOOM_INSPECT_TOOL, quoted(dir / "names.json") + " --out " + quoted(dir / "names.html"));
+    ASSERT_EQ(made.status, 0) << made.err;
+
+    const std::string dom = open_page(chromium, dir / "names.html", "");
+    const std::vector<std::string> shown = attribute_values(list_of(dom, "pass-list"), "data-pass");
+    ASSERT_EQ(shown.size(), 5u);
+    EXPECT_EQ(shown[0], renamed[0].second);
+    EXPECT_EQ(shown[1], renamed[1].second);
+    EXPECT_EQ(shown[2], "deferred");
+}
+
+// The page's inflater (page/inflate.js) on its own, in the browser, against streams zlib wrote
+// with each kind of block, and on streams it must refuse.
+TEST(InspectPage, InflaterReadsEveryKindOfBlockZlibWritesAndRefusesBrokenStreams) {
+    LOOM_REQUIRE_CHROMIUM(chromium);
+    const auto dir = test_dir();
+    std::string text;
+    for (int i = 0; i < 4000; ++i) text += "{\"pass\":\"p" + std::to_string(i) + "\",\"reads\":" + std::to_string(i * 7 % 13) + "},";
+    std::string noise;  // incompressible: zlib stores it
+    uint32_t state = 12345;
+    for (int i = 0; i < 30000; ++i) {
+        state = state * 1664525u + 1013904223u;
+        noise += static_cast<char>(state >> 24);
+    }
+    std::string every_byte;
+    for (int i = 0; i < 256; ++i) every_byte += static_cast<char>(i);
+    struct Vector {
+        std::string name;
+        std::string bytes;
+        std::string stream;
+    };
+    using loom::inspect::deflate_raw;
+    const std::vector<Vector> good = {
+        {"empty", "", deflate_raw("")},
+        {"stored", text, deflate_raw(text, 0)},
+        {"fixed", text, deflate_raw(text, 6, Z_FIXED)},
+        {"dynamic", text, deflate_raw(text, 9)},
+        {"huffman-only", text, deflate_raw(text, 6, Z_HUFFMAN_ONLY)},
+        {"run-length", std::string(100000, 'a'), deflate_raw(std::string(100000, 'a'), 6, Z_RLE)},
+        {"incompressible", noise, deflate_raw(noise)},
+        // Matches 30,000 bytes back: the longest distance codes, with 13 extra bits.
+        {"far", noise + noise + every_byte, deflate_raw(noise + noise + every_byte, 9)},
+    };
+    nlohmann::json cases = nlohmann::json::array();
+    for (const Vector& v : good) {
+        cases.push_back({{"name", v.name}, {"stream", loom::inspect::base64(v.stream)}, {"bytes", loom::inspect::base64(v.bytes)},
+                         {"size", v.bytes.size()}});
+    }
+    const std::string dynamic = deflate_raw(text, 9);
+    const std::string_view reserved = "\x07", bad_stored_length = std::string_view("\x01\x05\x00\x00\x00", 5);
+    const nlohmann::json broken = {
+        {{"name", "truncated"}, {"stream", loom::inspect::base64(dynamic.substr(0, dynamic.size() - 2))}, {"size", text.size()}},
+        {{"name", "longer than said"}, {"stream", loom::inspect::base64(dynamic)}, {"size", text.size() - 1}},
+        {{"name", "shorter than said"}, {"stream", loom::inspect::base64(dynamic)}, {"size", text.size() + 1}},
+        {{"name", "reserved block type"}, {"stream", loom::inspect::base64(reserved)}, {"size", 1}},
+        {{"name", "bad stored length"}, {"stream", loom::inspect::base64(bad_stored_length)}, {"size", 5}},
+    };
+    const std::string inflate_js = read_file(std::filesystem::path(LOOM_INSPECT_PAGE_DIR) / "inflate.js");
+    ASSERT_FALSE(inflate_js.empty());
+    const std::string runner = R"(
+window.loomErrors = [];
+window.addEventListener("error", (event) => window.loomErrors.push(String(event.message)));
+function bytes(text) { const b = atob(text); const out = new Uint8Array(b.length); for (let i = 0; i < b.length; ++i) out[i] = b.charCodeAt(i); return out; }
+function result(name, text) { const li = document.createElement("li"); li.dataset.vector = name; li.dataset.result = text; document.getElementById("results").appendChild(li); }
+)";
+    const std::string checks = R"(
+for (const c of GOOD) {
+  try {
+    const out = loomInflate(bytes(c.stream), c.size);
+    const expected = bytes(c.bytes);
+    let same = out.length === expected.length;
+    for (let i = 0; same && i < out.length; ++i) same = out[i] === expected[i];
+    result(c.name, same ? "ok" : "differs");
+  } catch (error) { result(c.name, "threw: " + error.message); }
+}
+for (const c of BROKEN) {
+  try { loomInflate(bytes(c.stream), c.size); result(c.name, "accepted"); } catch (error) { result(c.name, "refused"); }
+}
+document.body.dataset.errors = String(window.loomErrors.length);
+)";
+    write_file(dir / "inflate.html", "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><script>" + runner + "</script></head><body>"
+                                     "<ul id=\"results\"></ul>\n<script>\n" + inflate_js + "\n</script>\n<script>\nconst GOOD = " +
+                                     cases.dump() + ";\nconst BROKEN = " + broken.dump() + ";\n" + checks + "</script></body></html>\n");
+
+    const loom::test::PageDump dump = dump_dom(chromium, dir / "inflate.html", "", dir);
+    ASSERT_EQ(dump.status, 0) << dump.log;
+    EXPECT_EQ(attribute_of(dump.dom, "body", "data-errors"), "0");
+    std::string_view results = from_element(dump.dom, "results");
+    results = results.substr(0, results.find("</ul>"));
+    std::vector<std::string> expected_names, expected_results;
+    for (const Vector& v : good) {
+        expected_names.push_back(v.name);
+        expected_results.push_back("ok");
+    }
+    for (const nlohmann::json& b : broken) {
+        expected_names.push_back(b.at("name"));
+        expected_results.push_back("refused");
+    }
+    EXPECT_EQ(attribute_values(results, "data-vector"), expected_names);
+    EXPECT_EQ(attribute_values(results, "data-result"), expected_results);
 }
 
 // A chain of passes, every third one also reading the pass seven back, and one pass in a

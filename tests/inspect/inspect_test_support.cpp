@@ -1,11 +1,13 @@
 #include "inspect_test_support.hpp"
 
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
-#include <sstream>
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#define ZLIB_CONST
+#include <zlib.h>
 
 #include "loom_test/test_support.hpp"
 
@@ -21,19 +23,10 @@ std::filesystem::path test_dir() {
     return std::filesystem::absolute(dir);
 }
 
-std::string read_file(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 void write_file(const std::filesystem::path& path, std::string_view text) {
     std::ofstream out(path, std::ios::binary);
     out << text;
 }
-
-std::string quoted(const std::filesystem::path& path) { return "\"" + path.string() + "\""; }
 
 ToolRun run(const std::string& program, const std::string& arguments) {
     static int runs = 0;
@@ -54,90 +47,69 @@ ToolRun run(const std::string& program, const std::string& arguments) {
     return result;
 }
 
-std::optional<std::string> find_chromium() {
-    if (const char* given = std::getenv("LOOM_CHROMIUM"); given && *given) return std::string(given);
-    const char* path = std::getenv("PATH");
-    if (!path) return std::nullopt;
-    std::stringstream dirs(path);
-    std::string dir;
-    while (std::getline(dirs, dir, ':')) {
-        for (const char* name : {"chromium", "chromium-browser"}) {
-            const std::filesystem::path candidate = std::filesystem::path(dir) / name;
-            std::error_code ec;
-            if (std::filesystem::is_regular_file(candidate, ec)) return candidate.string();
-        }
-    }
-    return std::nullopt;
-}
-
-ToolRun dump_dom(const std::string& chromium, const std::filesystem::path& page, std::string_view fragment,
-                 const std::filesystem::path& dir) {
-    // A fresh profile per run, and no network, updates, sync or first-run pages: the run
-    // depends on nothing but the page.
-    const std::string url = "file://" + std::filesystem::absolute(page).string() + std::string(fragment);
-    const std::string arguments =
-        "--headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking "
-        "--disable-component-update --disable-sync --user-data-dir=" + quoted(dir / "chromium-profile") +
-        " --window-size=1600,4000 --dump-dom \"" + url + "\"";
-    // timeout(1) stops a browser that hangs instead of holding the test until ctest's limit.
-    const std::string command = "timeout 120 \"" + chromium + "\" " + arguments + " >" + quoted(dir / "dom.html") + " 2>" +
-                                quoted(dir / "chromium.log");
-    const int raw = std::system(command.c_str());
-    ToolRun result;
-    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    result.out = read_file(dir / "dom.html");
-    result.err = read_file(dir / "chromium.log");
-    return result;
-}
-
-std::string_view from_element(std::string_view dom, std::string_view id) {
-    const std::size_t at = dom.find("id=\"" + std::string(id) + "\"");
-    if (at == std::string_view::npos) return {};
-    return dom.substr(at);
-}
-
 namespace {
 
-std::string decode(std::string_view text) {
+std::optional<std::string> from_base64(std::string_view text) {
     std::string out;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        bool replaced = false;
-        for (auto [entity, c] : {std::pair{"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&quot;", '"'}}) {
-            if (text.substr(i).starts_with(entity)) {
-                out += c;
-                i += std::string_view(entity).size() - 1;
-                replaced = true;
-                break;
-            }
+    uint32_t group = 0;
+    int bits = 0;
+    for (char c : text) {
+        int value = -1;
+        if (c >= 'A' && c <= 'Z') value = c - 'A';
+        else if (c >= 'a' && c <= 'z') value = c - 'a' + 26;
+        else if (c >= '0' && c <= '9') value = c - '0' + 52;
+        else if (c == '+') value = 62;
+        else if (c == '/') value = 63;
+        else if (c == '=') break;
+        else return std::nullopt;
+        group = group << 6 | static_cast<uint32_t>(value);
+        bits += 6;
+        if (bits >= 8) {
+            bits -= 8;
+            out += static_cast<char>((group >> bits) & 0xff);
         }
-        if (!replaced) out += text[i];
     }
+    return out;
+}
+
+std::optional<std::string> inflate_raw(std::string_view compressed, std::size_t size) {
+    z_stream stream{};
+    if (inflateInit2(&stream, -15) != Z_OK) return std::nullopt;
+    std::string out(size, '\0');
+    stream.next_in = reinterpret_cast<const Bytef*>(compressed.data());
+    stream.avail_in = static_cast<uInt>(compressed.size());
+    stream.next_out = reinterpret_cast<Bytef*>(out.data());
+    stream.avail_out = static_cast<uInt>(out.size());
+    const int status = inflate(&stream, Z_FINISH);
+    const bool whole = status == Z_STREAM_END && stream.avail_out == 0 && stream.avail_in == 0;
+    inflateEnd(&stream);
+    if (!whole) return std::nullopt;
     return out;
 }
 
 }  // namespace
 
-std::vector<std::string> attribute_values(std::string_view text, std::string_view attribute) {
-    std::vector<std::string> values;
-    const std::string key = " " + std::string(attribute) + "=\"";
-    for (std::size_t at = text.find(key); at != std::string_view::npos; at = text.find(key, at)) {
-        at += key.size();
-        const std::size_t end = text.find('"', at);
-        if (end == std::string_view::npos) break;
-        values.push_back(decode(text.substr(at, end - at)));
-        at = end;
+nlohmann::json embedded_input(std::string_view page) {
+    const std::string_view element = from_element(page, "loom-input");
+    const std::size_t start = element.find('>');
+    const std::size_t end = element.find("</script>");
+    // The element's start tag from its id on: the text's length.
+    const auto size = attribute_values(element.substr(0, start), "data-bytes");
+    if (start == std::string_view::npos || end == std::string_view::npos || size.size() != 1) {
+        ADD_FAILURE() << "no #loom-input element with data-bytes in the page";
+        return nullptr;
     }
-    return values;
-}
-
-std::optional<std::string> attribute_of(std::string_view dom, std::string_view tag, std::string_view attribute) {
-    // "<body " with its attributes: the page's comments mention "<body>" itself.
-    const std::size_t start = dom.find("<" + std::string(tag) + " ");
-    if (start == std::string_view::npos) return std::nullopt;
-    const std::size_t end = dom.find('>', start);
-    const auto values = attribute_values(dom.substr(start, end - start), attribute);
-    if (values.empty()) return std::nullopt;
-    return values.front();
+    const auto compressed = from_base64(element.substr(start + 1, end - start - 1));
+    if (!compressed) {
+        ADD_FAILURE() << "#loom-input is not base64";
+        return nullptr;
+    }
+    const auto text = inflate_raw(*compressed, std::stoull(size.front()));
+    if (!text) {
+        ADD_FAILURE() << "#loom-input is not a raw DEFLATE stream of " << size.front() << " bytes";
+        return nullptr;
+    }
+    return nlohmann::json::parse(*text);
 }
 
 }  // namespace loom::inspect_test
