@@ -29,16 +29,25 @@ struct Material {
     float pad[3];
 };
 
+/// The pipeline of these tests: a fullscreen triangle shaded by kUniformFrag into RGBA32Float.
+Result<rhi::PipelineHandle> uniform_pipeline(rhi::Device& device, const std::string& name,
+                                             std::vector<rhi::BlendState> blend = {}) {
+    auto vs = make_shader(device, rhi::ShaderStage::Vertex, "fullscreen.vert", kFullscreenVert);
+    if (!vs.ok()) return vs.take_error();
+    auto fs = make_shader(device, rhi::ShaderStage::Fragment, "uniform.frag", kUniformFrag);
+    if (!fs.ok()) return fs.take_error();
+    rhi::GraphicsPipelineDesc pd;
+    pd.name = name;
+    pd.vertex = *vs;
+    pd.fragment = *fs;
+    pd.color_formats = {rhi::Format::RGBA32Float};
+    pd.blend = std::move(blend);
+    return device.create_graphics_pipeline(pd);
+}
+
 TEST_P(UniformsTest, UniformBlocksAndPushConstantsReachTheShader) {
     constexpr uint32_t kSize = 8;
-    LOOM_ASSIGN_OR_FAIL(auto vs, make_shader(device(), rhi::ShaderStage::Vertex, "fullscreen.vert", kFullscreenVert));
-    LOOM_ASSIGN_OR_FAIL(auto fs, make_shader(device(), rhi::ShaderStage::Fragment, "uniform.frag", kUniformFrag));
-    rhi::GraphicsPipelineDesc pd;
-    pd.name = "uniforms";
-    pd.vertex = vs;
-    pd.fragment = fs;
-    pd.color_formats = {rhi::Format::RGBA32Float};
-    LOOM_ASSIGN_OR_FAIL(auto pipeline, device().create_graphics_pipeline(pd));
+    LOOM_ASSIGN_OR_FAIL(auto pipeline, uniform_pipeline(device(), "uniforms"));
     const Material material{{0.25f, 0.5f, 0.0f, 1.0f}, 2.0f, {}};
     LOOM_ASSIGN_OR_FAIL(auto ubo, make_buffer(device(), "material", rhi::BufferUsage::Uniform, bytes_of(material)));
     LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "uniform target", rhi::Format::RGBA32Float, kSize, kSize));
@@ -77,14 +86,7 @@ TEST_P(UniformsTest, UniformRangeAtAlignedOffset) {
     std::memcpy(data.data(), &first, sizeof first);
     std::memcpy(data.data() + alignment, &second, sizeof second);
     LOOM_ASSIGN_OR_FAIL(auto ubo, make_buffer(device(), "materials", rhi::BufferUsage::Uniform, data));
-    LOOM_ASSIGN_OR_FAIL(auto vs, make_shader(device(), rhi::ShaderStage::Vertex, "fullscreen.vert", kFullscreenVert));
-    LOOM_ASSIGN_OR_FAIL(auto fs, make_shader(device(), rhi::ShaderStage::Fragment, "uniform.frag", kUniformFrag));
-    rhi::GraphicsPipelineDesc pd;
-    pd.name = "uniform range";
-    pd.vertex = vs;
-    pd.fragment = fs;
-    pd.color_formats = {rhi::Format::RGBA32Float};
-    LOOM_ASSIGN_OR_FAIL(auto pipeline, device().create_graphics_pipeline(pd));
+    LOOM_ASSIGN_OR_FAIL(auto pipeline, uniform_pipeline(device(), "uniform range"));
     LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "range target", rhi::Format::RGBA32Float, 4, 4));
     LOOM_ASSERT_OK(run_frame(device(), [&](rhi::CommandList& list) {
         list.begin_render_pass(clear_pass("range", target, {0, 0, 0, 0}));
@@ -105,14 +107,7 @@ TEST_P(UniformsTest, UniformRangeAtAlignedOffset) {
 // another dynamic offset, GL binds another range. Every column shows its own draw's value.
 TEST_P(UniformsTest, PerDrawUniformsBySetBuffer) {
     constexpr uint32_t kColumns = 16;
-    LOOM_ASSIGN_OR_FAIL(auto vs, make_shader(device(), rhi::ShaderStage::Vertex, "fullscreen.vert", kFullscreenVert));
-    LOOM_ASSIGN_OR_FAIL(auto fs, make_shader(device(), rhi::ShaderStage::Fragment, "uniform.frag", kUniformFrag));
-    rhi::GraphicsPipelineDesc pd;
-    pd.name = "per-draw uniforms";
-    pd.vertex = vs;
-    pd.fragment = fs;
-    pd.color_formats = {rhi::Format::RGBA32Float};
-    LOOM_ASSIGN_OR_FAIL(auto pipeline, device().create_graphics_pipeline(pd));
+    LOOM_ASSIGN_OR_FAIL(auto pipeline, uniform_pipeline(device(), "per-draw uniforms"));
     const Material material{{0.0f, 0.0f, 0.0f, 1.0f}, 1.0f, {}};
     LOOM_ASSIGN_OR_FAIL(auto ubo, make_buffer(device(), "material", rhi::BufferUsage::Uniform, bytes_of(material)));
     LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "per-draw target", rhi::Format::RGBA32Float, kColumns, 2));
@@ -144,15 +139,8 @@ TEST_P(UniformsTest, PerDrawUniformsBySetBuffer) {
 // read changing anything, would change the sum.
 TEST_P(UniformsTest, PerDrawUniformsBetweenConsecutiveDraws) {
     if (!device().capabilities().format(rhi::Format::RGBA32Float).blendable) GTEST_SKIP() << "RGBA32Float does not blend here";
-    LOOM_ASSIGN_OR_FAIL(auto vs, make_shader(device(), rhi::ShaderStage::Vertex, "fullscreen.vert", kFullscreenVert));
-    LOOM_ASSIGN_OR_FAIL(auto fs, make_shader(device(), rhi::ShaderStage::Fragment, "uniform.frag", kUniformFrag));
-    rhi::GraphicsPipelineDesc pd;
-    pd.name = "summed uniforms";
-    pd.vertex = vs;
-    pd.fragment = fs;
-    pd.color_formats = {rhi::Format::RGBA32Float};
-    pd.blend = {rhi::BlendState{.enabled = true, .dst_color = rhi::BlendFactor::One, .dst_alpha = rhi::BlendFactor::One}};
-    LOOM_ASSIGN_OR_FAIL(auto pipeline, device().create_graphics_pipeline(pd));
+    const rhi::BlendState add{.enabled = true, .dst_color = rhi::BlendFactor::One, .dst_alpha = rhi::BlendFactor::One};
+    LOOM_ASSIGN_OR_FAIL(auto pipeline, uniform_pipeline(device(), "summed uniforms", {add}));
     const Material material{{0.0f, 0.0f, 0.0f, 1.0f}, 1.0f, {}};
     LOOM_ASSIGN_OR_FAIL(auto ubo, make_buffer(device(), "material", rhi::BufferUsage::Uniform, bytes_of(material)));
     LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "sum target", rhi::Format::RGBA32Float, 1, 1));
@@ -179,14 +167,7 @@ TEST_P(UniformsTest, PerDrawUniformsBetweenConsecutiveDraws) {
 // set_buffer is checked like a bind group at the draw: a destroyed buffer is a stale handle,
 // and a range past the buffer's end is refused although the set was bound before with a good one.
 TEST_P(UniformsTest, SetBufferIsCheckedAtTheDraw) {
-    LOOM_ASSIGN_OR_FAIL(auto vs, make_shader(device(), rhi::ShaderStage::Vertex, "fullscreen.vert", kFullscreenVert));
-    LOOM_ASSIGN_OR_FAIL(auto fs, make_shader(device(), rhi::ShaderStage::Fragment, "uniform.frag", kUniformFrag));
-    rhi::GraphicsPipelineDesc pd;
-    pd.name = "checked uniforms";
-    pd.vertex = vs;
-    pd.fragment = fs;
-    pd.color_formats = {rhi::Format::RGBA32Float};
-    LOOM_ASSIGN_OR_FAIL(auto pipeline, device().create_graphics_pipeline(pd));
+    LOOM_ASSIGN_OR_FAIL(auto pipeline, uniform_pipeline(device(), "checked uniforms"));
     const uint64_t alignment = device().capabilities().uniform_buffer_offset_alignment;
     std::vector<std::byte> data(alignment * 2);
     LOOM_ASSIGN_OR_FAIL(auto ubo, make_buffer(device(), "two blocks", rhi::BufferUsage::Uniform, data));
