@@ -86,8 +86,6 @@ Status usage_supported(const TextureDesc& d, const Capabilities& caps, const std
 // FormatCapabilities::sample_counts).
 bool is_sample_count(uint32_t samples) { return samples >= 1 && samples <= 64 && std::has_single_bit(samples); }
 
-uint64_t index_bytes(IndexType type) { return type == IndexType::Uint16 ? 2 : 4; }
-
 // The subresource one side of a transfer or copy addresses exists, and z is used on 3D
 // textures only. `side` starts the messages ("source ", or "" for a one-sided transfer);
 // `extent_used` is false where the region's extent is ignored (a copy's destination).
@@ -904,8 +902,7 @@ Status index_buffer_refused(const BufferDesc& buffer, IndexType type, uint64_t o
 }
 
 Status index_range(const BufferDesc& buffer, IndexType type, uint64_t offset, uint32_t first_index, uint32_t index_count) {
-    const auto start = checked::add<uint64_t>(offset, uint64_t{first_index} * index_bytes(type));
-    if (!start || !checked::range_fits(*start, uint64_t{index_count} * index_bytes(type), buffer.size)) {
+    if (!index_range_fits(buffer.size, type, offset, first_index, index_count)) {
         return Error{ErrorCode::InvalidArgument, "draw_indexed: " + std::to_string(index_count) + " indices from index " +
                                                      std::to_string(first_index) + " run past the end of index buffer " +
                                                      in_quotes(buffer.name) + " (" + std::to_string(buffer.size) + " bytes from offset " +

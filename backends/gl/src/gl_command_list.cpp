@@ -474,15 +474,19 @@ LOOM_GL_HOT void GlCommandList::apply_bindings(GlStateCache& cache, uint32_t fir
     }
 }
 
-bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool indirect) {
+LOOM_GL_HOT bool GlCommandList::draw_state_current(bool indexed, bool indirect) {
     // Draws with nothing bound, begun, recorded or destroyed between them share the state
     // checked and resolved for the first: a later draw costs its arguments only, or the part
     // that changed (a bind group, the vertex buffers).
-    if (draw_state_removals_ != device_removals()) invalidate_draw_state();
-    if (indirect || (indexed && vertex_state_valid_ && vertex_states_.back().index_buffer == 0)) {
-        invalidate_draw_state();  // checks that only these draws need, below
+    if (draw_state_removals_ != device_removals() || indirect ||
+        (indexed && vertex_state_valid_ && vertex_states_.back().index_buffer == 0)) {
+        invalidate_draw_state();  // objects may be gone, or checks that only these draws need
+        return false;
     }
-    if (pipeline_state_valid_ && vertex_state_valid_ && binding_state_valid_) return true;
+    return pipeline_state_valid_ && vertex_state_valid_ && binding_state_valid_;
+}
+
+bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool indirect) {
     // Only the bindings changed (nothing recorded, destroyed, or bound but bind groups since
     // they were resolved): they may be the same but for uniform offsets.
     const bool reuse_allowed = pipeline_state_valid_ && !binding_states_.empty();
@@ -619,11 +623,9 @@ LOOM_GL_HOT void GlCommandList::replay_draw(GlStateCache& cache, const Draw& dra
 LOOM_GL_HOT void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
                                 uint32_t first_instance, const std::optional<IndirectDraw>& indirect) {
     // Most draws find the state checked and resolved for the previous one still current.
-    const bool current = pipeline_state_valid_ && vertex_state_valid_ && binding_state_valid_ && !indirect &&
-                         (!indexed || vertex_states_.back().index_buffer != 0) &&
-                         draw_state_removals_ == device_removals();
     const char* command = indirect ? "draw_indexed_indirect" : indexed ? "draw_indexed" : "draw";
-    if (!current && !prepare_draw_state(command, indexed, indirect.has_value())) {
+    const bool is_indirect = indirect.has_value();
+    if (!draw_state_current(indexed, is_indirect) && !prepare_draw_state(command, indexed, is_indirect)) {
         // A refused draw leaves state resolved in part: the next one starts again.
         invalidate_draw_state();
         return;

@@ -39,6 +39,12 @@
 
 namespace loom::gl {
 
+/// `value` rounded up to a multiple of `alignment` (at least 1; offsets within a buffer, far
+/// from overflowing).
+constexpr uint64_t align_up(uint64_t value, uint64_t alignment) {
+    return (value + alignment - 1) / alignment * alignment;
+}
+
 class GlDevice;
 
 /// A recorded GL command, run against the state cache at end_frame().
@@ -199,8 +205,13 @@ private:
         uint32_t first_instance = 0;
         PushRange push;
     };
+    /// Whether the state checked and resolved for the previous draw holds for this one as it
+    /// is; when something it relied on changed (a destruction, an indirect draw, the first
+    /// indexed draw without an index buffer recorded), forgets it all.
+    bool draw_state_current(bool indexed, bool indirect);
     /// Checks the bound state for a draw and records the parts that changed since the previous
-    /// draw; false with an error recorded when it is refused.
+    /// draw (after draw_state_current found it not current); false with an error recorded when
+    /// it is refused.
     bool prepare_draw_state(const char* command, bool indexed, bool indirect);
     /// The GL calls of one draw (its shared state only when it differs from the last draw's).
     void replay_draw(GlStateCache& cache, const Draw& draw);
@@ -339,8 +350,7 @@ public:
         // The common case inline (per draw for push constants): room in the frame's last chunk.
         if (!frame_chunks_.empty()) [[likely]] {
             TransientChunk& chunk = frame_chunks_.back();
-            const uint64_t alignment = caps_.uniform_buffer_offset_alignment;  // at least 1
-            const uint64_t offset = (chunk.used + alignment - 1) / alignment * alignment;
+            const uint64_t offset = align_up(chunk.used, caps_.uniform_buffer_offset_alignment);
             const uint64_t size = data.empty() ? 1 : data.size();
             if (offset + size <= chunk.size) [[likely]] {
                 if (!data.empty()) std::memcpy(chunk.data + offset, data.data(), data.size());

@@ -11,8 +11,6 @@ namespace {
 /// Transient uniform memory comes in chunks of this size (bigger requests get their own).
 constexpr uint64_t kTransientChunkBytes = 1u << 20;
 
-uint64_t align_up(uint64_t value, uint64_t alignment) { return (value + alignment - 1) / alignment * alignment; }
-
 }  // namespace
 
 rhi::CommandList& GlDevice::begin_frame() {

@@ -154,12 +154,8 @@ public:
     /// range fits the size it had when bound: the caller has checked the draw with check_draw
     /// since anything was last destroyed, which found that buffer alive.
     [[nodiscard]] Status check_index_range(uint32_t first_index, uint32_t index_count) const {
-        const uint64_t bytes = index_buffer_.type == IndexType::Uint16 ? 2 : 4;
-        // Unsigned 32-bit counts times 4 cannot overflow 64 bits; the offset is inside the buffer.
-        if (index_buffer_.offset <= index_buffer_.buffer_size &&
-            (uint64_t{first_index} + index_count) * bytes <= index_buffer_.buffer_size - index_buffer_.offset) [[likely]] {
-            return {};
-        }
+        const IndexBuffer& b = index_buffer_;
+        if (validation::index_range_fits(b.buffer_size, b.type, b.offset, first_index, index_count)) [[likely]] return {};
         return check_index_range_slow(first_index, index_count);
     }
     /// dispatch: outside render passes, with a live compute pipeline.

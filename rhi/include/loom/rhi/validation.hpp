@@ -18,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "loom/rhi/checked_math.hpp"
 #include "loom/rhi/descriptions.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/result.hpp"
@@ -242,6 +243,9 @@ Status viewport(const Viewport& viewport);
 Status push_constants(uint64_t offset, uint64_t size);
 /// CommandList::set_bind_group: set and bindings within kMaxBindGroups / kMaxBindingsPerGroup.
 Status bind_group(uint32_t set, const BindGroup& group);
+/// Bytes of one index of `type`.
+inline uint64_t index_bytes(IndexType type) { return type == IndexType::Uint16 ? 2 : 4; }
+
 // The three checks below run at every bind of vertex and index buffers: inline, with their
 // errors (and messages) made out of line by the *_refused functions.
 Status vertex_buffer_slot_refused(uint32_t slot);
@@ -261,9 +265,18 @@ inline Status vertex_buffer(uint32_t slot, const BufferDesc& buffer, uint64_t of
 /// CommandList::set_index_buffer: Index usage; the offset inside the buffer and a multiple of
 /// the index size.
 inline Status index_buffer(const BufferDesc& buffer, IndexType type, uint64_t offset) {
-    const uint64_t index_size = type == IndexType::Uint16 ? 2 : 4;
-    if (has_all(buffer.usage, BufferUsage::Index) && offset < buffer.size && offset % index_size == 0) [[likely]] return {};
+    if (has_all(buffer.usage, BufferUsage::Index) && offset < buffer.size && offset % index_bytes(type) == 0) [[likely]] {
+        return {};
+    }
     return index_buffer_refused(buffer, type, offset);
+}
+/// Whether `index_count` indices from `first_index` lie inside `buffer_size` bytes of an index
+/// buffer bound at `offset`: index_range's rule, which the state tracker also asks per draw
+/// with the size it kept when the buffer was bound.
+inline bool index_range_fits(uint64_t buffer_size, IndexType type, uint64_t offset, uint32_t first_index,
+                             uint32_t index_count) {
+    const auto start = checked::add<uint64_t>(offset, uint64_t{first_index} * index_bytes(type));
+    return start && checked::range_fits(*start, uint64_t{index_count} * index_bytes(type), buffer_size);
 }
 /// CommandList::draw_indexed: `index_count` indices from `first_index` lie inside the index
 /// buffer bound at `offset`.
