@@ -14,6 +14,7 @@
 
 #include "loom/rhi/format.hpp"
 #include "loom/rhi/handles.hpp"
+#include "loom/rhi/inline_vector.hpp"
 
 namespace loom::rhi {
 
@@ -318,12 +319,18 @@ struct DepthAttachment {
     uint32_t clear_stencil = 0;
 };
 
+/// Colour attachments held without allocating: 8, as many as the devices loom knows allow.
+inline constexpr std::size_t kInlineColorAttachments = 8;
+
 /// Attachments must all have the same size (of the chosen mip). The backend moves them into
 /// the attachment state itself; textures sampled inside the pass must have been transitioned
-/// to ResourceState::ShaderRead before it begins.
+/// to ResourceState::ShaderRead before it begins. Built per frame, it allocates nothing: the
+/// colour attachments are kept inside it (more than kInlineColorAttachments, which validation
+/// refuses on every device loom knows, go to the heap), and a label the standard library keeps
+/// in place (libstdc++ and libc++: up to 15 and 22 characters) or a reused one allocates nothing.
 struct RenderPassDesc {
     std::string label;
-    std::vector<ColorAttachment> colors;
+    InlineVector<ColorAttachment, kInlineColorAttachments> colors;
     std::optional<DepthAttachment> depth;
 };
 
