@@ -155,6 +155,10 @@ Status CommandListState::set_pipeline(PipelineHandle pipeline) {
     // Unbound first: a refused pipeline leaves none (see the header).
     pipeline_ = {};
     pipeline_name_.clear();
+    if (!validating()) {
+        pipeline_ = pipeline;
+        return {};
+    }
     auto facts = pipelines_(pipeline);
     if (!facts.ok()) return Error{ErrorCode::InvalidHandle, "set_pipeline: " + facts.error().message};
     if (!facts->compute) LOOM_TRY(check_pipeline_matches_pass("set_pipeline", *facts));
@@ -164,13 +168,13 @@ Status CommandListState::set_pipeline(PipelineHandle pipeline) {
 }
 
 Status CommandListState::set_bind_group(uint32_t set, const BindGroup& group) {
-    LOOM_TRY(validation::bind_group(set, group));
+    if (set >= kMaxBindGroups || validating()) LOOM_TRY(validation::bind_group(set, group));
     groups_[set] = group;
     return {};
 }
 
-Status CommandListState::set_buffer(uint32_t set, uint32_t binding, const BufferBinding& range) {
-    // Per-draw data comes this way: the message is built only when the slot is out of range.
+Status CommandListState::set_buffer_slow(uint32_t set, uint32_t binding, const BufferBinding& range) {
+    // The message is built only when the slot is out of range.
     if (set >= kMaxBindGroups || binding >= kMaxBindingsPerGroup) return validation::buffer_slot(set, binding);
     std::optional<BindGroup>& group = groups_[set];
     if (!group) group.emplace();
@@ -203,8 +207,13 @@ Status CommandListState::set_index_buffer(BufferHandle buffer, IndexType type, u
 // ---- draws and dispatches ------------------------------------------------------------------------
 
 // Messages are built only on a failure: draws ask these on every call.
+Status CommandListState::check_pipeline_set(std::string_view command) const {
+    if (!pipeline_.is_null()) return {};
+    return invalid_state(std::string(command) + ": no pipeline is set; call set_pipeline first");
+}
+
 Result<PipelineFacts> CommandListState::bound_pipeline(std::string_view command, bool compute) const {
-    if (pipeline_.is_null()) return invalid_state(std::string(command) + ": no pipeline is set; call set_pipeline first");
+    LOOM_TRY(check_pipeline_set(command));
     auto facts = pipelines_(pipeline_);
     if (!facts.ok()) return stale(command, "pipeline " + in_quotes(pipeline_name_), facts.error());
     if (facts->compute != compute) {
@@ -232,6 +241,7 @@ Status CommandListState::check_pipeline_matches_pass(std::string_view command, c
 Status CommandListState::check_draw(std::string_view command, bool indexed) const {
     const auto what = [&] { return std::string(command); };
     if (!pass_) return invalid_state(what() + ": no render pass is open; draws go inside a render pass");
+    if (!validating()) return check_pipeline_set(command);
     auto pipeline = bound_pipeline(command, false);
     if (!pipeline.ok()) return pipeline.take_error();
     LOOM_TRY(check_pipeline_matches_pass(command, *pipeline));
@@ -263,6 +273,7 @@ Status CommandListState::check_index_range_slow(uint32_t first_index, uint32_t i
 
 Status CommandListState::check_dispatch() const {
     LOOM_TRY(check_outside_render_pass("dispatch"));
+    if (!validating()) return check_pipeline_set("dispatch");
     auto pipeline = bound_pipeline("dispatch", true);
     return pipeline.ok() ? Status{} : Status(pipeline.take_error());
 }

@@ -152,6 +152,19 @@ std::string in_quotes(std::string_view name) {
     return out;
 }
 
+std::string checks_in_log(std::string_view api_debug, bool debug, bool validation) {
+    std::string text(api_debug);
+    text += debug ? " on (DeviceDesc::debug, the default: it costs more per draw than loom; turn it off to ship or measure)"
+                  : " off";
+    text += ", loom's validation ";
+    if (!kCompiled) {
+        text += "compiled out (LOOM_RHI_VALIDATION=OFF)";
+    } else {
+        text += validation ? "on" : "off (DeviceDesc::validation: misuse is not checked)";
+    }
+    return text;
+}
+
 Status texture_desc(const TextureDesc& d, const Capabilities& caps) {
     const std::string what = "texture " + in_quotes(d.name) + ": ";
     auto invalid = [&](const std::string& message) { return Error{ErrorCode::InvalidArgument, what + message}; };

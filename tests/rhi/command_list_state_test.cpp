@@ -57,6 +57,15 @@ protected:
         ASSERT_TRUE(state.check_begin_render_pass(label).ok());
         state.render_pass_begun(label, validation::RenderPassShape{4, 4, 1, {Format::RGBA8Unorm}, Format::Undefined});
     }
+    /// Begins a frame; a draw is refused without a render pass, then (in one) without a pipeline.
+    void begin_frame_and_expect_a_pass_then_a_pipeline() {
+        state.begin_frame();
+        expect_error(state.check_draw("draw", false), ErrorCode::InvalidState,
+                     "draw: no render pass is open; draws go inside a render pass");
+        open_pass();
+        expect_error(state.check_draw("draw", false), ErrorCode::InvalidState,
+                     "draw: no pipeline is set; call set_pipeline first");
+    }
     /// The InvalidHandle message of a destroyed pipeline / buffer, as the pool words it.
     std::string stale_message(PipelineHandle h) { return pipelines.get(h).error().message; }
     std::string stale_message(BufferHandle h) { return buffers.get(h).error().message; }
@@ -138,12 +147,7 @@ TEST_F(CommandListStateTest, DispatchesCopiesTransitionsAndReadbacksGoOutsideRen
 }
 
 TEST_F(CommandListStateTest, DrawsGoInsideARenderPassWithAGraphicsPipeline) {
-    state.begin_frame();
-    expect_error(state.check_draw("draw", false), ErrorCode::InvalidState,
-                 "draw: no render pass is open; draws go inside a render pass");
-    open_pass();
-    expect_error(state.check_draw("draw", false), ErrorCode::InvalidState,
-                 "draw: no pipeline is set; call set_pipeline first");
+    begin_frame_and_expect_a_pass_then_a_pipeline();
     ASSERT_TRUE(state.set_pipeline(compute("c")).ok());
     expect_error(state.check_draw("draw", false), ErrorCode::InvalidState,
                  "draw: pipeline 'c' is a compute pipeline; draws need a graphics pipeline");
@@ -345,6 +349,41 @@ TEST_F(CommandListStateTest, SetBufferReplacesOneBindingOfTheGroup) {
                      " bindings loom supports");
     state.end_frame();
     EXPECT_EQ(state.bind_group(0), nullptr);
+}
+
+// DeviceDesc::validation off: what the draws use is accepted unchecked (a misuse is the
+// user's), while the order of commands and the tracker's own slots are still checked.
+TEST_F(CommandListStateTest, WithValidationOffResourcesAreTakenUncheckedButCommandOrderIsNot) {
+    if (!validation::kCompiled) GTEST_SKIP() << "validation is compiled out of this build (LOOM_RHI_VALIDATION=OFF)";
+    ASSERT_TRUE(state.validating()) << "validation is on by default";
+    state.set_validation(false);
+    EXPECT_FALSE(state.validating());
+    begin_frame_and_expect_a_pass_then_a_pipeline();
+    // A pipeline for other attachments, then destroyed: both refused when validating.
+    const PipelineHandle other = graphics("float target", Format::RGBA32Float, 1);
+    ASSERT_TRUE(pipelines.remove(other).ok());
+    ASSERT_TRUE(state.set_pipeline(other).ok());
+    EXPECT_EQ(state.pipeline(), other);
+    // No vertex buffer in the slot it reads, an index buffer of the wrong usage and too small.
+    EXPECT_TRUE(state.check_draw("draw", false).ok());
+    const BufferHandle small = buffer("small", 4, BufferUsage::Vertex);
+    const BufferDesc* small_desc = *buffers.get(small);
+    ASSERT_TRUE(state.set_index_buffer(small, small_desc, IndexType::Uint32, 0).ok());
+    EXPECT_TRUE(state.check_draw("draw_indexed", true).ok());
+    EXPECT_TRUE(state.check_index_range(0, 1000).ok());
+    ASSERT_TRUE(state.set_vertex_buffer(0, small, small_desc, 64).ok());
+    EXPECT_FALSE(state.check_dispatch().ok()) << "dispatches go outside render passes either way";
+    // The tracker's own slots are bounded either way.
+    expect_error(state.set_vertex_buffer(16, small, small_desc, 0), ErrorCode::InvalidArgument,
+                 "set_vertex_buffer: slot 16 is beyond the 16 slots loom supports");
+    EXPECT_FALSE(state.set_buffer(kMaxBindGroups, 0, BufferBinding{small, 0, 4}).ok());
+    EXPECT_FALSE(state.set_bind_group(kMaxBindGroups, BindGroup{}).ok());
+
+    // The same commands validated are refused.
+    state.set_validation(true);
+    EXPECT_FALSE(state.set_index_buffer(small, small_desc, IndexType::Uint32, 0).ok());  // lacks usage Index
+    EXPECT_FALSE(state.set_pipeline(other).ok());
+    EXPECT_FALSE(state.check_index_range(0, 1000).ok());
 }
 
 }  // namespace

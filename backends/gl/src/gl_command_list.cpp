@@ -237,7 +237,7 @@ void GlCommandList::set_pipeline(rhi::PipelineHandle pipeline) {
 }
 
 void GlCommandList::set_viewport(const rhi::Viewport& v) {
-    if (!accepted(rhi::validation::viewport(v))) return;
+    if (state_.validating() && !accepted(rhi::validation::viewport(v))) return;
     // With the upper-left origin, GL window y runs down from row 0, exactly like loom's
     // top-left viewport rectangles: no flip.
     record([v](GlStateCache& cache) { cache.viewport(v.x, v.y, v.width, v.height, v.min_depth, v.max_depth); });
@@ -256,10 +256,13 @@ LOOM_GL_HOT bool GlCommandList::takes_new_offset(std::size_t i, const rhi::Buffe
     if (range.offset == then->offset) return true;
     // A new offset of a uniform range in the same (living) buffer: checked here as the full
     // check would.
-    const GlBuffer* buffer = device_->buffers().find(range.buffer);
-    if (draw_pipeline_->bindings[i].kind != BindingKind::UniformBuffer || !buffer ||
-        !rhi::uniform_offset_fits(range, buffer->desc.size, device_->capabilities().uniform_buffer_offset_alignment)) {
-        return false;
+    if (draw_pipeline_->bindings[i].kind != BindingKind::UniformBuffer) return false;
+    if (state_.validating()) {
+        const GlBuffer* buffer = device_->buffers().find(range.buffer);
+        if (!buffer ||
+            !rhi::uniform_offset_fits(range, buffer->desc.size, device_->capabilities().uniform_buffer_offset_alignment)) {
+            return false;
+        }
     }
     then->offset = range.offset;
     return true;
@@ -282,40 +285,96 @@ void GlCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
     accepted(state_.set_bind_group(set, group));
 }
 
-void GlCommandList::set_buffer(uint32_t set, uint32_t binding, const rhi::BufferBinding& range) {
-    if (!accepted(state_.set_buffer(set, binding, range))) {
-        binding_state_valid_ = false;
-        return;
+LOOM_GL_HOT bool GlCommandList::rebinds_offset(uint32_t set, uint32_t binding, const rhi::BufferBinding& range,
+                                               bool transient) {
+    if (!binding_state_valid_ || !pipeline_state_valid_) return false;
+    const std::vector<PipelineBinding>& bindings = draw_pipeline_->bindings;
+    std::size_t i = 0;
+    while (i < bindings.size() && (bindings[i].set != set || bindings[i].binding != binding)) ++i;
+    if (i == bindings.size()) return true;  // the pipeline does not read it: its draws are unchanged
+    if (transient) {
+        // The device's own transient memory: alive, aligned and inside by construction.
+        auto* then = std::get_if<rhi::BufferBinding>(&resolved_entries_[i].resource);
+        if (!then || then->buffer != range.buffer || then->size != range.size ||
+            bindings[i].kind != BindingKind::UniformBuffer) {
+            return false;
+        }
+        then->offset = range.offset;
+    } else if (!takes_new_offset(i, range)) {
+        return false;
     }
+    if (binding_state_drawn_) next_binding_state();  // drawn with the old offset
+    bindings_[binding_states_.back().first_binding + i].offset = static_cast<GLintptr>(range.offset);
+    return true;
+}
+
+void GlCommandList::set_buffer(uint32_t set, uint32_t binding, const rhi::BufferBinding& range) {
     // Per-draw uniform data: while the bindings resolved for the draws before still hold, a new
     // offset in the same buffer changes one offset of them, checked here, and the next draw
     // stays on the short path.
-    if (binding_state_valid_ && pipeline_state_valid_ && draw_state_removals_ == device_removals()) {
-        const std::vector<PipelineBinding>& bindings = draw_pipeline_->bindings;
-        std::size_t i = 0;
-        while (i < bindings.size() && (bindings[i].set != set || bindings[i].binding != binding)) ++i;
-        if (i == bindings.size()) return;  // the pipeline does not read it: its draws are unchanged
-        if (takes_new_offset(i, range)) {
-            if (binding_state_drawn_) next_binding_state();  // drawn with the old offset
-            bindings_[binding_states_.back().first_binding + i].offset = static_cast<GLintptr>(range.offset);
-            return;
-        }
+    if (!accepted(state_.set_buffer(set, binding, range)) ||
+        !(draw_state_removals_ == device_removals() && rebinds_offset(set, binding, range, false))) {
+        binding_state_valid_ = false;
     }
-    binding_state_valid_ = false;
+}
+
+void GlCommandList::set_uniforms(uint32_t set, uint32_t binding, std::span<const std::byte> data) {
+    if (!state_.recording()) [[unlikely]] {
+        accepted(state_.check_recording("set_uniforms"));
+        return;
+    }
+    const rhi::BufferBinding range = device_->allocate_transient(data);
+    if (!accepted(state_.set_buffer(set, binding, range)) || !rebinds_offset(set, binding, range, true)) {
+        binding_state_valid_ = false;
+    }
 }
 
 void GlCommandList::push_constants(std::span<const std::byte> data, uint32_t offset) {
     if (accepted(state_.push_constants(data, offset))) push_dirty_ = true;
 }
 
+LOOM_GL_HOT void GlCommandList::next_vertex_state() {
+    VertexState next = vertex_states_.back();
+    const uint32_t first = next.first_vertex_binding;
+    next.first_vertex_binding = static_cast<uint32_t>(vertex_bindings_.size());
+    for (uint32_t i = 0; i < next.vertex_binding_count; ++i) vertex_bindings_.push_back(vertex_bindings_[first + i]);
+    vertex_states_.push_back(next);
+    vertex_state_drawn_ = false;
+}
+
+// A buffer found alive and fit when bound keeps the checked draw valid: while the vertex state
+// resolved for the draws before holds, the new buffer changes one binding of it.
 void GlCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, uint64_t offset) {
-    vertex_state_valid_ = false;
-    accepted(state_.set_vertex_buffer(slot, buffer, offset));
+    const GlBuffer* found = device_->buffers().find(buffer);
+    if (!accepted(state_.set_vertex_buffer(slot, buffer, found ? &found->desc : nullptr, offset))) {
+        vertex_state_valid_ = false;
+        return;
+    }
+    if (!vertex_state_valid_ || !pipeline_state_valid_) return;
+    if (slot >= vertex_states_.back().vertex_binding_count) return;  // the pipeline does not read it
+    if (vertex_state_drawn_) next_vertex_state();  // drawn with the old buffer
+    VertexBinding& b = vertex_bindings_[vertex_states_.back().first_vertex_binding + slot];
+    b.buffer = found ? found->name : 0;  // null only unchecked (validation off)
+    b.offset = static_cast<GLintptr>(offset);
 }
 
 void GlCommandList::set_index_buffer(rhi::BufferHandle buffer, rhi::IndexType type, uint64_t offset) {
-    vertex_state_valid_ = false;
-    accepted(state_.set_index_buffer(buffer, type, offset));
+    const GlBuffer* found = device_->buffers().find(buffer);
+    if (!accepted(state_.set_index_buffer(buffer, found ? &found->desc : nullptr, type, offset))) {
+        vertex_state_valid_ = false;
+        return;
+    }
+    // A vertex state without an index buffer was checked for non-indexed draws only: the next
+    // indexed draw checks it (draw_state_current).
+    if (!vertex_state_valid_ || !pipeline_state_valid_ || vertex_states_.back().index_buffer == 0) {
+        vertex_state_valid_ = false;
+        return;
+    }
+    if (vertex_state_drawn_) next_vertex_state();
+    VertexState& v = vertex_states_.back();
+    v.index_buffer = found ? found->name : 0;
+    v.index_type = type == rhi::IndexType::Uint16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
+    v.index_offset = offset;
 }
 
 rhi::BufferBinding GlCommandList::transient_uniforms(std::span<const std::byte> data) {
@@ -329,10 +388,11 @@ rhi::BufferBinding GlCommandList::transient_uniforms(std::span<const std::byte> 
 // ---- bindings --------------------------------------------------------------------------------
 
 bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view command) {
-    // Every binding is checked before any state, as on Vulkan.
+    // Every binding is checked before any state, as on Vulkan (unless validation is off: then
+    // the bindings are taken to be what the pipeline reads, alive).
     const rhi::validation::ResourceLookup& lookup = device_->resource_lookup();
     resolved_entries_.clear();
-    for (const PipelineBinding& b : p.bindings) {
+    for (const PipelineBinding& b : state_.validating() ? std::span(p.bindings) : std::span<const PipelineBinding>()) {
         const rhi::validation::PipelineSlot slot{b.set, b.binding, b.kind, b.name, b.texture_kind};
         auto entry =
             rhi::validation::binding(command, p.name, slot, state_.bind_group(b.set), device_->capabilities(), lookup);
@@ -544,6 +604,7 @@ bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool i
             v.index_offset = bound_indices.offset;
         }
         vertex_states_.push_back(v);
+        vertex_state_drawn_ = false;
     }
     if (!binding_state_valid_ && reuse_bindings(p, reuse_allowed)) {
         binding_state_valid_ = true;
@@ -552,7 +613,7 @@ bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool i
         BindingState b;
         b.first_binding = static_cast<uint32_t>(bindings_.size());
         if (!resolve_bindings(p, command)) {
-            bindings_.resize(b.first_binding);
+            bindings_.shrink_to(b.first_binding);
             binding_states_.push_back(b);  // keeps the indices of the others in step; never drawn
             binding_state_drawn_ = false;
             return false;
@@ -650,7 +711,7 @@ LOOM_GL_HOT void GlCommandList::draw_common(bool indexed, uint32_t count, uint32
     }
     // The pipeline was found alive for this state (nothing destroyed since).
     draw.push = push_constant_range(*draw_pipeline_);
-    binding_state_drawn_ = true;
+    binding_state_drawn_ = vertex_state_drawn_ = true;
     if (draw_run_open_) {
         ++draw_runs_.back().count;
         return;
@@ -680,7 +741,7 @@ void GlCommandList::draw_indexed_indirect(rhi::BufferHandle buffer, uint64_t off
     auto found = device_->buffers().get(buffer);
     if (!found.ok()) return fail(ErrorCode::InvalidHandle, std::string(command) + ": argument buffer: " + found.error().message);
     const GlBuffer& b = **found;
-    if (!accepted(rhi::validation::indirect_draws(b.desc, offset, draw_count, stride))) return;
+    if (state_.validating() && !accepted(rhi::validation::indirect_draws(b.desc, offset, draw_count, stride))) return;
     draw_common(true, 0, 0, 0, 0, 0,
                 IndirectDraw{b.name, static_cast<uintptr_t>(offset), static_cast<GLsizei>(draw_count), static_cast<GLsizei>(stride)});
 }
@@ -713,7 +774,7 @@ void GlCommandList::dispatch(uint32_t groups_x, uint32_t groups_y, uint32_t grou
     const GlPipeline* p = *device_->pipelines().get(state_.pipeline());  // found by the tracker
     const auto first = static_cast<uint32_t>(bindings_.size());
     if (!resolve_bindings(*p, "dispatch")) {
-        bindings_.resize(first);
+        bindings_.shrink_to(first);
         return;
     }
     if (const PushRange push = push_constant_range(*p); push.object != 0) {

@@ -32,7 +32,7 @@ Result<std::unique_ptr<GlDevice>> GlDevice::create(const rhi::DeviceDesc& desc) 
     if (!context.ok()) return context.take_error();
     std::unique_ptr<GlDevice> device(new GlDevice());
     device->context_ = std::move(*context);
-    LOOM_TRY(device->init(desc.debug));
+    LOOM_TRY(device->init(desc.debug, desc.validation));
     return device;
 }
 
@@ -41,11 +41,11 @@ Result<std::unique_ptr<GlDevice>> GlDevice::create_on_current_context(const Curr
     if (!context.ok()) return context.take_error();
     std::unique_ptr<GlDevice> device(new GlDevice());
     device->context_ = std::move(*context);
-    LOOM_TRY(device->init(desc.debug_output));
+    LOOM_TRY(device->init(desc.debug_output, desc.validation));
     return device;
 }
 
-Status GlDevice::init(bool debug) {
+Status GlDevice::init(bool debug, bool validation) {
     GLint major = 0, minor = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
     glGetIntegerv(GL_MINOR_VERSION, &minor);
@@ -77,8 +77,10 @@ Status GlDevice::init(bool debug) {
         init_capabilities();
     }
     list_ = std::make_unique<GlCommandList>(*this);
+    list_->set_validation(validation);
     log_info("gl", "device: " + caps_.device_name + " | " + caps_.api_version +
-                       (context_->adopted() ? " (the application's context)" : ""));
+                       (context_->adopted() ? " (the application's context)" : "") + " | " +
+                       rhi::validation::checks_in_log("debug output", debug, validation));
     return {};
 }
 

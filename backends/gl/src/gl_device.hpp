@@ -21,6 +21,7 @@
 #include "gl_app_state.hpp"
 #include "gl_context.hpp"
 #include "gl_debug.hpp"
+#include "gl_frame_array.hpp"
 #include "gl_objects.hpp"
 #include "gl_state_cache.hpp"
 #include "loom/gl/gl_device.hpp"
@@ -67,6 +68,9 @@ public:
     void set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, uint64_t offset) override;
     void set_index_buffer(rhi::BufferHandle buffer, rhi::IndexType type, uint64_t offset) override;
     rhi::BufferBinding transient_uniforms(std::span<const std::byte> data) override;
+    void set_uniforms(uint32_t set, uint32_t binding, std::span<const std::byte> data) override;
+    /// DeviceDesc::validation (see rhi::CommandListState::validating).
+    void set_validation(bool on) { state_.set_validation(on); }
     void draw(uint32_t vertex_count, uint32_t instance_count, uint32_t first_vertex, uint32_t first_instance) override;
     void draw_indexed(uint32_t index_count, uint32_t instance_count, uint32_t first_index, int32_t base_vertex,
                       uint32_t first_instance) override;
@@ -133,11 +137,13 @@ private:
         draw_run_open_ = false;
     }
     /// True when `status` is ok; else records its error (the command is then skipped).
-    LOOM_GL_HOT bool accepted(Status status) {
+    LOOM_GL_HOT bool accepted(Status&& status) {
         if (status.ok()) [[likely]] return true;
-        fail(status.take_error());
+        refuse(std::move(status));
         return false;
     }
+    /// Records the error of a refused command (out of line: the hot paths inline accepted).
+    [[gnu::noinline]] void refuse(Status&& status) { fail(status.take_error()); }
     /// Resolves the current pipeline's bindings from the bound groups into bindings_; false
     /// (with an error recorded) when something is missing or in the wrong state.
     bool resolve_bindings(const GlPipeline& pipeline, std::string_view command);
@@ -151,6 +157,12 @@ private:
     bool takes_new_offset(std::size_t i, const rhi::BufferBinding& range);
     /// A copy of the last binding state, to change without changing what earlier draws bound.
     void next_binding_state();
+    /// Whether the bindings resolved for the draws before take `range` at (`set`, `binding`)
+    /// with one offset changed (or unchanged: the pipeline does not read it), changing it when
+    /// so. `transient`: the range is the device's own transient memory (nothing to look up).
+    bool rebinds_offset(uint32_t set, uint32_t binding, const rhi::BufferBinding& range, bool transient);
+    /// A copy of the last vertex state, as next_binding_state.
+    void next_vertex_state();
     /// The push-constant block of `pipeline` as a uniform range: a copy per change, so that
     /// every draw sees the values current when it was recorded.
     PushRange push_constant_range(const GlPipeline& pipeline);
@@ -230,16 +242,16 @@ private:
     std::vector<GlCommand> commands_;
     // Storage for the frame's draws, kept from frame to frame so that steady-state recording
     // allocates nothing.
-    std::vector<Draw> draws_;
+    FrameArray<Draw> draws_;
     std::vector<IndirectDraw> indirect_draws_;
-    std::vector<DrawRun> draw_runs_;
+    FrameArray<DrawRun> draw_runs_;
     bool draw_run_open_ = false;  ///< the last command is draw_runs_.back(): the next draw joins it
-    std::vector<PipelineState> pipeline_states_;
-    std::vector<VertexState> vertex_states_;
-    std::vector<BindingState> binding_states_;
+    FrameArray<PipelineState> pipeline_states_;
+    FrameArray<VertexState> vertex_states_;
+    FrameArray<BindingState> binding_states_;
     std::vector<GlBlendState> blends_;
-    std::vector<VertexBinding> vertex_bindings_;
-    std::vector<ResolvedBinding> bindings_;
+    FrameArray<VertexBinding> vertex_bindings_;
+    FrameArray<ResolvedBinding> bindings_;
     /// The entries binding_states_.back() was resolved from, one per pipeline binding.
     std::vector<rhi::BindingEntry> resolved_entries_;
     /// The last of each kind of state still holds for the next draw: nothing of that kind was
@@ -248,6 +260,7 @@ private:
     bool vertex_state_valid_ = false;
     bool binding_state_valid_ = false;
     bool binding_state_drawn_ = false;  ///< a draw was recorded with binding_states_.back()
+    bool vertex_state_drawn_ = false;   ///< a draw was recorded with vertex_states_.back()
     bool draw_checked_indexed_ = false;  ///< the last check_draw was of an indexed draw
     uint64_t draw_state_removals_ = 0;
     const GlPipeline* draw_pipeline_ = nullptr;  ///< the pipeline of pipeline_states_.back()
@@ -377,7 +390,7 @@ private:
     GlDevice() : textures_(id_), buffers_(id_), samplers_(id_), shaders_(id_), pipelines_(id_) {}
     /// Sets up a device on `context_` (current): checks the version, loom's global state
     /// (owned contexts only), capabilities, the state cache and the command list.
-    Status init(bool debug);
+    Status init(bool debug, bool validation);
 
     void init_capabilities();
     /// allocate_transient when the frame's last chunk has no room: another chunk (a free one, or

@@ -30,12 +30,6 @@ void GlStateCache::use_program(GLuint program) {
     ++counters_->pipeline_binds;
 }
 
-void GlStateCache::bind_vertex_array(GLuint vao) {
-    if (!changed(vao_, vao)) return;
-    glBindVertexArray(vao);
-    ++counters_->api_calls;
-}
-
 void GlStateCache::bind_draw_framebuffer(GLuint fbo) {
     if (!changed(framebuffer_, fbo)) return;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
@@ -57,13 +51,7 @@ void GlStateCache::bind_sampler(uint32_t unit, GLuint sampler) {
     ++counters_->api_calls;
 }
 
-void GlStateCache::bind_uniform_buffer(uint32_t point, GLuint buffer, GLintptr offset, GLsizeiptr size) {
-    if (!changed(uniform_buffers_[point], BufferRange{buffer, offset, size})) return;
-    if (app_) app_->save_uniform_buffer(point);
-    glBindBufferRange(GL_UNIFORM_BUFFER, point, buffer, offset, size);
-    ++counters_->api_calls;
-    ++counters_->buffer_binds;
-}
+void GlStateCache::save_app_uniform_buffer(uint32_t point) { app_->save_uniform_buffer(point); }
 
 void GlStateCache::bind_storage_buffer(uint32_t point, GLuint buffer, GLintptr offset, GLsizeiptr size) {
     if (!changed(storage_buffers_[point], BufferRange{buffer, offset, size})) return;
@@ -80,22 +68,6 @@ void GlStateCache::bind_image(uint32_t unit, GLuint texture, GLint level, bool l
     glBindImageTexture(unit, texture, level, layered ? GL_TRUE : GL_FALSE, layer, access, format);
     ++counters_->api_calls;
     ++counters_->texture_binds;
-}
-
-void GlStateCache::vertex_buffer(GLuint vao, uint32_t slot, GLuint buffer, GLintptr offset, GLsizei stride) {
-    VaoState& state = vao_state(vao);
-    if (slot < state.buffers.size() && !changed(state.buffers[slot], VertexBinding{buffer, offset, stride})) return;
-    glVertexArrayVertexBuffer(vao, slot, buffer, offset, stride);
-    ++counters_->api_calls;
-    ++counters_->buffer_binds;
-}
-
-void GlStateCache::element_buffer(GLuint vao, GLuint buffer) {
-    VaoState& state = vao_state(vao);
-    if (!changed(state.element, buffer)) return;
-    glVertexArrayElementBuffer(vao, buffer);
-    ++counters_->api_calls;
-    ++counters_->buffer_binds;
 }
 
 void GlStateCache::base_instance(GLuint program, GLint location, GLint value) {

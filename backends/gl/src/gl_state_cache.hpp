@@ -71,16 +71,39 @@ public:
     void count_buffer_barrier() { ++counters_->buffer_barriers; }
 
     void use_program(GLuint program);
-    void bind_vertex_array(GLuint vao);
+    // Inline, as they run for most draws: a comparison when nothing changed.
+    void bind_vertex_array(GLuint vao) {
+        if (!changed(vao_, vao)) return;
+        glBindVertexArray(vao);
+        ++counters_->api_calls;
+    }
     void bind_draw_framebuffer(GLuint fbo);
     void bind_texture(uint32_t unit, GLuint texture);
     void bind_sampler(uint32_t unit, GLuint sampler);
-    void bind_uniform_buffer(uint32_t point, GLuint buffer, GLintptr offset, GLsizeiptr size);
+    void bind_uniform_buffer(uint32_t point, GLuint buffer, GLintptr offset, GLsizeiptr size) {
+        if (!changed(uniform_buffers_[point], BufferRange{buffer, offset, size})) return;
+        if (app_) save_app_uniform_buffer(point);
+        glBindBufferRange(GL_UNIFORM_BUFFER, point, buffer, offset, size);
+        ++counters_->api_calls;
+        ++counters_->buffer_binds;
+    }
     void bind_storage_buffer(uint32_t point, GLuint buffer, GLintptr offset, GLsizeiptr size);
     void bind_image(uint32_t unit, GLuint texture, GLint level, bool layered, GLint layer, GLenum access,
                     GLenum format);
-    void vertex_buffer(GLuint vao, uint32_t slot, GLuint buffer, GLintptr offset, GLsizei stride);
-    void element_buffer(GLuint vao, GLuint buffer);
+    void vertex_buffer(GLuint vao, uint32_t slot, GLuint buffer, GLintptr offset, GLsizei stride) {
+        VaoState& state = vao_state(vao);
+        if (slot < state.buffers.size() && !changed(state.buffers[slot], VertexBinding{buffer, offset, stride})) return;
+        glVertexArrayVertexBuffer(vao, slot, buffer, offset, stride);
+        ++counters_->api_calls;
+        ++counters_->buffer_binds;
+    }
+    void element_buffer(GLuint vao, GLuint buffer) {
+        VaoState& state = vao_state(vao);
+        if (!changed(state.element, buffer)) return;
+        glVertexArrayElementBuffer(vao, buffer);
+        ++counters_->api_calls;
+        ++counters_->buffer_binds;
+    }
     /// Sets SPIRV-Cross's SPIRV_Cross_BaseInstance uniform of `program` (at `location`).
     void base_instance(GLuint program, GLint location, GLint value);
 
@@ -93,6 +116,7 @@ public:
     void prepare_clear(uint32_t color_attachments);
 
 private:
+    void save_app_uniform_buffer(uint32_t point);
     template <class T>
     static bool changed(T& cached, const T& wanted) {
         if (cached == wanted) return false;

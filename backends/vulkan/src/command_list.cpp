@@ -174,7 +174,7 @@ void VulkanCommandList::set_pipeline(rhi::PipelineHandle handle) {
 }
 
 void VulkanCommandList::set_viewport(const rhi::Viewport& v) {
-    if (!accepted(rhi::validation::viewport(v))) return;
+    if (state_.validating() && !accepted(rhi::validation::viewport(v))) return;
     // Outside a pass there is nothing to set: begin_render_pass resets viewport and scissor.
     if (!state_.render_pass()) return;
     // Negative height: NDC y up, row 0 at the top (docs/architecture.md, "Conventions that make
@@ -212,17 +212,21 @@ void VulkanCommandList::push_constants(std::span<const std::byte> data, uint32_t
 
 void VulkanCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle handle, uint64_t offset) {
     // A buffer found alive and fit here keeps the checked draw valid (prepare_draw).
-    if (!accepted(state_.set_vertex_buffer(slot, handle, offset))) return;
+    const Buffer* found = device_.buffers().find(handle);
+    if (!accepted(state_.set_vertex_buffer(slot, handle, found ? &found->desc : nullptr, offset))) return;
     VkDeviceSize o = offset;
-    vkCmdBindVertexBuffers(cmd_, slot, 1, &(*device_.buffers().get(handle))->buffer, &o);
+    // Null only unchecked (validation off): a misuse, undefined as in Vulkan itself.
+    const VkBuffer vk_buffer = found ? found->buffer : VK_NULL_HANDLE;
+    vkCmdBindVertexBuffers(cmd_, slot, 1, &vk_buffer, &o);
     ++stats_.buffer_binds;
     ++stats_.api_calls;
 }
 
 void VulkanCommandList::set_index_buffer(rhi::BufferHandle handle, rhi::IndexType type, uint64_t offset) {
     // A buffer found alive and fit here keeps the checked draw valid (prepare_draw).
-    if (!accepted(state_.set_index_buffer(handle, type, offset))) return;
-    vkCmdBindIndexBuffer(cmd_, (*device_.buffers().get(handle))->buffer, offset, to_vk(type));
+    const Buffer* found = device_.buffers().find(handle);
+    if (!accepted(state_.set_index_buffer(handle, found ? &found->desc : nullptr, type, offset))) return;
+    vkCmdBindIndexBuffer(cmd_, found ? found->buffer : VK_NULL_HANDLE, offset, to_vk(type));
     ++stats_.buffer_binds;
     ++stats_.api_calls;
 }
@@ -261,8 +265,9 @@ bool VulkanCommandList::write_set(const Pipeline& pipeline, uint32_t set, VkDesc
     const SetLayout& set_layout = *layout.sets[set];
     const rhi::BindGroup* group = state_.bind_group(set);
     const rhi::validation::ResourceLookup& lookup = device_.resource_lookup();
-    // Every binding is checked before a descriptor set is allocated for them.
-    for (const SetBinding& b : set_layout.bindings) {
+    // Every binding is checked before a descriptor set is allocated for them (unless validation
+    // is off: then the bindings are taken to be what the pipeline reads, alive).
+    for (const SetBinding& b : state_.validating() ? std::span(set_layout.bindings) : std::span<const SetBinding>()) {
         const rhi::validation::PipelineSlot slot{set, b.binding, binding_kind(b.type), b.name, b.kind};
         auto entry = rhi::validation::binding(what, pipeline.name, slot, group, device_.capabilities(), lookup);
         if (!entry.ok()) {
@@ -417,8 +422,10 @@ bool VulkanCommandList::reuse_written_set(const SetLayout& layout, uint32_t set)
         }
         // The range was fixed when the set was written; the buffer is alive (nothing was
         // destroyed since the set was written).
-        const Buffer* buffer = device_.buffers().find(range->buffer);
-        if (!buffer || !rhi::uniform_offset_fits(*range, buffer->desc.size, alignment)) return false;
+        if (state_.validating()) {
+            const Buffer* buffer = device_.buffers().find(range->buffer);
+            if (!buffer || !rhi::uniform_offset_fits(*range, buffer->desc.size, alignment)) return false;
+        }
         dynamic_offsets_.push_back(static_cast<uint32_t>(range->offset));
     }
     return true;
@@ -504,7 +511,7 @@ void VulkanCommandList::draw_indexed_indirect(rhi::BufferHandle handle, uint64_t
     auto buffer = device_.buffers().get(handle);
     if (!buffer.ok()) return fail(ErrorCode::InvalidHandle, std::string(what) + ": argument buffer: " + buffer.error().message);
     const Buffer& b = **buffer;
-    if (!accepted(rhi::validation::indirect_draws(b.desc, offset, draw_count, stride))) return;
+    if (state_.validating() && !accepted(rhi::validation::indirect_draws(b.desc, offset, draw_count, stride))) return;
     if (!prepare_draw(what, true)) return;
     if (draw_count == 0) return;
     if (device_.context().multi_draw_indirect()) {

@@ -30,6 +30,7 @@ loom::Result<std::unique_ptr<rhi::Device>> VulkanDevice::create_external(const E
     rhi::DeviceDesc device_desc;
     device_desc.backend = rhi::Backend::Vulkan;
     device_desc.debug = desc.debug_utils;
+    device_desc.validation = desc.validation;
     if (auto status = device->init_device(device_desc); !status.ok()) return status.take_error();
     return std::unique_ptr<rhi::Device>(std::move(device));
 }
@@ -132,16 +133,20 @@ loom::Status VulkanDevice::init_device(const rhi::DeviceDesc& desc) {
         }
     }
     command_list_ = std::make_unique<VulkanCommandList>(*this);
+    command_list_->state().set_validation(desc.validation);
 
     if (window_) {
         swapchain_ = std::make_unique<Swapchain>(*context_, desc.window.vsync);
         LOOM_TRY(recreate_swapchain());
     }
     if (context_->adopted()) {
-        loom::log_info("vulkan", "device " + caps_.device_name + " (" + caps_.api_version + ") of the application");
+        loom::log_info("vulkan", "device " + caps_.device_name + " (" + caps_.api_version + ") of the application, " +
+                                     rhi::validation::checks_in_log("debug utils", desc.debug, desc.validation));
     } else {
-        loom::log_info("vulkan", "device " + caps_.device_name + " (" + caps_.api_version + "), validation " +
-                                     (context_->validation_enabled() ? "on" : "off") + ", synchronisation validation " +
+        loom::log_info("vulkan", "device " + caps_.device_name + " (" + caps_.api_version + "), " +
+                                     rhi::validation::checks_in_log("the Khronos validation layer",
+                                                                    context_->validation_enabled(), desc.validation) +
+                                     ", synchronisation validation " +
                                      (context_->synchronization_validation_enabled() ? "on" : "off"));
     }
     return {};

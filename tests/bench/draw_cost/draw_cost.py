@@ -11,7 +11,8 @@ fixed costs of a frame cancel; splits the instructions by the object that execut
   dispatch  the API's dispatch layer (libepoxy, libglvnd, the Vulkan loader)
   driver    Mesa (llvmpipe / lavapipe, their JIT code)
 
-Usage: draw_cost.py BUILD_DIR [--draws N] [--paths a,b] [--backends gl,vulkan] [--json FILE]
+Usage: draw_cost.py BUILD_DIR [--draws N] [--paths a,b] [--backends gl,vulkan] [--validation on|off|both]
+                   [--json FILE]
 """
 import argparse
 import json
@@ -122,6 +123,8 @@ def main():
     parser.add_argument("--draws", type=int, default=1000)
     parser.add_argument("--paths", default=",".join(PATHS))
     parser.add_argument("--backends", default="gl,vulkan")
+    parser.add_argument("--validation", default="on", choices=["on", "off", "both"],
+                        help="loom's DeviceDesc::validation: on (the default), off, or both side by side")
     parser.add_argument("--json")
     options = parser.parse_args()
     bench = os.path.join(options.build_dir, "tests", "bench")
@@ -131,7 +134,10 @@ def main():
         if not os.path.exists(raw):
             print(f"draw_cost: {raw} is not built; {backend} skipped", file=sys.stderr)
             continue
-        programs.append((f"loom {backend}", os.path.join(bench, "loom_draw_cost"), ["--backend", backend]))
+        for validation in (["on", "off"] if options.validation == "both" else [options.validation]):
+            label = f"loom {backend}" if validation == "on" else f"loom {backend} unvalidated"
+            programs.append((label, os.path.join(bench, "loom_draw_cost"),
+                             ["--backend", backend, "--validation", validation]))
         programs.append((f"raw {backend}", raw, []))
     rows = []
     n = options.draws
@@ -147,7 +153,8 @@ def main():
     print("| path | program | loom's code | runtime | loom + runtime | benchmark's code | dispatch | driver | total | vs raw | allocations/draw |")
     print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for row in rows:
-        raw = next((r for r in rows if r["path"] == row["path"] and r["program"] == "raw " + row["program"].split()[-1]), None)
+        backend = row["program"].split()[1]
+        raw = next((r for r in rows if r["path"] == row["path"] and r["program"] == "raw " + backend), None)
         ratio = f"{row['total'] / raw['total']:.3f}" if raw and raw["total"] else "-"
         print(f"| {row['path']} | {row['program']} | {row['loom']:,.0f} | {row['runtime']:,.0f} | "
               f"{row['loom'] + row['runtime']:,.0f} | {row['bench']:,.0f} | {row['dispatch']:,.0f} | "

@@ -88,6 +88,11 @@ Result<Options> parse_options(int argc, char** argv, bool takes_backend) {
             }
         } else if (arg == "--backend" && takes_backend) {
             options.backend = std::string(value);
+        } else if (arg == "--validation" && takes_backend) {
+            if (value != "on" && value != "off") {
+                return Error{ErrorCode::InvalidArgument, "--validation expects on or off, got '" + std::string(value) + "'"};
+            }
+            options.validation = value == "on";
         } else {
             return Error{ErrorCode::InvalidArgument, "unknown argument '" + std::string(arg) + "'"};
         }

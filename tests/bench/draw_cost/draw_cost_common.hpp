@@ -36,9 +36,12 @@ struct Options {
     /// loom only: frames recorded before the measured one (transient rings, descriptor pools
     /// and caches reach their steady state).
     uint32_t warmup_frames = 3;
+    /// loom only: DeviceDesc::validation (--validation on|off).
+    bool validation = true;
 };
 
-/// --path NAME --draws N [--backend gl|vulkan] [--warmup N]; an error names the bad argument.
+/// --path NAME --draws N [--backend gl|vulkan] [--warmup N] [--validation on|off]; an error
+/// names the bad argument.
 Result<Options> parse_options(int argc, char** argv, bool takes_backend);
 
 /// The vertex and fragment shader of `path` (GLSL 450 compiled with loom's shader compiler, so

@@ -165,6 +165,7 @@ int main(int argc, char** argv) {
     rhi::DeviceDesc desc;
     desc.backend = *backend;
     desc.debug = false;
+    desc.validation = options->validation;
     auto device = rhi::create_device(desc);
     if (!device.ok()) return fail(device.error().to_string());
     Resources resources;

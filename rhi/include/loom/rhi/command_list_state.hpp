@@ -27,6 +27,7 @@
 #include <string_view>
 #include <vector>
 
+#include "loom/rhi/binding_reuse.hpp"
 #include "loom/rhi/checked_math.hpp"
 #include "loom/rhi/descriptions.hpp"
 #include "loom/rhi/format.hpp"
@@ -72,6 +73,15 @@ public:
     /// Pipelines and buffers are looked up on the device whose commands are recorded.
     CommandListState(PipelineLookup pipelines, validation::BufferLookup buffers);
 
+    /// Whether the checks of commands against the resources they use run (DeviceDesc::validation,
+    /// in a build with validation::kCompiled): set_pipeline's pipeline against the pass,
+    /// set_bind_group's group, the vertex and index buffers and index ranges, and check_draw's
+    /// and check_dispatch's lookups. Off, those are accepted unchecked; the order of commands
+    /// (frames, passes, timers, debug groups, queues) and the bounds of this class's own slots
+    /// are checked either way. Backends ask it before their own per-draw checks.
+    [[nodiscard]] bool validating() const { return validation::kCompiled && validate_; }
+    void set_validation(bool on) { validate_ = on; }
+
     // ---- frames --------------------------------------------------------------------------------
     [[nodiscard]] bool recording() const { return recording_; }
     /// Device::begin_frame (or `command`, which begins a frame another way): no frame is being recorded.
@@ -110,8 +120,19 @@ public:
     /// set_bind_group (rhi::validation::bind_group); keeps a copy of `group`.
     Status set_bind_group(uint32_t set, const BindGroup& group);
     /// set_buffer: `range` replaces the buffer at `binding` of the group bound to `set` (or
-    /// joins it; a set with no group gets one).
-    Status set_buffer(uint32_t set, uint32_t binding, const BufferBinding& range);
+    /// joins it; a set with no group gets one). Inline: per-draw data comes this way, and most
+    /// calls replace a buffer range the group already has.
+    Status set_buffer(uint32_t set, uint32_t binding, const BufferBinding& range) {
+        if (set < kMaxBindGroups && groups_[set]) [[likely]] {
+            if (BindingEntry* entry = bound_entry(&*groups_[set], binding)) {
+                if (auto* buffer = std::get_if<BufferBinding>(&entry->resource)) [[likely]] {
+                    *buffer = range;
+                    return {};
+                }
+            }
+        }
+        return set_buffer_slow(set, binding, range);
+    }
     /// The group bound to `set`, or null.
     [[nodiscard]] const BindGroup* bind_group(uint32_t set) const {
         return set < groups_.size() && groups_[set] ? &*groups_[set] : nullptr;
@@ -133,11 +154,30 @@ public:
     /// set_vertex_buffer: a slot below kMaxVertexBuffers, a live buffer with Vertex usage, an
     /// offset inside it (rhi::validation::vertex_buffer_slot, vertex_buffer).
     Status set_vertex_buffer(uint32_t slot, BufferHandle buffer, uint64_t offset);
+    /// set_vertex_buffer of a buffer the backend has looked up itself (`found`: its description,
+    /// null when the handle is stale or foreign), so that it is not looked up twice. Inline, the
+    /// message built only when a check fails.
+    Status set_vertex_buffer(uint32_t slot, BufferHandle buffer, const BufferDesc* found, uint64_t offset) {
+        if (slot < kMaxVertexBuffers && (!validating() || (found && validation::vertex_buffer_fits(*found, offset))))
+            [[likely]] {
+            vertex_buffers_[slot] = {buffer, offset};
+            return {};
+        }
+        return set_vertex_buffer(slot, buffer, offset);
+    }
     /// The buffer bound to vertex buffer slot `slot` (< kMaxVertexBuffers); a null handle when none.
     [[nodiscard]] const VertexBuffer& vertex_buffer(uint32_t slot) const { return vertex_buffers_[slot]; }
     /// set_index_buffer: a live buffer with Index usage and an aligned offset inside it
     /// (rhi::validation::index_buffer).
     Status set_index_buffer(BufferHandle buffer, IndexType type, uint64_t offset);
+    /// set_index_buffer of a buffer the backend has looked up itself (as set_vertex_buffer).
+    Status set_index_buffer(BufferHandle buffer, const BufferDesc* found, IndexType type, uint64_t offset) {
+        if (!validating() || (found && validation::index_buffer_fits(*found, type, offset))) [[likely]] {
+            index_buffer_ = {buffer, type, offset, found ? found->size : 0};
+            return {};
+        }
+        return set_index_buffer(buffer, type, offset);
+    }
     /// The bound index buffer; a null handle when none.
     [[nodiscard]] const IndexBuffer& index_buffer() const { return index_buffer_; }
 
@@ -155,7 +195,10 @@ public:
     /// since anything was last destroyed, which found that buffer alive.
     [[nodiscard]] Status check_index_range(uint32_t first_index, uint32_t index_count) const {
         const IndexBuffer& b = index_buffer_;
-        if (validation::index_range_fits(b.buffer_size, b.type, b.offset, first_index, index_count)) [[likely]] return {};
+        if (!validating() || validation::index_range_fits(b.buffer_size, b.type, b.offset, first_index, index_count))
+            [[likely]] {
+            return {};
+        }
         return check_index_range_slow(first_index, index_count);
     }
     /// dispatch: outside render passes, with a live compute pipeline.
@@ -188,8 +231,12 @@ public:
     [[nodiscard]] uint32_t signal_count() const { return static_cast<uint32_t>(signal_waited_.size()); }
 
 private:
+    /// set_buffer where the set has no group yet, or no buffer range at `binding`.
+    Status set_buffer_slow(uint32_t set, uint32_t binding, const BufferBinding& range);
     /// Forgets everything bound and open (frames begin and end with nothing).
     void reset();
+    /// A pipeline is set (all that is checked of it with validation off).
+    [[nodiscard]] Status check_pipeline_set(std::string_view command) const;
     /// The bound pipeline's facts for `command`: set, alive and of the right kind.
     [[nodiscard]] Result<PipelineFacts> bound_pipeline(std::string_view command, bool compute) const;
     /// A graphics pipeline renders to the open pass's attachment formats and sample count.
@@ -198,6 +245,7 @@ private:
     PipelineLookup pipelines_;
     validation::BufferLookup buffers_;
 
+    bool validate_ = true;
     bool recording_ = false;
     std::optional<RenderPass> pass_;
     PipelineHandle pipeline_;

@@ -50,8 +50,19 @@ struct DeviceDesc {
     bool headless = true;
     WindowDesc window;
     /// Enable API debug output (KHR_debug on GL, the Khronos validation layer on Vulkan).
-    /// Messages go to the logger; errors are logged at LogLevel::Error.
+    /// Messages go to the logger; errors are logged at LogLevel::Error. On by default, and
+    /// create_device logs it at LogLevel::Info: on Vulkan it loads the Khronos validation
+    /// layer, which costs far more per draw than loom itself. Turn it off for builds you ship
+    /// or measure.
     bool debug = true;
+    /// Check recorded commands against the resources they use and refuse misuse with an error
+    /// (loom's own validation layer, rhi::validation, independent of `debug`): bind groups
+    /// against the pipeline's layout, vertex and index buffers and index ranges, the pipeline
+    /// against the render pass, viewports, indirect arguments. Off: these checks are skipped
+    /// and a misuse is undefined behaviour, as in the raw API; the order of commands (frames,
+    /// render passes, timers, queues), copies, transitions and every description at creation
+    /// are still checked. Also compiled out with the CMake option LOOM_RHI_VALIDATION=OFF.
+    bool validation = true;
 };
 
 /// What a backend can do with one format.
@@ -183,6 +194,12 @@ public:
     /// Copies `data` into per-frame uniform memory and returns a binding for it, valid until
     /// the end of the frame (for per-draw constants without managing buffers).
     virtual BufferBinding transient_uniforms(std::span<const std::byte> data) = 0;
+    /// `data` copied into transient uniform memory and bound at binding `binding` of set `set`:
+    /// set_buffer(set, binding, transient_uniforms(data)) in one call, which a backend can make
+    /// cheaper than the two (the range is its own, so nothing about it needs checking).
+    virtual void set_uniforms(uint32_t set, uint32_t binding, std::span<const std::byte> data) {
+        set_buffer(set, binding, transient_uniforms(data));
+    }
 
     virtual void draw(uint32_t vertex_count, uint32_t instance_count = 1, uint32_t first_vertex = 0,
                       uint32_t first_instance = 0) = 0;
@@ -256,7 +273,7 @@ public:
     /// the cheapest way to give each draw its own uniform block.
     template <class T>
     void set_uniforms_of(uint32_t set, uint32_t binding, const T& value) {
-        set_buffer(set, binding, transient_uniforms_of(value));
+        set_uniforms(set, binding, std::as_bytes(std::span<const T, 1>(&value, 1)));
     }
 };
 

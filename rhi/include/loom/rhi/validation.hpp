@@ -24,10 +24,25 @@
 #include "loom/rhi/result.hpp"
 #include "loom/rhi/shader.hpp"
 
+// CMake option LOOM_RHI_VALIDATION (ON by default) defines it for loom::rhi and its users.
+#ifndef LOOM_RHI_VALIDATION
+#define LOOM_RHI_VALIDATION 1
+#endif
+
 namespace loom::rhi::validation {
+
+/// Whether this build checks recorded commands (CMake option LOOM_RHI_VALIDATION). Where it
+/// is false the checks are compiled out and every device skips them, whatever
+/// DeviceDesc::validation says (see CommandListState::validating for what they are).
+inline constexpr bool kCompiled = LOOM_RHI_VALIDATION != 0;
 
 /// `name` in single quotes, as every message quotes the object it is about.
 std::string in_quotes(std::string_view name);
+
+/// What a device's log line says of its checks: `api_debug` (the API's own, DeviceDesc::debug:
+/// "debug output", "the Khronos validation layer") on or off, with a reminder of its cost when
+/// on, and loom's validation (DeviceDesc::validation, and whether this build compiled it out).
+std::string checks_in_log(std::string_view api_debug, bool debug, bool validation);
 
 /// Shape × dimension × format × usage × samples × the device's limits and format features.
 Status texture_desc(const TextureDesc& desc, const Capabilities& caps);
@@ -258,16 +273,22 @@ inline Status vertex_buffer_slot(uint32_t slot) {
 }
 /// CommandList::set_vertex_buffer with `buffer` (after vertex_buffer_slot): Vertex usage and
 /// the offset inside it.
+inline bool vertex_buffer_fits(const BufferDesc& buffer, uint64_t offset) {
+    return has_all(buffer.usage, BufferUsage::Vertex) && offset < buffer.size;
+}
+/// vertex_buffer_fits, with the error when it does not.
 inline Status vertex_buffer(uint32_t slot, const BufferDesc& buffer, uint64_t offset) {
-    if (has_all(buffer.usage, BufferUsage::Vertex) && offset < buffer.size) [[likely]] return {};
+    if (vertex_buffer_fits(buffer, offset)) [[likely]] return {};
     return vertex_buffer_refused(slot, buffer, offset);
 }
 /// CommandList::set_index_buffer: Index usage; the offset inside the buffer and a multiple of
 /// the index size.
+inline bool index_buffer_fits(const BufferDesc& buffer, IndexType type, uint64_t offset) {
+    return has_all(buffer.usage, BufferUsage::Index) && offset < buffer.size && offset % index_bytes(type) == 0;
+}
+/// index_buffer_fits, with the error when it does not.
 inline Status index_buffer(const BufferDesc& buffer, IndexType type, uint64_t offset) {
-    if (has_all(buffer.usage, BufferUsage::Index) && offset < buffer.size && offset % index_bytes(type) == 0) [[likely]] {
-        return {};
-    }
+    if (index_buffer_fits(buffer, type, offset)) [[likely]] return {};
     return index_buffer_refused(buffer, type, offset);
 }
 /// Whether `index_count` indices from `first_index` lie inside `buffer_size` bytes of an index

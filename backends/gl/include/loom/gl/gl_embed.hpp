@@ -33,6 +33,8 @@ struct CurrentContextDesc {
     /// both enables are put back when the device is destroyed. Off: loom leaves debug output
     /// alone.
     bool debug_output = false;
+    /// loom's checks of recorded commands (rhi::DeviceDesc::validation).
+    bool validation = true;
 };
 
 /// Creates an OpenGL device on the context current on the calling thread (an OpenGL 4.5 core

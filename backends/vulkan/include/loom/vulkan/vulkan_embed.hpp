@@ -48,6 +48,8 @@ struct ExternalDeviceDesc {
     /// passes for validation messages and debuggers. Validation itself (the layer and a
     /// messenger) is the application's.
     bool debug_utils = false;
+    /// loom's checks of recorded commands (rhi::DeviceDesc::validation).
+    bool validation = true;
 };
 
 /// Creates a device on the application's Vulkan objects. Unsupported when the physical device
