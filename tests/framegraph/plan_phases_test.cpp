@@ -531,5 +531,23 @@ TEST(PlanPhases, SummaryCountsTexturesBytesAndBounds) {
     EXPECT_EQ(summarize_plan(plan, 400), (PlanSummary{2, 1024, 3, 450, 2, 400}));
 }
 
+// The dependency lists of analyze: per pass, its values sorted and unique, from pairs in any
+// order, whatever lists are empty.
+TEST(PlanPhases, IndexListsSortAndDeduplicateEachPassesValues) {
+    std::vector<std::pair<uint32_t, uint32_t>> pairs{{3, 7}, {0, 5}, {3, 1}, {0, 5}, {3, 7}, {0, 2}, {3, 4}, {0, 5}};
+    const IndexLists lists(5, pairs);
+    ASSERT_EQ(lists.size(), 5u);
+    auto values = [&](uint32_t index) { return std::vector<uint32_t>(lists[index].begin(), lists[index].end()); };
+    EXPECT_EQ(values(0), (std::vector<uint32_t>{2, 5}));
+    EXPECT_TRUE(values(1).empty());
+    EXPECT_TRUE(values(2).empty());
+    EXPECT_EQ(values(3), (std::vector<uint32_t>{1, 4, 7}));
+    EXPECT_TRUE(values(4).empty());
+    std::vector<std::pair<uint32_t, uint32_t>> none;
+    const IndexLists empty(3, none);
+    EXPECT_EQ(empty.size(), 3u);
+    EXPECT_TRUE(empty[2].empty());
+}
+
 }  // namespace
 }  // namespace loom::fg::detail
