@@ -2,6 +2,8 @@
 // the scheduled passes with the resource and usage of each.
 #include <algorithm>
 #include <array>
+#include <numeric>
+#include <span>
 #include <optional>
 #include <utility>
 
@@ -23,7 +25,10 @@ std::vector<std::vector<PortAddress>> collect_groups(const FrameGraph& graph) {
             const Port& port = pass.ports()[i];
             const bool starts = port.kind == PortKind::Output || (port.kind == PortKind::InOut && !graph.source(start));
             if (!starts) continue;
-            std::vector<PortAddress> group{start};
+            // An output's readers are most groups whole (inouts chain further): one allocation.
+            std::vector<PortAddress> group;
+            group.reserve(1 + graph.consumers(start).size());
+            group.push_back(start);
             for (std::size_t next = 0; next < group.size(); ++next) {
                 const PortAddress at = group[next];
                 if (!port_writes(graph.port_at(at).kind)) continue;
@@ -48,14 +53,38 @@ TextureSpec only_property(const TextureSpec& spec, std::size_t property) {
     return out;
 }
 
+// TextureSpec::unconstrained() without building an empty spec to compare with.
+bool spec_is_unconstrained(const TextureSpec& spec) {
+    return !spec.format && !spec.size && !spec.samples && !spec.mips && !spec.layers &&
+           spec.usage == TextureUsage::None && !spec.cube;
+}
+
 // Joins the specs of a group's ports in group order. On a conflict the error names the port
 // that first constrained the conflicting property and the port that contradicts it.
 Result<TextureSpec> join_group(const FrameGraph& graph, const std::vector<PortAddress>& group, Extent2D frame) {
     TextureSpec joined;
     // First port to constrain each property: format, size, samples, mips, layers.
     std::array<std::optional<PortAddress>, 5> origin{};
+    bool first = true;
     for (const PortAddress& address : group) {
         const TextureSpec& spec = graph.port_at(address).spec;
+        // Joining with an unconstrained spec changes nothing, and the first spec joined with the
+        // empty start is itself: most ports of a graph (reads) constrain nothing, so most joins
+        // need not run. No property is constrained by such a port, so `origin` stays as it is.
+        if (spec_is_unconstrained(spec)) {
+            first = false;
+            continue;
+        }
+        if (first) {
+            first = false;
+            joined = spec;
+            if (spec.format) origin[0] = address;
+            if (spec.size) origin[1] = address;
+            if (spec.samples) origin[2] = address;
+            if (spec.mips) origin[3] = address;
+            if (spec.layers) origin[4] = address;
+            continue;
+        }
         JoinContext context;
         context.frame = frame;
         auto result = join(joined, spec, context);
@@ -125,33 +154,34 @@ std::vector<std::vector<T>> per_port(const FrameGraph& graph, T value) {
     return out;
 }
 
-// A resource before its index is known: resources are numbered once sorted by producer position.
+// A resource being resolved, before its index is known (resources are numbered once sorted by
+// producer position): the resource made in place, the port that starts it, and the group's
+// ports whose passes run, the starting port first.
 struct PendingResource {
-    PlanResource resource;
+    PlanResource& resource;
     PortAddress start;
-    std::vector<PortAddress> kept_ports;  // the group's ports whose passes run, the starting port first
+    std::span<const PortAddress> kept_ports;
 };
 
-// The running part of a group whose producer runs: its running ports, whether one is a graph
-// output, and the positions they span (a graph output lives to the last position).
-PendingResource running_part(const std::vector<PortAddress>& group, const Schedule& schedule,
-                             const std::vector<std::vector<bool>>& is_graph_output) {
+// The running part of a group whose producer runs: its running ports, appended to `kept`,
+// whether one is a graph output, and the positions they span (a graph output lives to the last
+// position).
+void running_part(const FrameGraph& graph, const std::vector<PortAddress>& group, const Schedule& schedule,
+                  std::vector<PortAddress>& kept, PlanResource& resource) {
     const std::vector<uint32_t>& position = schedule.position;
-    PendingResource item;
-    item.start = group.front();
+    const PortAddress start = group.front();
     bool graph_output = false;
-    uint32_t last = position[item.start.pass];
+    uint32_t last = position[start.pass];
     for (const PortAddress& address : group) {
         if (position[address.pass] == kNotScheduled) continue;
-        item.kept_ports.push_back(address);
-        graph_output = graph_output || is_graph_output[address.pass][address.port];
+        kept.push_back(address);
+        graph_output = graph_output || graph.is_output(address);
         last = std::max(last, position[address.pass]);
     }
     const auto last_position = static_cast<uint32_t>(schedule.order.size() - 1);
-    item.resource.graph_output = graph_output;
-    item.resource.lifetime = {position[item.start.pass], graph_output ? last_position : last};
-    item.resource.occupancy = item.resource.lifetime;
-    return item;
+    resource.graph_output = graph_output;
+    resource.lifetime = {position[start.pass], graph_output ? last_position : last};
+    resource.occupancy = resource.lifetime;
 }
 
 // Fills in what a buffer group's joined spec decides: the resolved spec with the usage of the
@@ -186,6 +216,7 @@ Status resolve_pending_buffer(const FrameGraph& graph, const BufferSpec& joined,
             return error;
         }
     }
+    r.ports.reserve(item.kept_ports.size());
     for (const PortAddress& address : item.kept_ports) r.ports.push_back(graph.port_name(address));
     r.buffer_spec = *resolved;
     auto requirements = memory.buffer_requirements(to_buffer_desc(r.buffer_spec, r.name));
@@ -227,6 +258,7 @@ Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Exten
         }
     }
 
+    r.ports.reserve(item.kept_ports.size());
     for (const PortAddress& address : item.kept_ports) r.ports.push_back(graph.port_name(address));
     r.requested_format = joined.format;
     r.spec = *resolved;
@@ -330,42 +362,71 @@ std::vector<JoinedGroup> join_port_groups(const FrameGraph& graph, Extent2D fram
 
 Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::vector<JoinedGroup>& groups,
                                             const Schedule& schedule, Extent2D frame, MemoryModel& memory) {
-    std::vector<std::vector<bool>> is_graph_output = per_port(graph, false);
-    for (const PortAddress& out : graph.outputs()) is_graph_output[out.pass][out.port] = true;
-
-    std::vector<PendingResource> pending;
+    const std::vector<uint32_t>& position = schedule.position;
+    // The resources in group order, each made in place (room for every group: no reference
+    // into `resources` moves), with their starting ports and their running ports one after
+    // another in `kept`: resource i's are kept[first_kept[i], first_kept[i + 1]).
+    std::vector<PlanResource> resources;
+    std::vector<PortAddress> starts;
+    std::vector<PortAddress> kept;
+    std::vector<uint32_t> first_kept;
+    resources.reserve(groups.size());
+    starts.reserve(groups.size());
+    first_kept.reserve(groups.size() + 1);
+    first_kept.push_back(0);
     for (const JoinedGroup& group : groups) {
         // A join error is reported only when its group is reached: the first group at fault (in
         // declaration order) gives the error, whether its ports do not join or its spec does not
         // resolve.
         LOOM_TRY(group.status());
         const PortAddress start = group.ports.front();
-        if (schedule.position[start.pass] == kNotScheduled) continue;
-        PendingResource item = running_part(group.ports, schedule, is_graph_output);
+        if (position[start.pass] == kNotScheduled) continue;
+        const std::size_t first = kept.size();
+        PlanResource& resource = resources.emplace_back();
+        running_part(graph, group.ports, schedule, kept, resource);
+        const std::span<const PortAddress> kept_ports(kept.data() + first, kept.size() - first);
         // An optional output nobody reads gets no texture.
-        if (item.kept_ports.size() == 1 && !item.resource.graph_output && graph.port_at(start).optional) continue;
+        if (kept_ports.size() == 1 && !resource.graph_output && graph.port_at(start).optional) {
+            resources.pop_back();
+            kept.resize(first);
+            continue;
+        }
+        PendingResource item{resource, start, kept_ports};
         if (group.type == ResourceType::Buffer) {
             LOOM_TRY(resolve_pending_buffer(graph, *group.buffer, frame, memory, item));
         } else {
             LOOM_TRY(resolve_pending(graph, *group.spec, frame, memory, item));
         }
-        pending.push_back(std::move(item));
+        starts.push_back(start);
+        first_kept.push_back(static_cast<uint32_t>(kept.size()));
     }
-    // Resources in order of their producers' positions, then by port.
-    const std::vector<uint32_t>& position = schedule.position;
-    std::stable_sort(pending.begin(), pending.end(), [&](const PendingResource& a, const PendingResource& b) {
-        return std::pair(position[a.start.pass], a.start.port) < std::pair(position[b.start.pass], b.start.port);
-    });
+    // Resources in order of their producers' positions, then by port. Groups come in
+    // declaration order, which is mostly that order already: then no resource moves.
+    const auto count = static_cast<uint32_t>(resources.size());
+    auto starts_earlier = [&](uint32_t a, uint32_t b) {
+        return std::pair(position[starts[a].pass], starts[a].port) < std::pair(position[starts[b].pass], starts[b].port);
+    };
+    std::vector<uint32_t> by_start(count);
+    std::iota(by_start.begin(), by_start.end(), 0u);
+    const bool in_order = std::is_sorted(by_start.begin(), by_start.end(), starts_earlier);
+    if (!in_order) std::stable_sort(by_start.begin(), by_start.end(), starts_earlier);
 
     ResolvedResources resolved;
     resolved.resource_of_port = per_port(graph, kNoResource);
-    resolved.resources.reserve(pending.size());
-    for (uint32_t r = 0; r < pending.size(); ++r) {
-        for (const PortAddress& address : pending[r].kept_ports) {
-            resolved.resource_of_port[address.pass][address.port] = r;
+    if (in_order) {
+        resolved.resources = std::move(resources);
+        resolved.starts = std::move(starts);
+    } else {
+        resolved.resources.reserve(count);
+        resolved.starts.reserve(count);
+        for (uint32_t i : by_start) {
+            resolved.resources.push_back(std::move(resources[i]));
+            resolved.starts.push_back(starts[i]);
         }
-        resolved.resources.push_back(std::move(pending[r].resource));
-        resolved.starts.push_back(pending[r].start);
+    }
+    for (uint32_t r = 0; r < count; ++r) {
+        const uint32_t i = by_start[r];
+        for (uint32_t k = first_kept[i]; k < first_kept[i + 1]; ++k) resolved.resource_of_port[kept[k].pass][kept[k].port] = r;
     }
     std::vector<bool> listed(resolved.resources.size(), false);
     for (const PortAddress& out : graph.outputs()) {
@@ -424,6 +485,7 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
     for (uint32_t p : schedule.order) {
         const Pass& pass = graph.pass(PassId{p});
         PlanPass planned{pass.name(), p, pass.side_effect(), {}, pass.kind(), pass.queue()};
+        planned.ports.reserve(pass.ports().size());
         for (uint32_t i = 0; i < pass.ports().size(); ++i) {
             const Port& port = pass.ports()[i];
             PlanPort planned_port{port.name, port.kind, port.optional, std::nullopt, TextureUsage::None, port.type};
@@ -457,6 +519,7 @@ std::vector<PlanEdge> plan_edges(const FrameGraph& graph, const Schedule& schedu
                                  const std::vector<std::vector<uint32_t>>& resource_of_port) {
     const std::vector<uint32_t>& position = schedule.position;
     std::vector<PlanEdge> edges;
+    edges.reserve(graph.connections().size());
     for (const Connection& c : graph.connections()) {
         if (position[c.from.pass] == kNotScheduled || position[c.to.pass] == kNotScheduled) continue;
         const uint32_t r = resource_of_port[c.to.pass][c.to.port];
