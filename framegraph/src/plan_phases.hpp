@@ -6,6 +6,7 @@
 //   join          the port groups, each with the join of its specs     plan_resources.cpp
 //   resolve       the logical resources: resolved specs, usages,       plan_resources.cpp
 //                 lifetimes, bytes; each running pass's ports, edges
+//                 (build_plan joins and resolves each group in turn, keeping no group)
 //   order         under PassOrder::Memory, another order of the same   plan_order.cpp,
 //                 passes for a lower peak; the resources renumbered    planner.cpp
 //   queues        semaphores and ownership transfers between the       plan_queues.cpp
@@ -119,6 +120,11 @@ struct ResolvedResources {
 /// resolve error naming its running ports, or the memory model's.
 Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::vector<JoinedGroup>& groups,
                                             const Schedule& schedule, Extent2D frame, MemoryModel& memory);
+/// Join and resolve in one: the same resources and the same first error as
+/// resolve_resources(graph, join_port_groups(graph, frame), ...), with each group joined and
+/// resolved as it is collected, so that no group's ports or join are kept (what build_plan runs).
+Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const Schedule& schedule, Extent2D frame,
+                                            MemoryModel& memory);
 
 /// The same resources for another order of the same passes: lifetimes (and occupancies) from
 /// `schedule`, renumbered in order of their producers' positions, then by port, as

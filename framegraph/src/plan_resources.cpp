@@ -16,28 +16,39 @@ namespace {
 
 using rhi::TextureUsage;
 
-std::vector<std::vector<PortAddress>> collect_groups(const FrameGraph& graph) {
-    std::vector<std::vector<PortAddress>> groups;
+// True when the port at `address` starts a group: an output, or an inout nothing feeds.
+bool starts_group(const FrameGraph& graph, const Port& port, PortAddress address) {
+    return port.kind == PortKind::Output || (port.kind == PortKind::InOut && !graph.source(address));
+}
+
+// The group `start` begins, into `group` (cleared first): `start`, then breadth-first the
+// ports each port feeds, in connection order. Only outputs and inouts feed ports (connect and
+// Pass::read refuse anything else), so an input's consumers are empty and its kind need not be
+// looked up.
+void collect_group(const FrameGraph& graph, PortAddress start, std::vector<PortAddress>& group) {
+    group.clear();
+    group.push_back(start);
+    for (std::size_t next = 0; next < group.size(); ++next) {
+        const std::span<const PortAddress> consumers = graph.consumers(group[next]);
+        group.insert(group.end(), consumers.begin(), consumers.end());
+    }
+}
+
+// Calls visit(group ports) for every group of the graph in declaration order of their starting
+// ports, reusing one array for the ports; stops at the first error visit returns.
+template <class Visit>
+Status for_each_group(const FrameGraph& graph, Visit visit) {
+    std::vector<PortAddress> group;
     for (uint32_t p = 0; p < graph.pass_count(); ++p) {
-        const Pass& pass = graph.pass(PassId{p});
-        for (uint32_t i = 0; i < pass.ports().size(); ++i) {
+        const std::vector<Port>& ports = graph.pass(PassId{p}).ports();
+        for (uint32_t i = 0; i < ports.size(); ++i) {
             const PortAddress start{p, i};
-            const Port& port = pass.ports()[i];
-            const bool starts = port.kind == PortKind::Output || (port.kind == PortKind::InOut && !graph.source(start));
-            if (!starts) continue;
-            // An output's readers are most groups whole (inouts chain further): one allocation.
-            std::vector<PortAddress> group;
-            group.reserve(1 + graph.consumers(start).size());
-            group.push_back(start);
-            for (std::size_t next = 0; next < group.size(); ++next) {
-                const PortAddress at = group[next];
-                if (!port_writes(graph.port_at(at).kind)) continue;
-                for (const PortAddress& consumer : graph.consumers(at)) group.push_back(consumer);
-            }
-            groups.push_back(std::move(group));
+            if (!starts_group(graph, ports[i], start)) continue;
+            collect_group(graph, start, group);
+            LOOM_TRY(visit(std::span<const PortAddress>(group)));
         }
     }
-    return groups;
+    return {};
 }
 
 // A spec with only one of the properties format, size, samples, mips, layers (by index) of `spec`.
@@ -61,7 +72,7 @@ bool spec_is_unconstrained(const TextureSpec& spec) {
 
 // Joins the specs of a group's ports in group order. On a conflict the error names the port
 // that first constrained the conflicting property and the port that contradicts it.
-Result<TextureSpec> join_group(const FrameGraph& graph, const std::vector<PortAddress>& group, Extent2D frame) {
+Result<TextureSpec> join_group(const FrameGraph& graph, std::span<const PortAddress> group, Extent2D frame) {
     TextureSpec joined;
     // First port to constrain each property: format, size, samples, mips, layers.
     std::array<std::optional<PortAddress>, 5> origin{};
@@ -121,7 +132,7 @@ Result<TextureSpec> join_group(const FrameGraph& graph, const std::vector<PortAd
 
 // A buffer group's join in group order; on a size conflict the error names the port that first
 // gave a size and the port that contradicts it. Names are written only for the error.
-Result<BufferSpec> join_buffer_group(const FrameGraph& graph, const std::vector<PortAddress>& group, Extent2D frame) {
+Result<BufferSpec> join_buffer_group(const FrameGraph& graph, std::span<const PortAddress> group, Extent2D frame) {
     BufferSpec joined;
     std::optional<PortAddress> sized;
     JoinContext context;
@@ -166,7 +177,7 @@ struct PendingResource {
 // The running part of a group whose producer runs: its running ports, appended to `kept`,
 // whether one is a graph output, and the positions they span (a graph output lives to the last
 // position).
-void running_part(const FrameGraph& graph, const std::vector<PortAddress>& group, const Schedule& schedule,
+void running_part(const FrameGraph& graph, std::span<const PortAddress> group, const Schedule& schedule,
                   std::vector<PortAddress>& kept, PlanResource& resource) {
     const std::vector<uint32_t>& position = schedule.position;
     const PortAddress start = group.front();
@@ -269,6 +280,102 @@ Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Exten
     return {};
 }
 
+// The resources of the groups given one by one in group order (resolve_resources): each made
+// in place in one array, with its starting port and its running ports one after another in
+// `kept_` (resource i's are kept_[first_kept_[i], first_kept_[i + 1])), then numbered in order
+// of their producers' positions.
+class ResourceBuilder {
+public:
+    ResourceBuilder(const FrameGraph& graph, const Schedule& schedule, Extent2D frame, MemoryModel& memory,
+                    std::size_t group_count)
+        : graph_(graph), schedule_(schedule), frame_(frame), memory_(memory) {
+        resources_.reserve(group_count);
+        starts_.reserve(group_count);
+        first_kept_.reserve(group_count + 1);
+        first_kept_.push_back(0);
+    }
+
+    // The resource of a group whose ports join to `spec` (a texture group) or `buffer` (a
+    // buffer group), if its producer runs.
+    Status add(std::span<const PortAddress> group, ResourceType type, const TextureSpec& spec, const BufferSpec& buffer) {
+        const PortAddress start = group.front();
+        if (schedule_.position[start.pass] == kNotScheduled) return {};
+        const std::size_t first = kept_.size();
+        PlanResource& resource = resources_.emplace_back();
+        running_part(graph_, group, schedule_, kept_, resource);
+        const std::span<const PortAddress> kept_ports(kept_.data() + first, kept_.size() - first);
+        // An optional output nobody reads gets no texture.
+        if (kept_ports.size() == 1 && !resource.graph_output && graph_.port_at(start).optional) {
+            resources_.pop_back();
+            kept_.resize(first);
+            return {};
+        }
+        PendingResource item{resource, start, kept_ports};
+        if (type == ResourceType::Buffer) {
+            LOOM_TRY(resolve_pending_buffer(graph_, buffer, frame_, memory_, item));
+        } else {
+            LOOM_TRY(resolve_pending(graph_, spec, frame_, memory_, item));
+        }
+        starts_.push_back(start);
+        first_kept_.push_back(static_cast<uint32_t>(kept_.size()));
+        return {};
+    }
+
+    // The resources in order of their producers' positions, then by port. Groups come in
+    // declaration order, which is mostly that order already: then no resource moves.
+    ResolvedResources finish() {
+        const std::vector<uint32_t>& position = schedule_.position;
+        const auto count = static_cast<uint32_t>(resources_.size());
+        auto starts_earlier = [&](uint32_t a, uint32_t b) {
+            return std::pair(position[starts_[a].pass], starts_[a].port) <
+                   std::pair(position[starts_[b].pass], starts_[b].port);
+        };
+        std::vector<uint32_t> by_start(count);
+        std::iota(by_start.begin(), by_start.end(), 0u);
+        const bool in_order = std::is_sorted(by_start.begin(), by_start.end(), starts_earlier);
+        if (!in_order) std::stable_sort(by_start.begin(), by_start.end(), starts_earlier);
+
+        ResolvedResources resolved;
+        resolved.resource_of_port = per_port(graph_, kNoResource);
+        if (in_order) {
+            resolved.resources = std::move(resources_);
+            resolved.starts = std::move(starts_);
+        } else {
+            resolved.resources.reserve(count);
+            resolved.starts.reserve(count);
+            for (uint32_t i : by_start) {
+                resolved.resources.push_back(std::move(resources_[i]));
+                resolved.starts.push_back(starts_[i]);
+            }
+        }
+        for (uint32_t r = 0; r < count; ++r) {
+            const uint32_t i = by_start[r];
+            for (uint32_t k = first_kept_[i]; k < first_kept_[i + 1]; ++k) {
+                resolved.resource_of_port[kept_[k].pass][kept_[k].port] = r;
+            }
+        }
+        std::vector<bool> listed(count, false);
+        for (const PortAddress& out : graph_.outputs()) {
+            const uint32_t r = resolved.resource_of_port[out.pass][out.port];
+            if (r != kNoResource && !listed[r]) {
+                listed[r] = true;
+                resolved.graph_output_resources.push_back(r);
+            }
+        }
+        return resolved;
+    }
+
+private:
+    const FrameGraph& graph_;
+    const Schedule& schedule_;
+    Extent2D frame_;
+    MemoryModel& memory_;
+    std::vector<PlanResource> resources_;
+    std::vector<PortAddress> starts_;
+    std::vector<PortAddress> kept_;
+    std::vector<uint32_t> first_kept_;
+};
+
 }  // namespace
 
 std::optional<SubresourceRange> resolve_range(const SubresourceRange& range, uint32_t mips, uint32_t layers) {
@@ -345,98 +452,56 @@ Result<rhi::BufferUsage> port_buffer_usage(const Port& port, PassKind pass_kind,
 }
 
 std::vector<JoinedGroup> join_port_groups(const FrameGraph& graph, Extent2D frame) {
-    std::vector<std::vector<PortAddress>> groups = collect_groups(graph);
     std::vector<JoinedGroup> joined;
-    joined.reserve(groups.size());
-    for (std::vector<PortAddress>& group : groups) {
+    // Join errors are kept in their groups, so visiting never stops.
+    (void)for_each_group(graph, [&](std::span<const PortAddress> group) -> Status {
+        std::vector<PortAddress> ports(group.begin(), group.end());
         if (graph.port_at(group.front()).type == ResourceType::Buffer) {
             Result<BufferSpec> buffer = join_buffer_group(graph, group, frame);
-            joined.push_back(JoinedGroup{std::move(group), TextureSpec{}, ResourceType::Buffer, std::move(buffer)});
-            continue;
+            joined.push_back(JoinedGroup{std::move(ports), TextureSpec{}, ResourceType::Buffer, std::move(buffer)});
+        } else {
+            Result<TextureSpec> spec = join_group(graph, group, frame);
+            joined.push_back(JoinedGroup{std::move(ports), std::move(spec)});
         }
-        Result<TextureSpec> spec = join_group(graph, group, frame);
-        joined.push_back(JoinedGroup{std::move(group), std::move(spec)});
-    }
+        return {};
+    });
     return joined;
 }
 
 Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::vector<JoinedGroup>& groups,
                                             const Schedule& schedule, Extent2D frame, MemoryModel& memory) {
-    const std::vector<uint32_t>& position = schedule.position;
-    // The resources in group order, each made in place (room for every group: no reference
-    // into `resources` moves), with their starting ports and their running ports one after
-    // another in `kept`: resource i's are kept[first_kept[i], first_kept[i + 1]).
-    std::vector<PlanResource> resources;
-    std::vector<PortAddress> starts;
-    std::vector<PortAddress> kept;
-    std::vector<uint32_t> first_kept;
-    resources.reserve(groups.size());
-    starts.reserve(groups.size());
-    first_kept.reserve(groups.size() + 1);
-    first_kept.push_back(0);
+    ResourceBuilder builder(graph, schedule, frame, memory, groups.size());
     for (const JoinedGroup& group : groups) {
         // A join error is reported only when its group is reached: the first group at fault (in
         // declaration order) gives the error, whether its ports do not join or its spec does not
         // resolve.
         LOOM_TRY(group.status());
-        const PortAddress start = group.ports.front();
-        if (position[start.pass] == kNotScheduled) continue;
-        const std::size_t first = kept.size();
-        PlanResource& resource = resources.emplace_back();
-        running_part(graph, group.ports, schedule, kept, resource);
-        const std::span<const PortAddress> kept_ports(kept.data() + first, kept.size() - first);
-        // An optional output nobody reads gets no texture.
-        if (kept_ports.size() == 1 && !resource.graph_output && graph.port_at(start).optional) {
-            resources.pop_back();
-            kept.resize(first);
-            continue;
-        }
-        PendingResource item{resource, start, kept_ports};
-        if (group.type == ResourceType::Buffer) {
-            LOOM_TRY(resolve_pending_buffer(graph, *group.buffer, frame, memory, item));
-        } else {
-            LOOM_TRY(resolve_pending(graph, *group.spec, frame, memory, item));
-        }
-        starts.push_back(start);
-        first_kept.push_back(static_cast<uint32_t>(kept.size()));
+        LOOM_TRY(builder.add(group.ports, group.type, *group.spec, *group.buffer));
     }
-    // Resources in order of their producers' positions, then by port. Groups come in
-    // declaration order, which is mostly that order already: then no resource moves.
-    const auto count = static_cast<uint32_t>(resources.size());
-    auto starts_earlier = [&](uint32_t a, uint32_t b) {
-        return std::pair(position[starts[a].pass], starts[a].port) < std::pair(position[starts[b].pass], starts[b].port);
-    };
-    std::vector<uint32_t> by_start(count);
-    std::iota(by_start.begin(), by_start.end(), 0u);
-    const bool in_order = std::is_sorted(by_start.begin(), by_start.end(), starts_earlier);
-    if (!in_order) std::stable_sort(by_start.begin(), by_start.end(), starts_earlier);
+    return builder.finish();
+}
 
-    ResolvedResources resolved;
-    resolved.resource_of_port = per_port(graph, kNoResource);
-    if (in_order) {
-        resolved.resources = std::move(resources);
-        resolved.starts = std::move(starts);
-    } else {
-        resolved.resources.reserve(count);
-        resolved.starts.reserve(count);
-        for (uint32_t i : by_start) {
-            resolved.resources.push_back(std::move(resources[i]));
-            resolved.starts.push_back(starts[i]);
+Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const Schedule& schedule, Extent2D frame,
+                                            MemoryModel& memory) {
+    std::size_t group_count = 0;
+    for (uint32_t p = 0; p < graph.pass_count(); ++p) {
+        const std::vector<Port>& ports = graph.pass(PassId{p}).ports();
+        for (uint32_t i = 0; i < ports.size(); ++i) group_count += starts_group(graph, ports[i], {p, i}) ? 1 : 0;
+    }
+    ResourceBuilder builder(graph, schedule, frame, memory, group_count);
+    // Each group joined and resolved before the next is collected: the first group at fault
+    // gives the error, as when every group is joined first (join_port_groups).
+    LOOM_TRY(for_each_group(graph, [&](std::span<const PortAddress> group) -> Status {
+        if (graph.port_at(group.front()).type == ResourceType::Buffer) {
+            Result<BufferSpec> buffer = join_buffer_group(graph, group, frame);
+            if (!buffer) return buffer.take_error();
+            return builder.add(group, ResourceType::Buffer, TextureSpec{}, *buffer);
         }
-    }
-    for (uint32_t r = 0; r < count; ++r) {
-        const uint32_t i = by_start[r];
-        for (uint32_t k = first_kept[i]; k < first_kept[i + 1]; ++k) resolved.resource_of_port[kept[k].pass][kept[k].port] = r;
-    }
-    std::vector<bool> listed(resolved.resources.size(), false);
-    for (const PortAddress& out : graph.outputs()) {
-        const uint32_t r = resolved.resource_of_port[out.pass][out.port];
-        if (r != kNoResource && !listed[r]) {
-            listed[r] = true;
-            resolved.graph_output_resources.push_back(r);
-        }
-    }
-    return resolved;
+        Result<TextureSpec> spec = join_group(graph, group, frame);
+        if (!spec) return spec.take_error();
+        return builder.add(group, ResourceType::Texture, *spec, BufferSpec{});
+    }));
+    return builder.finish();
 }
 
 ResolvedResources reorder_resources(const ResolvedResources& resolved, const Schedule& schedule) {
