@@ -122,7 +122,11 @@ std::optional<std::string> FrameGraph::address_problem(PortAddress address) cons
 
 void FrameGraph::link(PortAddress from, PortAddress to) {
     sources_[flat(to)] = from;
-    consumers_[flat(from)].push_back(to);
+    std::vector<PortAddress>& consumers = consumers_[flat(from)];
+    // Outputs are mostly read once or twice: room for two at the first saves the second's
+    // reallocation.
+    if (consumers.empty()) consumers.reserve(2);
+    consumers.push_back(to);
     connections_.push_back({from, to});
 }
 
