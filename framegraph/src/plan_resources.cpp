@@ -157,14 +157,6 @@ Result<BufferSpec> join_buffer_group(const FrameGraph& graph, std::span<const Po
     return joined;
 }
 
-// `value` for every port of the graph, by pass and port.
-template <class T>
-std::vector<std::vector<T>> per_port(const FrameGraph& graph, T value) {
-    std::vector<std::vector<T>> out(graph.pass_count());
-    for (uint32_t p = 0; p < graph.pass_count(); ++p) out[p].assign(graph.pass(PassId{p}).ports().size(), value);
-    return out;
-}
-
 // A resource being resolved, before its index is known (resources are numbered once sorted by
 // producer position): the resource made in place, the port that starts it, and the group's
 // ports whose passes run, the starting port first.
@@ -336,7 +328,7 @@ public:
         if (!in_order) std::stable_sort(by_start.begin(), by_start.end(), starts_earlier);
 
         ResolvedResources resolved;
-        resolved.resource_of_port = per_port(graph_, kNoResource);
+        resolved.resource_of_port = PortTable(graph_, kNoResource);
         if (in_order) {
             resolved.resources = std::move(resources_);
             resolved.starts = std::move(starts_);
@@ -377,6 +369,23 @@ private:
 };
 
 }  // namespace
+
+PortTable::PortTable(const FrameGraph& graph, uint32_t value) {
+    first_.reserve(graph.pass_count() + 1);
+    first_.push_back(0);
+    for (uint32_t p = 0; p < graph.pass_count(); ++p) {
+        first_.push_back(first_.back() + static_cast<uint32_t>(graph.pass(PassId{p}).ports().size()));
+    }
+    values_.assign(first_.back(), value);
+}
+
+bool operator==(const PortTable& table, const std::vector<std::vector<uint32_t>>& per_pass) {
+    if (table.size() != per_pass.size()) return false;
+    for (uint32_t p = 0; p < table.size(); ++p) {
+        if (!std::equal(table[p].begin(), table[p].end(), per_pass[p].begin(), per_pass[p].end())) return false;
+    }
+    return true;
+}
 
 std::optional<SubresourceRange> resolve_range(const SubresourceRange& range, uint32_t mips, uint32_t layers) {
     auto resolve_part = [](uint32_t base, uint32_t count, uint32_t total) -> std::optional<uint32_t> {
@@ -534,10 +543,8 @@ ResolvedResources reorder_resources(const ResolvedResources& resolved, const Sch
         out.starts.push_back(resolved.starts[r]);
     }
     out.resource_of_port = resolved.resource_of_port;
-    for (std::vector<uint32_t>& ports : out.resource_of_port) {
-        for (uint32_t& r : ports) {
-            if (r != kNoResource) r = renumbered[r];
-        }
+    for (uint32_t& r : out.resource_of_port.values()) {
+        if (r != kNoResource) r = renumbered[r];
     }
     for (uint32_t r : resolved.graph_output_resources) out.graph_output_resources.push_back(renumbered[r]);
     return out;
@@ -581,7 +588,7 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
 }
 
 std::vector<PlanEdge> plan_edges(const FrameGraph& graph, const Schedule& schedule,
-                                 const std::vector<std::vector<uint32_t>>& resource_of_port) {
+                                 const PortTable& resource_of_port) {
     const std::vector<uint32_t>& position = schedule.position;
     std::vector<PlanEdge> edges;
     edges.reserve(graph.connections().size());
