@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <numeric>
-#include <span>
 #include <optional>
+#include <span>
 #include <utility>
 
 #include "loom/framegraph/join.hpp"
