@@ -50,7 +50,7 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
     }
     // Bad port set names were refused by Pass::add (its status).
     LOOM_TRY(pass->status());
-    if (pass_index_.contains(std::string_view(pass->name()))) {
+    if (find_pass(pass->name())) {
         return graph_error("add_pass: a pass called '" + pass->name() + "' already exists");
     }
     // Reads (Pass::read) are checked before the pass is added, so that a refused pass leaves
@@ -69,13 +69,13 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
         }
     }
     const auto index = static_cast<uint32_t>(passes_.size());
-    pass_index_.emplace(pass->name(), index);
     const auto first_port = static_cast<uint32_t>(sources_.size());
     port_offset_.push_back(first_port);
     sources_.resize(first_port + pass->ports().size());
     consumers_.resize(first_port + pass->ports().size());
     marked_output_.resize(first_port + pass->ports().size());
     passes_.push_back(std::move(pass));
+    index_name(index);
     for (const auto& [input, source] : passes_.back()->reads()) link(source, PortAddress{index, input});
     ++revision_;
     return PassId{index};
@@ -83,7 +83,8 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
 
 void FrameGraph::reserve(uint32_t passes, uint32_t ports) {
     passes_.reserve(passes);
-    pass_index_.reserve(passes);
+    name_hashes_.reserve(passes);
+    if (std::size_t{passes} * 2 > name_slots_.size()) grow_name_index(std::size_t{passes} * 2);
     port_offset_.reserve(passes);
     sources_.reserve(ports);
     consumers_.reserve(ports);
@@ -93,7 +94,8 @@ void FrameGraph::reserve(uint32_t passes, uint32_t ports) {
 
 void FrameGraph::clear() {
     passes_.clear();
-    pass_index_.clear();
+    std::fill(name_slots_.begin(), name_slots_.end(), 0u);
+    name_hashes_.clear();
     port_offset_.clear();
     sources_.clear();
     consumers_.clear();
@@ -120,14 +122,48 @@ std::optional<std::string> FrameGraph::address_problem(PortAddress address) cons
 
 void FrameGraph::link(PortAddress from, PortAddress to) {
     sources_[flat(to)] = from;
-    consumers_[flat(from)].push_back(to);
+    std::vector<PortAddress>& consumers = consumers_[flat(from)];
+    // Outputs are mostly read once or twice: room for two at the first saves the second's
+    // reallocation.
+    if (consumers.empty()) consumers.reserve(2);
+    consumers.push_back(to);
     connections_.push_back({from, to});
 }
 
 std::optional<PassId> FrameGraph::find_pass(std::string_view name) const {
-    auto it = pass_index_.find(name);
-    if (it == pass_index_.end()) return std::nullopt;
-    return PassId{it->second};
+    if (name_slots_.empty()) return std::nullopt;
+    const std::size_t hash = std::hash<std::string_view>{}(name);
+    const std::size_t mask = name_slots_.size() - 1;
+    for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask) {
+        const uint32_t entry = name_slots_[slot];
+        if (entry == 0) return std::nullopt;
+        if (name_hashes_[entry - 1] == hash && passes_[entry - 1]->name() == name) return PassId{entry - 1};
+    }
+}
+
+void FrameGraph::index_name(uint32_t index) {
+    name_hashes_.push_back(std::hash<std::string_view>{}(passes_[index]->name()));
+    // Half full at most, so that probes stay short and always find a free slot.
+    if (name_hashes_.size() * 2 > name_slots_.size()) {
+        grow_name_index(std::max<std::size_t>(16, name_slots_.size() * 2));
+        return;  // growing put every pass in, this one too
+    }
+    const std::size_t mask = name_slots_.size() - 1;
+    std::size_t slot = name_hashes_[index] & mask;
+    while (name_slots_[slot] != 0) slot = (slot + 1) & mask;
+    name_slots_[slot] = index + 1;
+}
+
+void FrameGraph::grow_name_index(std::size_t slots) {
+    std::size_t size = 16;
+    while (size < slots) size *= 2;
+    name_slots_.assign(size, 0u);
+    const std::size_t mask = size - 1;
+    for (uint32_t index = 0; index < name_hashes_.size(); ++index) {
+        std::size_t slot = name_hashes_[index] & mask;
+        while (name_slots_[slot] != 0) slot = (slot + 1) & mask;
+        name_slots_[slot] = index + 1;
+    }
 }
 
 const Port& FrameGraph::port_at(PortAddress address) const { return passes_[address.pass]->ports()[address.port]; }

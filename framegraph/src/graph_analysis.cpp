@@ -11,10 +11,6 @@ namespace {
 
 Error graph_error(std::string message) { return make_error(ErrorCode::Graph, std::move(message)); }
 
-void sort_unique(std::vector<uint32_t>& values) {
-    std::sort(values.begin(), values.end());
-    values.erase(std::unique(values.begin(), values.end()), values.end());
-}
 
 // Why one pass must run before another: the connection between them, the texture the first
 // reads before the second modifies it in place, or the application's require_order. Indexed
@@ -112,11 +108,48 @@ Error cycle_error(const FrameGraph& graph, const Dependencies& dependencies, con
 
 }  // namespace
 
+IndexLists::IndexLists(uint32_t count, const std::vector<std::pair<uint32_t, uint32_t>>& pairs) : first_(count + 1, 0) {
+    // A counting sort by index, then each list sorted and made unique in place.
+    for (const auto& [index, value] : pairs) ++first_[index + 1];
+    for (uint32_t i = 1; i <= count; ++i) first_[i] += first_[i - 1];
+    // assign, not resize: GCC 12 at -O3 warns falsely (-Wnull-dereference) about resize growing an empty vector.
+    values_.assign(pairs.size(), 0u);
+    {
+        std::vector<uint32_t> cursor(first_.begin(), first_.end() - 1);
+        for (const auto& [index, value] : pairs) values_[cursor[index]++] = value;
+    }
+    uint32_t kept = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const auto begin = values_.begin() + first_[i];
+        const auto end = values_.begin() + first_[i + 1];
+        std::sort(begin, end);
+        const auto length = static_cast<uint32_t>(std::unique(begin, end) - begin);
+        // Moved down over the duplicates dropped before it (never up: kept <= first_[i]).
+        if (kept != first_[i]) std::move(begin, begin + length, values_.begin() + kept);
+        first_[i] = kept;
+        kept += length;
+    }
+    first_[count] = kept;
+    values_.erase(values_.begin() + kept, values_.end());
+}
+
+IndexLists::IndexLists(std::initializer_list<std::vector<uint32_t>> lists) {
+    first_.reserve(lists.size() + 1);
+    first_.push_back(0);
+    for (const std::vector<uint32_t>& list : lists) {
+        values_.insert(values_.end(), list.begin(), list.end());
+        first_.push_back(static_cast<uint32_t>(values_.size()));
+    }
+}
+
 Result<Dependencies> analyze(const FrameGraph& graph) {
     const uint32_t count = graph.pass_count();
     Dependencies out;
-    out.successors.resize(count);
-    out.producers.resize(count);
+    // (pass, successor) and (pass, producer), made into the lists at the end.
+    std::vector<std::pair<uint32_t, uint32_t>> successor_pairs;
+    std::vector<std::pair<uint32_t, uint32_t>> producer_pairs;
+    successor_pairs.reserve(graph.connections().size() + graph.order_requirements().size());
+    producer_pairs.reserve(graph.connections().size());
 
     for (uint32_t pass_index = 0; pass_index < count; ++pass_index) {
         const Pass& pass = graph.pass(PassId{pass_index});
@@ -139,8 +172,8 @@ Result<Dependencies> analyze(const FrameGraph& graph) {
                 error.subjects = {graph.port_name(address)};
                 return error;
             }
-            out.successors[source->pass].push_back(pass_index);
-            out.producers[pass_index].push_back(source->pass);
+            successor_pairs.emplace_back(source->pass, pass_index);
+            producer_pairs.emplace_back(pass_index, source->pass);
             if (port.kind != PortKind::InOut) continue;
             // Every other reader of the texture before this in-place modification runs first.
             for (const PortAddress& reader : graph.consumers(*source)) {
@@ -159,19 +192,19 @@ Result<Dependencies> analyze(const FrameGraph& graph) {
                     error.subjects = {graph.port_name(address), graph.port_name(reader), graph.port_name(*source)};
                     return error;
                 }
-                out.successors[reader.pass].push_back(pass_index);
+                successor_pairs.emplace_back(reader.pass, pass_index);
             }
         }
     }
     // The application's order requirements order like connections, without feeding anything.
-    for (const auto& [earlier, later] : graph.order_requirements()) out.successors[earlier.index].push_back(later.index);
-    for (auto& list : out.successors) sort_unique(list);
-    for (auto& list : out.producers) sort_unique(list);
+    for (const auto& [earlier, later] : graph.order_requirements()) successor_pairs.emplace_back(earlier.index, later.index);
+    out.successors = IndexLists(count, successor_pairs);
+    out.producers = IndexLists(count, producer_pairs);
 
     // Kahn's algorithm over every pass; whatever it cannot order lies on or behind a cycle.
     std::vector<uint32_t> in_degree(count, 0);
-    for (const auto& list : out.successors) {
-        for (uint32_t to : list) ++in_degree[to];
+    for (uint32_t from = 0; from < count; ++from) {
+        for (uint32_t to : out.successors[from]) ++in_degree[to];
     }
     std::vector<uint32_t> ready;
     for (uint32_t i = 0; i < count; ++i) {

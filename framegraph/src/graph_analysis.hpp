@@ -2,6 +2,9 @@
 // Internal: the dependency structure of a graph and the checks that need no frame size.
 
 #include <cstdint>
+#include <initializer_list>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "loom/framegraph/graph.hpp"
@@ -9,13 +12,36 @@
 
 namespace loom::fg::detail {
 
+/// Per index (a pass), a sorted list of unique indices, all lists in one array one after
+/// another (compressed rows): two allocations for a whole graph instead of one per pass.
+/// lists[i] reads as a vector's would.
+class IndexLists {
+public:
+    IndexLists() = default;
+    /// The lists of `count` indices from (index, value) pairs in any order: each index's values
+    /// sorted, duplicates dropped.
+    IndexLists(uint32_t count, const std::vector<std::pair<uint32_t, uint32_t>>& pairs);
+    /// The lists as given, one per index (tests write dependencies this way).
+    IndexLists(std::initializer_list<std::vector<uint32_t>> lists);
+
+    [[nodiscard]] std::span<const uint32_t> operator[](uint32_t index) const {
+        return {values_.data() + first_[index], values_.data() + first_[index + 1]};
+    }
+    /// Number of lists.
+    [[nodiscard]] uint32_t size() const { return first_.empty() ? 0 : static_cast<uint32_t>(first_.size() - 1); }
+
+private:
+    std::vector<uint32_t> first_;   // per index, where its list starts in values_; one more at the end
+    std::vector<uint32_t> values_;
+};
+
 struct Dependencies {
     /// Per pass, the passes that must run after it (sorted, unique): readers of its textures,
     /// passes that modify in place a texture it reads before the modification, and the passes
     /// FrameGraph::require_order puts after it.
-    std::vector<std::vector<uint32_t>> successors;
+    IndexLists successors;
     /// Per pass, the passes whose textures it reads (sorted, unique). Culling follows these.
-    std::vector<std::vector<uint32_t>> producers;
+    IndexLists producers;
 };
 
 /// Builds the dependencies and checks: only compute and copy passes on the async compute queue,

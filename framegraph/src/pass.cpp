@@ -206,6 +206,7 @@ Pass& Pass::read(PortAddress source, TextureSpec spec, SubresourceRange range) {
     }
     const auto index = static_cast<uint32_t>(ports_.size());
     merge(texture_port(std::move(port), PortKind::Input, std::move(spec), false, name_, range), name_);
+    if (reads_.empty()) reads_.reserve(kFirstPorts);
     reads_.emplace_back(index, source);
     return *this;
 }
@@ -224,6 +225,9 @@ void Pass::merge(Port declaration, const std::string& port_set) {
     const std::optional<uint32_t> known = port_index(declaration.name);
     if (!known) {
         if (declaration.port_sets.size() != 1 || declaration.port_sets.front() != port_set) declaration.port_sets = {port_set};
+        // Most passes declare a handful of ports: room for four at the first is one allocation
+        // where growing one by one reallocates (and moves every port) at one, two and four.
+        if (ports_.empty()) ports_.reserve(kFirstPorts);
         ports_.push_back(std::move(declaration));
         if (ports_.size() == kIndexedPorts) {
             for (uint32_t i = 0; i < ports_.size(); ++i) port_indices_.emplace(ports_[i].name, i);

@@ -49,23 +49,32 @@ struct Peaks {
 
 Peaks measure_peaks(const std::vector<PlanResource>& resources, const std::vector<uint32_t>& class_of_resource,
                     uint32_t position_count, uint32_t class_count) {
-    // Sweep: +1 at first, -1 after last.
-    std::vector<std::vector<uint32_t>> starting(position_count + 1);
-    std::vector<std::vector<uint32_t>> ending(position_count + 1);
-    for (uint32_t r = 0; r < resources.size(); ++r) {
-        starting[resources[r].occupancy.first].push_back(r);
-        ending[resources[r].occupancy.last + 1].push_back(r);
-    }
+    // Sweep: +1 at first, -1 after last. The resources starting and ending at each position are
+    // listed one position after another in two flat arrays (a counting sort by position, each
+    // position's resources in resource order), not in a vector per position.
+    auto by_position = [&](auto position_of) {
+        std::vector<uint32_t> first(position_count + 2, 0);
+        for (const PlanResource& resource : resources) ++first[position_of(resource) + 1];
+        for (uint32_t at = 1; at < first.size(); ++at) first[at] += first[at - 1];
+        std::vector<uint32_t> listed(resources.size());
+        std::vector<uint32_t> cursor(first.begin(), first.end() - 1);
+        for (uint32_t r = 0; r < resources.size(); ++r) listed[cursor[position_of(resources[r])]++] = r;
+        return std::pair(std::move(first), std::move(listed));
+    };
+    const auto [first_starting, starting] = by_position([](const PlanResource& r) { return r.occupancy.first; });
+    const auto [first_ending, ending] = by_position([](const PlanResource& r) { return r.occupancy.last + 1; });
     Peaks peaks;
     peaks.live_per_class.assign(class_count, 0);
     std::vector<uint32_t> live(class_count, 0);
     uint64_t live_bytes = 0;
     for (uint32_t position = 0; position < position_count; ++position) {
-        for (uint32_t r : ending[position]) {
+        for (uint32_t k = first_ending[position]; k < first_ending[position + 1]; ++k) {
+            const uint32_t r = ending[k];
             --live[class_of_resource[r]];
             live_bytes -= resources[r].bytes;
         }
-        for (uint32_t r : starting[position]) {
+        for (uint32_t k = first_starting[position]; k < first_starting[position + 1]; ++k) {
+            const uint32_t r = starting[k];
             const uint32_t c = class_of_resource[r];
             peaks.live_per_class[c] = std::max(peaks.live_per_class[c], ++live[c]);
             live_bytes += resources[r].bytes;
@@ -267,14 +276,28 @@ AllocationProblem make_allocation_problem(const std::vector<PlanPass>& order,
     problem.spec_class_count = spec_class_count;
     problem.max_heap_bytes = max_heap_bytes;
     problem.passes.resize(order.size());
+    // Each list sized first, so that it is one allocation rather than one per doubling.
+    std::vector<uint32_t> begin_count(order.size(), 0);
+    for (const PlanResource& resource : resources) ++begin_count[resource.lifetime.first];
     for (uint32_t at = 0; at < order.size(); ++at) {
         AllocationPass& step = problem.passes[at];
+        uint32_t reads = 0;
+        uint32_t writes = 0;
+        for (const PlanPort& port : order[at].ports) {
+            if (!port.resource) continue;
+            reads += port_reads(port.kind) ? 1 : 0;
+            writes += port_writes(port.kind) ? 1 : 0;
+        }
+        step.inputs.reserve(reads);
+        step.non_inputs.reserve(writes);
+        step.begins.reserve(begin_count[at]);
         for (const PlanPort& port : order[at].ports) {
             if (!port.resource) continue;
             if (port_reads(port.kind)) step.inputs.push_back(*port.resource);
             if (port_writes(port.kind)) step.non_inputs.push_back(*port.resource);
         }
     }
+    problem.resources.reserve(resources.size());
     for (uint32_t r = 0; r < resources.size(); ++r) {
         const PlanResource& resource = resources[r];
         problem.passes[resource.lifetime.first].begins.push_back(r);

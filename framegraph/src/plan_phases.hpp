@@ -6,6 +6,7 @@
 //   join          the port groups, each with the join of its specs     plan_resources.cpp
 //   resolve       the logical resources: resolved specs, usages,       plan_resources.cpp
 //                 lifetimes, bytes; each running pass's ports, edges
+//                 (build_plan joins and resolves each group in turn, keeping no group)
 //   order         under PassOrder::Memory, another order of the same   plan_order.cpp,
 //                 passes for a lower peak; the resources renumbered    planner.cpp
 //   queues        semaphores and ownership transfers between the       plan_queues.cpp
@@ -18,6 +19,7 @@
 // derives them from a finished plan, once per plan and set of bindings.
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -97,6 +99,35 @@ rhi::BufferUsage default_buffer_use(PortKind kind, PassKind pass_kind);
 /// Groups of culled passes are joined too: a bad connection is an error either way.
 std::vector<JoinedGroup> join_port_groups(const FrameGraph& graph, Extent2D frame);
 
+/// A value per port of a graph, stored flat (pass by pass, each pass's ports in order): one
+/// array for the whole graph instead of a vector per pass. table[pass][port] reads and writes
+/// as a vector of vectors would.
+class PortTable {
+public:
+    PortTable() = default;
+    /// `value` for every port of `graph`.
+    PortTable(const FrameGraph& graph, uint32_t value);
+
+    [[nodiscard]] std::span<uint32_t> operator[](uint32_t pass) {
+        return {values_.data() + first_[pass], values_.data() + first_[pass + 1]};
+    }
+    [[nodiscard]] std::span<const uint32_t> operator[](uint32_t pass) const {
+        return {values_.data() + first_[pass], values_.data() + first_[pass + 1]};
+    }
+    /// Number of passes.
+    [[nodiscard]] uint32_t size() const { return first_.empty() ? 0 : static_cast<uint32_t>(first_.size() - 1); }
+    /// Every value, pass by pass.
+    [[nodiscard]] std::span<uint32_t> values() { return values_; }
+
+    friend bool operator==(const PortTable&, const PortTable&) = default;
+    /// Equal to the same values given per pass (tests write them so).
+    friend bool operator==(const PortTable& table, const std::vector<std::vector<uint32_t>>& per_pass);
+
+private:
+    std::vector<uint32_t> first_;  // per pass, where its ports start in values_; one more at the end
+    std::vector<uint32_t> values_;
+};
+
 /// The logical resources of the passes that run.
 struct ResolvedResources {
     /// In order of their producers' positions, then by port; spec_class and texture are not
@@ -104,7 +135,7 @@ struct ResolvedResources {
     std::vector<PlanResource> resources;
     /// Per pass, per port: the index of its resource, or kNoResource (culled passes, unconnected
     /// optional inputs, optional outputs nobody reads).
-    std::vector<std::vector<uint32_t>> resource_of_port;
+    PortTable resource_of_port;
     /// The resources of the graph outputs, in marking order, each once.
     std::vector<uint32_t> graph_output_resources;
     /// Per resource, the port that starts it.
@@ -119,6 +150,11 @@ struct ResolvedResources {
 /// resolve error naming its running ports, or the memory model's.
 Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::vector<JoinedGroup>& groups,
                                             const Schedule& schedule, Extent2D frame, MemoryModel& memory);
+/// Join and resolve in one: the same resources and the same first error as
+/// resolve_resources(graph, join_port_groups(graph, frame), ...), with each group joined and
+/// resolved as it is collected, so that no group's ports or join are kept (what build_plan runs).
+Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const Schedule& schedule, Extent2D frame,
+                                            MemoryModel& memory);
 
 /// The same resources for another order of the same passes: lifetimes (and occupancies) from
 /// `schedule`, renumbered in order of their producers' positions, then by port, as
@@ -131,7 +167,7 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
 
 /// The connections between passes that run, by position, each with its resource (Plan::edges).
 std::vector<PlanEdge> plan_edges(const FrameGraph& graph, const Schedule& schedule,
-                                 const std::vector<std::vector<uint32_t>>& resource_of_port);
+                                 const PortTable& resource_of_port);
 
 /// What running passes on two queues decides (Plan::queue_syncs, Plan::ownership_transfers,
 /// PlanResource::occupancy).

@@ -2,7 +2,9 @@
 // the scheduled passes with the resource and usage of each.
 #include <algorithm>
 #include <array>
+#include <numeric>
 #include <optional>
+#include <span>
 #include <utility>
 
 #include "loom/framegraph/join.hpp"
@@ -14,25 +16,39 @@ namespace {
 
 using rhi::TextureUsage;
 
-std::vector<std::vector<PortAddress>> collect_groups(const FrameGraph& graph) {
-    std::vector<std::vector<PortAddress>> groups;
+// True when the port at `address` starts a group: an output, or an inout nothing feeds.
+bool starts_group(const FrameGraph& graph, const Port& port, PortAddress address) {
+    return port.kind == PortKind::Output || (port.kind == PortKind::InOut && !graph.source(address));
+}
+
+// The group `start` begins, into `group` (cleared first): `start`, then breadth-first the
+// ports each port feeds, in connection order. Only outputs and inouts feed ports (connect and
+// Pass::read refuse anything else), so an input's consumers are empty and its kind need not be
+// looked up.
+void collect_group(const FrameGraph& graph, PortAddress start, std::vector<PortAddress>& group) {
+    group.clear();
+    group.push_back(start);
+    for (std::size_t next = 0; next < group.size(); ++next) {
+        const std::span<const PortAddress> consumers = graph.consumers(group[next]);
+        group.insert(group.end(), consumers.begin(), consumers.end());
+    }
+}
+
+// Calls visit(group ports) for every group of the graph in declaration order of their starting
+// ports, reusing one array for the ports; stops at the first error visit returns.
+template <class Visit>
+Status for_each_group(const FrameGraph& graph, Visit visit) {
+    std::vector<PortAddress> group;
     for (uint32_t p = 0; p < graph.pass_count(); ++p) {
-        const Pass& pass = graph.pass(PassId{p});
-        for (uint32_t i = 0; i < pass.ports().size(); ++i) {
+        const std::vector<Port>& ports = graph.pass(PassId{p}).ports();
+        for (uint32_t i = 0; i < ports.size(); ++i) {
             const PortAddress start{p, i};
-            const Port& port = pass.ports()[i];
-            const bool starts = port.kind == PortKind::Output || (port.kind == PortKind::InOut && !graph.source(start));
-            if (!starts) continue;
-            std::vector<PortAddress> group{start};
-            for (std::size_t next = 0; next < group.size(); ++next) {
-                const PortAddress at = group[next];
-                if (!port_writes(graph.port_at(at).kind)) continue;
-                for (const PortAddress& consumer : graph.consumers(at)) group.push_back(consumer);
-            }
-            groups.push_back(std::move(group));
+            if (!starts_group(graph, ports[i], start)) continue;
+            collect_group(graph, start, group);
+            LOOM_TRY(visit(std::span<const PortAddress>(group)));
         }
     }
-    return groups;
+    return {};
 }
 
 // A spec with only one of the properties format, size, samples, mips, layers (by index) of `spec`.
@@ -48,14 +64,38 @@ TextureSpec only_property(const TextureSpec& spec, std::size_t property) {
     return out;
 }
 
+// TextureSpec::unconstrained() without building an empty spec to compare with.
+bool spec_is_unconstrained(const TextureSpec& spec) {
+    return !spec.format && !spec.size && !spec.samples && !spec.mips && !spec.layers &&
+           spec.usage == TextureUsage::None && !spec.cube;
+}
+
 // Joins the specs of a group's ports in group order. On a conflict the error names the port
 // that first constrained the conflicting property and the port that contradicts it.
-Result<TextureSpec> join_group(const FrameGraph& graph, const std::vector<PortAddress>& group, Extent2D frame) {
+Result<TextureSpec> join_group(const FrameGraph& graph, std::span<const PortAddress> group, Extent2D frame) {
     TextureSpec joined;
     // First port to constrain each property: format, size, samples, mips, layers.
     std::array<std::optional<PortAddress>, 5> origin{};
+    bool first = true;
     for (const PortAddress& address : group) {
         const TextureSpec& spec = graph.port_at(address).spec;
+        // Joining with an unconstrained spec changes nothing, and the first spec joined with the
+        // empty start is itself: most ports of a graph (reads) constrain nothing, so most joins
+        // need not run. No property is constrained by such a port, so `origin` stays as it is.
+        if (spec_is_unconstrained(spec)) {
+            first = false;
+            continue;
+        }
+        if (first) {
+            first = false;
+            joined = spec;
+            if (spec.format) origin[0] = address;
+            if (spec.size) origin[1] = address;
+            if (spec.samples) origin[2] = address;
+            if (spec.mips) origin[3] = address;
+            if (spec.layers) origin[4] = address;
+            continue;
+        }
         JoinContext context;
         context.frame = frame;
         auto result = join(joined, spec, context);
@@ -92,7 +132,7 @@ Result<TextureSpec> join_group(const FrameGraph& graph, const std::vector<PortAd
 
 // A buffer group's join in group order; on a size conflict the error names the port that first
 // gave a size and the port that contradicts it. Names are written only for the error.
-Result<BufferSpec> join_buffer_group(const FrameGraph& graph, const std::vector<PortAddress>& group, Extent2D frame) {
+Result<BufferSpec> join_buffer_group(const FrameGraph& graph, std::span<const PortAddress> group, Extent2D frame) {
     BufferSpec joined;
     std::optional<PortAddress> sized;
     JoinContext context;
@@ -117,41 +157,34 @@ Result<BufferSpec> join_buffer_group(const FrameGraph& graph, const std::vector<
     return joined;
 }
 
-// `value` for every port of the graph, by pass and port.
-template <class T>
-std::vector<std::vector<T>> per_port(const FrameGraph& graph, T value) {
-    std::vector<std::vector<T>> out(graph.pass_count());
-    for (uint32_t p = 0; p < graph.pass_count(); ++p) out[p].assign(graph.pass(PassId{p}).ports().size(), value);
-    return out;
-}
-
-// A resource before its index is known: resources are numbered once sorted by producer position.
+// A resource being resolved, before its index is known (resources are numbered once sorted by
+// producer position): the resource made in place, the port that starts it, and the group's
+// ports whose passes run, the starting port first.
 struct PendingResource {
-    PlanResource resource;
+    PlanResource& resource;
     PortAddress start;
-    std::vector<PortAddress> kept_ports;  // the group's ports whose passes run, the starting port first
+    std::span<const PortAddress> kept_ports;
 };
 
-// The running part of a group whose producer runs: its running ports, whether one is a graph
-// output, and the positions they span (a graph output lives to the last position).
-PendingResource running_part(const std::vector<PortAddress>& group, const Schedule& schedule,
-                             const std::vector<std::vector<bool>>& is_graph_output) {
+// The running part of a group whose producer runs: its running ports, appended to `kept`,
+// whether one is a graph output, and the positions they span (a graph output lives to the last
+// position).
+void running_part(const FrameGraph& graph, std::span<const PortAddress> group, const Schedule& schedule,
+                  std::vector<PortAddress>& kept, PlanResource& resource) {
     const std::vector<uint32_t>& position = schedule.position;
-    PendingResource item;
-    item.start = group.front();
+    const PortAddress start = group.front();
     bool graph_output = false;
-    uint32_t last = position[item.start.pass];
+    uint32_t last = position[start.pass];
     for (const PortAddress& address : group) {
         if (position[address.pass] == kNotScheduled) continue;
-        item.kept_ports.push_back(address);
-        graph_output = graph_output || is_graph_output[address.pass][address.port];
+        kept.push_back(address);
+        graph_output = graph_output || graph.is_output(address);
         last = std::max(last, position[address.pass]);
     }
     const auto last_position = static_cast<uint32_t>(schedule.order.size() - 1);
-    item.resource.graph_output = graph_output;
-    item.resource.lifetime = {position[item.start.pass], graph_output ? last_position : last};
-    item.resource.occupancy = item.resource.lifetime;
-    return item;
+    resource.graph_output = graph_output;
+    resource.lifetime = {position[start.pass], graph_output ? last_position : last};
+    resource.occupancy = resource.lifetime;
 }
 
 // Fills in what a buffer group's joined spec decides: the resolved spec with the usage of the
@@ -186,6 +219,7 @@ Status resolve_pending_buffer(const FrameGraph& graph, const BufferSpec& joined,
             return error;
         }
     }
+    r.ports.reserve(item.kept_ports.size());
     for (const PortAddress& address : item.kept_ports) r.ports.push_back(graph.port_name(address));
     r.buffer_spec = *resolved;
     auto requirements = memory.buffer_requirements(to_buffer_desc(r.buffer_spec, r.name));
@@ -227,6 +261,7 @@ Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Exten
         }
     }
 
+    r.ports.reserve(item.kept_ports.size());
     for (const PortAddress& address : item.kept_ports) r.ports.push_back(graph.port_name(address));
     r.requested_format = joined.format;
     r.spec = *resolved;
@@ -237,7 +272,120 @@ Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Exten
     return {};
 }
 
+// The resources of the groups given one by one in group order (resolve_resources): each made
+// in place in one array, with its starting port and its running ports one after another in
+// `kept_` (resource i's are kept_[first_kept_[i], first_kept_[i + 1])), then numbered in order
+// of their producers' positions.
+class ResourceBuilder {
+public:
+    ResourceBuilder(const FrameGraph& graph, const Schedule& schedule, Extent2D frame, MemoryModel& memory,
+                    std::size_t group_count)
+        : graph_(graph), schedule_(schedule), frame_(frame), memory_(memory) {
+        resources_.reserve(group_count);
+        starts_.reserve(group_count);
+        first_kept_.reserve(group_count + 1);
+        first_kept_.push_back(0);
+    }
+
+    // The resource of a group whose ports join to `spec` (a texture group) or `buffer` (a
+    // buffer group), if its producer runs.
+    Status add(std::span<const PortAddress> group, ResourceType type, const TextureSpec& spec, const BufferSpec& buffer) {
+        const PortAddress start = group.front();
+        if (schedule_.position[start.pass] == kNotScheduled) return {};
+        const std::size_t first = kept_.size();
+        PlanResource& resource = resources_.emplace_back();
+        running_part(graph_, group, schedule_, kept_, resource);
+        const std::span<const PortAddress> kept_ports(kept_.data() + first, kept_.size() - first);
+        // An optional output nobody reads gets no texture.
+        if (kept_ports.size() == 1 && !resource.graph_output && graph_.port_at(start).optional) {
+            resources_.pop_back();
+            kept_.resize(first);
+            return {};
+        }
+        PendingResource item{resource, start, kept_ports};
+        if (type == ResourceType::Buffer) {
+            LOOM_TRY(resolve_pending_buffer(graph_, buffer, frame_, memory_, item));
+        } else {
+            LOOM_TRY(resolve_pending(graph_, spec, frame_, memory_, item));
+        }
+        starts_.push_back(start);
+        first_kept_.push_back(static_cast<uint32_t>(kept_.size()));
+        return {};
+    }
+
+    // The resources in order of their producers' positions, then by port. Groups come in
+    // declaration order, which is mostly that order already: then no resource moves.
+    ResolvedResources finish() {
+        const std::vector<uint32_t>& position = schedule_.position;
+        const auto count = static_cast<uint32_t>(resources_.size());
+        auto starts_earlier = [&](uint32_t a, uint32_t b) {
+            return std::pair(position[starts_[a].pass], starts_[a].port) <
+                   std::pair(position[starts_[b].pass], starts_[b].port);
+        };
+        std::vector<uint32_t> by_start(count);
+        std::iota(by_start.begin(), by_start.end(), 0u);
+        const bool in_order = std::is_sorted(by_start.begin(), by_start.end(), starts_earlier);
+        if (!in_order) std::stable_sort(by_start.begin(), by_start.end(), starts_earlier);
+
+        ResolvedResources resolved;
+        resolved.resource_of_port = PortTable(graph_, kNoResource);
+        if (in_order) {
+            resolved.resources = std::move(resources_);
+            resolved.starts = std::move(starts_);
+        } else {
+            resolved.resources.reserve(count);
+            resolved.starts.reserve(count);
+            for (uint32_t i : by_start) {
+                resolved.resources.push_back(std::move(resources_[i]));
+                resolved.starts.push_back(starts_[i]);
+            }
+        }
+        for (uint32_t r = 0; r < count; ++r) {
+            const uint32_t i = by_start[r];
+            for (uint32_t k = first_kept_[i]; k < first_kept_[i + 1]; ++k) {
+                resolved.resource_of_port[kept_[k].pass][kept_[k].port] = r;
+            }
+        }
+        std::vector<bool> listed(count, false);
+        for (const PortAddress& out : graph_.outputs()) {
+            const uint32_t r = resolved.resource_of_port[out.pass][out.port];
+            if (r != kNoResource && !listed[r]) {
+                listed[r] = true;
+                resolved.graph_output_resources.push_back(r);
+            }
+        }
+        return resolved;
+    }
+
+private:
+    const FrameGraph& graph_;
+    const Schedule& schedule_;
+    Extent2D frame_;
+    MemoryModel& memory_;
+    std::vector<PlanResource> resources_;
+    std::vector<PortAddress> starts_;
+    std::vector<PortAddress> kept_;
+    std::vector<uint32_t> first_kept_;
+};
+
 }  // namespace
+
+PortTable::PortTable(const FrameGraph& graph, uint32_t value) {
+    first_.reserve(graph.pass_count() + 1);
+    first_.push_back(0);
+    for (uint32_t p = 0; p < graph.pass_count(); ++p) {
+        first_.push_back(first_.back() + static_cast<uint32_t>(graph.pass(PassId{p}).ports().size()));
+    }
+    values_.assign(first_.back(), value);
+}
+
+bool operator==(const PortTable& table, const std::vector<std::vector<uint32_t>>& per_pass) {
+    if (table.size() != per_pass.size()) return false;
+    for (uint32_t p = 0; p < table.size(); ++p) {
+        if (!std::equal(table[p].begin(), table[p].end(), per_pass[p].begin(), per_pass[p].end())) return false;
+    }
+    return true;
+}
 
 std::optional<SubresourceRange> resolve_range(const SubresourceRange& range, uint32_t mips, uint32_t layers) {
     auto resolve_part = [](uint32_t base, uint32_t count, uint32_t total) -> std::optional<uint32_t> {
@@ -313,69 +461,56 @@ Result<rhi::BufferUsage> port_buffer_usage(const Port& port, PassKind pass_kind,
 }
 
 std::vector<JoinedGroup> join_port_groups(const FrameGraph& graph, Extent2D frame) {
-    std::vector<std::vector<PortAddress>> groups = collect_groups(graph);
     std::vector<JoinedGroup> joined;
-    joined.reserve(groups.size());
-    for (std::vector<PortAddress>& group : groups) {
+    // Join errors are kept in their groups, so visiting never stops.
+    (void)for_each_group(graph, [&](std::span<const PortAddress> group) -> Status {
+        std::vector<PortAddress> ports(group.begin(), group.end());
         if (graph.port_at(group.front()).type == ResourceType::Buffer) {
             Result<BufferSpec> buffer = join_buffer_group(graph, group, frame);
-            joined.push_back(JoinedGroup{std::move(group), TextureSpec{}, ResourceType::Buffer, std::move(buffer)});
-            continue;
+            joined.push_back(JoinedGroup{std::move(ports), TextureSpec{}, ResourceType::Buffer, std::move(buffer)});
+        } else {
+            Result<TextureSpec> spec = join_group(graph, group, frame);
+            joined.push_back(JoinedGroup{std::move(ports), std::move(spec)});
         }
-        Result<TextureSpec> spec = join_group(graph, group, frame);
-        joined.push_back(JoinedGroup{std::move(group), std::move(spec)});
-    }
+        return {};
+    });
     return joined;
 }
 
 Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::vector<JoinedGroup>& groups,
                                             const Schedule& schedule, Extent2D frame, MemoryModel& memory) {
-    std::vector<std::vector<bool>> is_graph_output = per_port(graph, false);
-    for (const PortAddress& out : graph.outputs()) is_graph_output[out.pass][out.port] = true;
-
-    std::vector<PendingResource> pending;
+    ResourceBuilder builder(graph, schedule, frame, memory, groups.size());
     for (const JoinedGroup& group : groups) {
         // A join error is reported only when its group is reached: the first group at fault (in
         // declaration order) gives the error, whether its ports do not join or its spec does not
         // resolve.
         LOOM_TRY(group.status());
-        const PortAddress start = group.ports.front();
-        if (schedule.position[start.pass] == kNotScheduled) continue;
-        PendingResource item = running_part(group.ports, schedule, is_graph_output);
-        // An optional output nobody reads gets no texture.
-        if (item.kept_ports.size() == 1 && !item.resource.graph_output && graph.port_at(start).optional) continue;
-        if (group.type == ResourceType::Buffer) {
-            LOOM_TRY(resolve_pending_buffer(graph, *group.buffer, frame, memory, item));
-        } else {
-            LOOM_TRY(resolve_pending(graph, *group.spec, frame, memory, item));
-        }
-        pending.push_back(std::move(item));
+        LOOM_TRY(builder.add(group.ports, group.type, *group.spec, *group.buffer));
     }
-    // Resources in order of their producers' positions, then by port.
-    const std::vector<uint32_t>& position = schedule.position;
-    std::stable_sort(pending.begin(), pending.end(), [&](const PendingResource& a, const PendingResource& b) {
-        return std::pair(position[a.start.pass], a.start.port) < std::pair(position[b.start.pass], b.start.port);
-    });
+    return builder.finish();
+}
 
-    ResolvedResources resolved;
-    resolved.resource_of_port = per_port(graph, kNoResource);
-    resolved.resources.reserve(pending.size());
-    for (uint32_t r = 0; r < pending.size(); ++r) {
-        for (const PortAddress& address : pending[r].kept_ports) {
-            resolved.resource_of_port[address.pass][address.port] = r;
-        }
-        resolved.resources.push_back(std::move(pending[r].resource));
-        resolved.starts.push_back(pending[r].start);
+Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const Schedule& schedule, Extent2D frame,
+                                            MemoryModel& memory) {
+    std::size_t group_count = 0;
+    for (uint32_t p = 0; p < graph.pass_count(); ++p) {
+        const std::vector<Port>& ports = graph.pass(PassId{p}).ports();
+        for (uint32_t i = 0; i < ports.size(); ++i) group_count += starts_group(graph, ports[i], {p, i}) ? 1 : 0;
     }
-    std::vector<bool> listed(resolved.resources.size(), false);
-    for (const PortAddress& out : graph.outputs()) {
-        const uint32_t r = resolved.resource_of_port[out.pass][out.port];
-        if (r != kNoResource && !listed[r]) {
-            listed[r] = true;
-            resolved.graph_output_resources.push_back(r);
+    ResourceBuilder builder(graph, schedule, frame, memory, group_count);
+    // Each group joined and resolved before the next is collected: the first group at fault
+    // gives the error, as when every group is joined first (join_port_groups).
+    LOOM_TRY(for_each_group(graph, [&](std::span<const PortAddress> group) -> Status {
+        if (graph.port_at(group.front()).type == ResourceType::Buffer) {
+            Result<BufferSpec> buffer = join_buffer_group(graph, group, frame);
+            if (!buffer) return buffer.take_error();
+            return builder.add(group, ResourceType::Buffer, TextureSpec{}, *buffer);
         }
-    }
-    return resolved;
+        Result<TextureSpec> spec = join_group(graph, group, frame);
+        if (!spec) return spec.take_error();
+        return builder.add(group, ResourceType::Texture, *spec, BufferSpec{});
+    }));
+    return builder.finish();
 }
 
 ResolvedResources reorder_resources(const ResolvedResources& resolved, const Schedule& schedule) {
@@ -408,10 +543,8 @@ ResolvedResources reorder_resources(const ResolvedResources& resolved, const Sch
         out.starts.push_back(resolved.starts[r]);
     }
     out.resource_of_port = resolved.resource_of_port;
-    for (std::vector<uint32_t>& ports : out.resource_of_port) {
-        for (uint32_t& r : ports) {
-            if (r != kNoResource) r = renumbered[r];
-        }
+    for (uint32_t& r : out.resource_of_port.values()) {
+        if (r != kNoResource) r = renumbered[r];
     }
     for (uint32_t r : resolved.graph_output_resources) out.graph_output_resources.push_back(renumbered[r]);
     return out;
@@ -424,6 +557,7 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
     for (uint32_t p : schedule.order) {
         const Pass& pass = graph.pass(PassId{p});
         PlanPass planned{pass.name(), p, pass.side_effect(), {}, pass.kind(), pass.queue()};
+        planned.ports.reserve(pass.ports().size());
         for (uint32_t i = 0; i < pass.ports().size(); ++i) {
             const Port& port = pass.ports()[i];
             PlanPort planned_port{port.name, port.kind, port.optional, std::nullopt, TextureUsage::None, port.type};
@@ -454,9 +588,10 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
 }
 
 std::vector<PlanEdge> plan_edges(const FrameGraph& graph, const Schedule& schedule,
-                                 const std::vector<std::vector<uint32_t>>& resource_of_port) {
+                                 const PortTable& resource_of_port) {
     const std::vector<uint32_t>& position = schedule.position;
     std::vector<PlanEdge> edges;
+    edges.reserve(graph.connections().size());
     for (const Connection& c : graph.connections()) {
         if (position[c.from.pass] == kNotScheduled || position[c.to.pass] == kNotScheduled) continue;
         const uint32_t r = resource_of_port[c.to.pass][c.to.port];

@@ -57,7 +57,7 @@ Result<OrderProblem> order_problem_of(const FrameGraph& graph, const PlanOptions
     auto kept = cull_passes(graph, *dependencies);
     if (!kept) return kept.take_error();
     const Schedule schedule = schedule_passes(*dependencies, *kept);
-    auto resolved = resolve_resources(graph, join_port_groups(graph, options.frame), schedule, options.frame, *memory);
+    auto resolved = resolve_resources(graph, schedule, options.frame, *memory);
     if (!resolved) return resolved.take_error();
     return make_order_problem(graph, *dependencies, schedule, *resolved);
 }
@@ -87,8 +87,7 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
     if (!kept) return kept.take_error();
     detail::Schedule schedule = detail::schedule_passes(*dependencies, *kept);
     const auto positions = static_cast<uint32_t>(schedule.order.size());
-    auto resolved = detail::resolve_resources(graph, detail::join_port_groups(graph, options.frame), schedule,
-                                              options.frame, *memory);
+    auto resolved = detail::resolve_resources(graph, schedule, options.frame, *memory);
     if (!resolved) return resolved.take_error();
     if (options.order == PassOrder::Memory) choose_order(graph, *dependencies, schedule, *resolved);
 

@@ -5,6 +5,7 @@
 
 #include "loom/framegraph/framegraph.hpp"
 #include "plan_phases.hpp"
+#include "random_graph.hpp"
 
 namespace loom::fg::detail {
 namespace {
@@ -529,6 +530,72 @@ TEST(PlanPhases, SummaryCountsTexturesBytesAndBounds) {
     plan.textures[1].placement = HeapRange{1, 0};
     plan.heaps = {1000, 24};
     EXPECT_EQ(summarize_plan(plan, 400), (PlanSummary{2, 1024, 3, 450, 2, 400}));
+}
+
+// build_plan joins and resolves group by group (resolve_resources without groups): the same
+// resources, numbering, ports and first error as joining every group first.
+TEST(PlanPhases, ResolvingWhileJoiningGivesWhatJoiningFirstGives) {
+    auto same = [](const FrameGraph& graph, const std::string& what) {
+        auto dependencies = analyze(graph);
+        ASSERT_TRUE(dependencies.ok()) << what;
+        auto kept = cull_passes(graph, *dependencies);
+        ASSERT_TRUE(kept.ok()) << what;
+        const Schedule schedule = schedule_passes(*dependencies, *kept);
+        DefaultMemoryModel memory;
+        auto joined_first = resolve_resources(graph, join_port_groups(graph, kFrame), schedule, kFrame, memory);
+        auto while_joining = resolve_resources(graph, schedule, kFrame, memory);
+        ASSERT_EQ(joined_first.ok(), while_joining.ok()) << what;
+        if (!joined_first.ok()) {
+            EXPECT_EQ(joined_first.error().message, while_joining.error().message) << what;
+            EXPECT_EQ(joined_first.error().subjects, while_joining.error().subjects) << what;
+            return;
+        }
+        EXPECT_EQ(joined_first->resources, while_joining->resources) << what;
+        EXPECT_EQ(joined_first->resource_of_port, while_joining->resource_of_port) << what;
+        EXPECT_EQ(joined_first->graph_output_resources, while_joining->graph_output_resources) << what;
+        EXPECT_EQ(joined_first->starts, while_joining->starts) << what;
+    };
+    same(deferred_graph(), "deferred");
+    for (uint64_t seed = 1; seed <= 60; ++seed) {
+        testing::RandomGraphOptions options;
+        options.passes = 2 + static_cast<uint32_t>(seed % 30);
+        options.buffer_percent = seed % 2 == 0 ? 25 : 0;
+        options.subresource_percent = seed % 3 == 0 ? 20 : 0;
+        same(testing::random_graph(seed, options), "seed " + std::to_string(seed));
+    }
+    // A group that does not resolve before one that does not join (and is culled).
+    FrameGraph faults;
+    ASSERT_TRUE(faults.add_pass(Pass("first").output("x", TextureSpec{}.with_samples(3))).ok());
+    ASSERT_TRUE(faults.add_pass(Pass("second").output("y", TextureSpec::of(Format::RGBA8Unorm))).ok());
+    ASSERT_TRUE(faults.add_pass(Pass("third").input("y", TextureSpec::of(Format::Depth32F)).output("z")).ok());
+    ASSERT_TRUE(faults.connect(port("second", "y"), port("third", "y")).ok());
+    ASSERT_TRUE(faults.mark_output(port("first", "x")).ok());
+    same(faults, "faults");
+    // Only the join fault of a culled group.
+    FrameGraph join_fault;
+    ASSERT_TRUE(join_fault.add_pass(Pass("first").output("x").set_side_effect()).ok());
+    ASSERT_TRUE(join_fault.add_pass(Pass("second").output("y", TextureSpec::of(Format::RGBA8Unorm))).ok());
+    ASSERT_TRUE(join_fault.add_pass(Pass("third").input("y", TextureSpec::of(Format::Depth32F)).output("z")).ok());
+    ASSERT_TRUE(join_fault.connect(port("second", "y"), port("third", "y")).ok());
+    same(join_fault, "join fault");
+}
+
+// The dependency lists of analyze: per pass, its values sorted and unique, from pairs in any
+// order, whatever lists are empty.
+TEST(PlanPhases, IndexListsSortAndDeduplicateEachPassesValues) {
+    std::vector<std::pair<uint32_t, uint32_t>> pairs{{3, 7}, {0, 5}, {3, 1}, {0, 5}, {3, 7}, {0, 2}, {3, 4}, {0, 5}};
+    const IndexLists lists(5, pairs);
+    ASSERT_EQ(lists.size(), 5u);
+    auto values = [&](uint32_t index) { return std::vector<uint32_t>(lists[index].begin(), lists[index].end()); };
+    EXPECT_EQ(values(0), (std::vector<uint32_t>{2, 5}));
+    EXPECT_TRUE(values(1).empty());
+    EXPECT_TRUE(values(2).empty());
+    EXPECT_EQ(values(3), (std::vector<uint32_t>{1, 4, 7}));
+    EXPECT_TRUE(values(4).empty());
+    std::vector<std::pair<uint32_t, uint32_t>> none;
+    const IndexLists empty(3, none);
+    EXPECT_EQ(empty.size(), 3u);
+    EXPECT_TRUE(empty[2].empty());
 }
 
 }  // namespace

@@ -130,5 +130,35 @@ TEST(TypedGraph, AClearedGraphIsDeclaredAgainAndPlannedAfresh) {
     EXPECT_EQ(plan_hash(**first), plan_hash(**second));
 }
 
+// The pass-name index (open addressing, grown as passes come): every name is found after it grew
+// many times, with and without reserve, a taken name is refused, and after clear() no old name is
+// found while the same names can be added again.
+TEST(TypedGraph, PassNamesAreFoundThroughGrowthReserveAndClear) {
+    for (const bool reserved : {false, true}) {
+        FrameGraph graph;
+        if (reserved) graph.reserve(1000, 1000);
+        for (uint32_t round = 0; round < 2; ++round) {
+            for (uint32_t i = 0; i < 1000; ++i) {
+                auto id = graph.add_pass(Pass("pass" + std::to_string(i)).output("out").set_side_effect());
+                ASSERT_TRUE(id) << id.error().message;
+                EXPECT_EQ(id->index, i);
+            }
+            for (uint32_t i = 0; i < 1000; ++i) {
+                auto found = graph.find_pass("pass" + std::to_string(i));
+                ASSERT_TRUE(found) << i;
+                EXPECT_EQ(found->index, i);
+            }
+            EXPECT_FALSE(graph.find_pass("pass1000"));
+            EXPECT_FALSE(graph.find_pass(""));
+            auto taken = graph.add_pass(Pass("pass999").output("out"));
+            ASSERT_FALSE(taken);
+            EXPECT_NE(taken.error().message.find("a pass called 'pass999' already exists"), std::string::npos);
+            graph.clear();
+            EXPECT_FALSE(graph.find_pass("pass0"));
+            EXPECT_FALSE(graph.find_pass("pass999"));
+        }
+    }
+}
+
 }  // namespace
 }  // namespace loom::fg

@@ -126,6 +126,8 @@ public:
     [[nodiscard]] const std::vector<Connection>& connections() const { return connections_; }
     /// The ports marked as graph outputs.
     [[nodiscard]] const std::vector<PortAddress>& outputs() const { return outputs_; }
+    /// True when the port at `address` is marked as a graph output (one of outputs()).
+    [[nodiscard]] bool is_output(PortAddress address) const { return marked_output_[flat(address)]; }
     /// The port at `address`.
     [[nodiscard]] const Port& port_at(PortAddress address) const;
     /// The port feeding `address` (an input or inout), if connected.
@@ -156,14 +158,18 @@ private:
     // Records a connection that passed every check.
     void link(PortAddress from, PortAddress to);
 
-    // Looks names up by string_view without making a std::string of them.
-    struct NameHash {
-        using is_transparent = void;
-        std::size_t operator()(std::string_view name) const { return std::hash<std::string_view>{}(name); }
-    };
+    // Records pass `index` (already in passes_) in the name index.
+    void index_name(uint32_t index);
+    // Makes the name index at least `slots` slots (a power of two) and puts every pass back.
+    void grow_name_index(std::size_t slots);
 
     std::vector<std::unique_ptr<Pass>> passes_;
-    std::unordered_map<std::string, uint32_t, NameHash, std::equal_to<>> pass_index_;
+    // Pass name -> index, by open addressing with linear probing over one array (a slot holds
+    // a pass index + 1; 0 is free; at most half the slots used), with each pass's name hash kept
+    // beside: no node per pass as a std::unordered_map allocates, and a probe compares hashes
+    // before names.
+    std::vector<uint32_t> name_slots_;
+    std::vector<std::size_t> name_hashes_;  // per pass
     std::vector<uint32_t> port_offset_;                 // first flat port index of each pass
     std::vector<std::optional<PortAddress>> sources_;   // per flat port
     std::vector<std::vector<PortAddress>> consumers_;   // per flat port

@@ -353,6 +353,8 @@ private:
     // not scan every port (a pass may have very many). Filled only from kIndexedPorts ports on:
     // below that a scan of ports_ is cheaper than building the map.
     static constexpr std::size_t kIndexedPorts = 16;
+    // Room made for ports (and reads) at the first one declared.
+    static constexpr std::size_t kFirstPorts = 4;
     std::map<std::string, uint32_t, std::less<>> port_indices_;
     std::vector<std::pair<uint32_t, PortAddress>> reads_;
     bool side_effect_ = false;
