@@ -81,7 +81,7 @@ void GlCommandList::begin() {
     pipeline_states_.clear();
     vertex_states_.clear();
     binding_states_.clear();
-    binding_state_drawn_ = false;
+    binding_state_drawn_ = vertex_state_drawn_ = false;
     draw_pipeline_ = nullptr;
     blends_.clear();
     vertex_bindings_.clear();
