@@ -58,8 +58,7 @@ void CommandListState::begin_frame() {
     recording_ = true;
 }
 
-Status CommandListState::check_recording(std::string_view command) const {
-    if (recording_) return {};
+Status CommandListState::not_recording(std::string_view command) {
     return invalid_state(std::string(command) + ": no frame is being recorded; call begin_frame first");
 }
 

@@ -319,10 +319,7 @@ void GlCommandList::set_buffer(uint32_t set, uint32_t binding, const rhi::Buffer
 }
 
 void GlCommandList::set_uniforms(uint32_t set, uint32_t binding, std::span<const std::byte> data) {
-    if (!state_.recording()) [[unlikely]] {
-        accepted(state_.check_recording("set_uniforms"));
-        return;
-    }
+    if (!accepted(state_.check_recording("set_uniforms"))) return;
     const rhi::BufferBinding range = device_->allocate_transient(data);
     if (!accepted(state_.set_buffer(set, binding, range)) || !rebinds_offset(set, binding, range, true)) {
         binding_state_valid_ = false;
@@ -378,10 +375,7 @@ void GlCommandList::set_index_buffer(rhi::BufferHandle buffer, rhi::IndexType ty
 }
 
 rhi::BufferBinding GlCommandList::transient_uniforms(std::span<const std::byte> data) {
-    if (!state_.recording()) [[unlikely]] {
-        accepted(state_.check_recording("transient_uniforms"));
-        return {};
-    }
+    if (!accepted(state_.check_recording("transient_uniforms"))) return {};
     return device_->allocate_transient(data);
 }
 

@@ -232,10 +232,7 @@ void VulkanCommandList::set_index_buffer(rhi::BufferHandle handle, rhi::IndexTyp
 }
 
 rhi::BufferBinding VulkanCommandList::transient_uniforms(std::span<const std::byte> data) {
-    if (!state_.recording()) [[unlikely]] {
-        accepted(state_.check_recording("transient_uniforms"));
-        return {};
-    }
+    if (!accepted(state_.check_recording("transient_uniforms"))) return {};
     auto binding = device_.allocate_transient_uniforms(data);
     if (!binding.ok()) {
         fail(binding.error().code, "transient_uniforms: " + binding.error().message);

@@ -89,7 +89,12 @@ public:
     /// A frame begins: nothing open, nothing bound.
     void begin_frame();
     /// `command` (end_frame, transient_uniforms) needs a frame being recorded.
-    [[nodiscard]] Status check_recording(std::string_view command) const;
+    /// Inline: transient_uniforms and set_uniforms ask it per draw; the message is built only
+    /// when no frame is being recorded.
+    [[nodiscard]] Status check_recording(std::string_view command) const {
+        if (recording_) [[likely]] return {};
+        return not_recording(command);
+    }
     /// end_frame: the first of a render pass, a timer and debug groups left open (the backend
     /// reports it as the frame's error and closes them all).
     [[nodiscard]] Status check_nothing_open() const;
@@ -235,6 +240,8 @@ private:
     Status set_buffer_slow(uint32_t set, uint32_t binding, const BufferBinding& range);
     /// Forgets everything bound and open (frames begin and end with nothing).
     void reset();
+    /// check_recording's error.
+    [[nodiscard]] static Status not_recording(std::string_view command);
     /// A pipeline is set (all that is checked of it with validation off).
     [[nodiscard]] Status check_pipeline_set(std::string_view command) const;
     /// The bound pipeline's facts for `command`: set, alive and of the right kind.
