@@ -26,6 +26,7 @@
 #include "gl_state_cache.hpp"
 #include "loom/gl/gl_device.hpp"
 #include "loom/gl/gl_embed.hpp"
+#include "loom/rhi/checked_math.hpp"
 #include "loom/rhi/command_list_state.hpp"
 #include "loom/rhi/handle_pool.hpp"
 #include "loom/rhi/validation.hpp"
@@ -39,12 +40,6 @@
 #endif
 
 namespace loom::gl {
-
-/// `value` rounded up to a multiple of `alignment` (at least 1; offsets within a buffer, far
-/// from overflowing).
-constexpr uint64_t align_up(uint64_t value, uint64_t alignment) {
-    return (value + alignment - 1) / alignment * alignment;
-}
 
 class GlDevice;
 
@@ -363,7 +358,7 @@ public:
         // The common case inline (per draw for push constants): room in the frame's last chunk.
         if (!frame_chunks_.empty()) [[likely]] {
             TransientChunk& chunk = frame_chunks_.back();
-            const uint64_t offset = align_up(chunk.used, caps_.uniform_buffer_offset_alignment);
+            const uint64_t offset = checked::align_up_in_range(chunk.used, caps_.uniform_buffer_offset_alignment);
             const uint64_t size = data.empty() ? 1 : data.size();
             if (offset + size <= chunk.size) [[likely]] {
                 if (!data.empty()) std::memcpy(chunk.data + offset, data.data(), data.size());

@@ -154,7 +154,7 @@ rhi::BufferBinding GlDevice::allocate_transient_chunk(std::span<const std::byte>
     } else {
         context_->make_current();  // recording may interleave with calls on another device
         TransientChunk fresh;
-        fresh.size = std::max(kTransientChunkBytes, align_up(size, alignment));
+        fresh.size = std::max(kTransientChunkBytes, checked::align_up_in_range(size, alignment));
         GlBuffer b;
         b.desc.name = "transient uniforms";
         b.desc.size = fresh.size;

@@ -4,16 +4,10 @@
 #include <cassert>
 #include <string>
 
+#include "loom/rhi/checked_math.hpp"
 #include "loom/vulkan/context.hpp"
 
 namespace loom::vulkan {
-namespace {
-
-VkDeviceSize align_up(VkDeviceSize value, VkDeviceSize alignment) {
-    return alignment <= 1 ? value : (value + alignment - 1) / alignment * alignment;
-}
-
-}  // namespace
 
 MemoryAllocator::MemoryAllocator(VkPhysicalDevice physical_device, VkDevice device, AllocatorOptions options)
     : device_(device), options_(options) {
@@ -96,7 +90,7 @@ bool MemoryAllocator::try_sub_allocate(Block& block, uint32_t block_id, const Vk
     for (auto it = block.free_ranges.begin(); it != block.free_ranges.end(); ++it) {
         const VkDeviceSize range_begin = it->first;
         const VkDeviceSize range_end = it->first + it->second;
-        const VkDeviceSize offset = align_up(range_begin, req.alignment);
+        const VkDeviceSize offset = checked::align_up_in_range(range_begin, req.alignment);
         if (offset + req.size > range_end) continue;
         // Split the free range into what is left before and after the allocation.
         block.free_ranges.erase(it);

@@ -1,5 +1,6 @@
 #include "staging_ring.hpp"
 
+#include "loom/rhi/checked_math.hpp"
 #include "loom/vulkan/context.hpp"
 
 namespace loom::vulkan {
@@ -35,7 +36,6 @@ loom::Status StagingRing::init() {
 
 std::optional<StagingRing::Span> StagingRing::allocate(VkDeviceSize size, VkDeviceSize alignment, uint64_t serial) {
     if (size > capacity_ || size == 0) return std::nullopt;
-    auto aligned = [&](VkDeviceSize v) { return (v + alignment - 1) / alignment * alignment; };
     if (regions_.empty()) {
         head_ = 0;
         tail_ = 0;
@@ -45,7 +45,7 @@ std::optional<StagingRing::Span> StagingRing::allocate(VkDeviceSize size, VkDevi
     if (full_) return std::nullopt;
     if (regions_.empty() || head_ > tail_) {
         // Free space is [head, capacity) and [0, tail): try the end first, then wrap.
-        const VkDeviceSize at = aligned(head_);
+        const VkDeviceSize at = checked::align_up_in_range(head_, alignment);
         if (at + size <= capacity_) {
             offset = at;
         } else if (size <= tail_) {
@@ -55,7 +55,7 @@ std::optional<StagingRing::Span> StagingRing::allocate(VkDeviceSize size, VkDevi
         }
     } else {
         // Free space is [head, tail).
-        const VkDeviceSize at = aligned(head_);
+        const VkDeviceSize at = checked::align_up_in_range(head_, alignment);
         if (at + size > tail_) return std::nullopt;
         offset = at;
     }

@@ -11,6 +11,7 @@
 
 #include "command_list.hpp"
 #include "descriptors.hpp"
+#include "loom/rhi/checked_math.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/handle_pool.hpp"
 #include "loom/rhi/validation.hpp"
@@ -157,7 +158,7 @@ public:
         FrameSlot& slot = current_frame();
         const uint64_t alignment = std::max<uint64_t>(caps_.uniform_buffer_offset_alignment, 16);
         const uint64_t size = std::max<uint64_t>(data.size(), 16);
-        uint64_t offset = (slot.uniform_ring_offset + alignment - 1) / alignment * alignment;
+        uint64_t offset = checked::align_up_in_range(slot.uniform_ring_offset, alignment);
         if (offset + size > slot.uniform_ring_size || !slot.uniform_ring_data) [[unlikely]] {
             LOOM_TRY(grow_uniform_ring(slot, size));
             offset = 0;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "loom/rhi/checked_math.hpp"
 #include "loom/rhi/descriptions.hpp"
 #include "loom/rhi/result.hpp"
 
@@ -50,8 +51,6 @@ private:
 
 /// `value` rounded up to a multiple of `alignment` (alignment 0 or 1: unchanged). Wraps past
 /// 2^64; sizes from user input go through checked::align_up instead.
-constexpr uint64_t align_up(uint64_t value, uint64_t alignment) {
-    return alignment <= 1 ? value : (value + alignment - 1) / alignment * alignment;
-}
+constexpr uint64_t align_up(uint64_t value, uint64_t alignment) { return checked::align_up_in_range(value, alignment); }
 
 }  // namespace loom::fg

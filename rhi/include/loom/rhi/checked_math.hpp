@@ -54,6 +54,13 @@ template <std::unsigned_integral T>
     return add<uint64_t>(value, alignment - remainder);
 }
 
+/// value rounded up to a multiple of alignment (0 or 1: unchanged), unchecked: for values known
+/// to be far from 2^64, such as offsets inside a buffer or heap loom made (it wraps otherwise).
+/// Sizes and offsets from user input go through align_up.
+[[nodiscard]] constexpr uint64_t align_up_in_range(uint64_t value, uint64_t alignment) {
+    return alignment <= 1 ? value : (value + alignment - 1) / alignment * alignment;
+}
+
 /// `value` as an integer of type T when it is finite and in T's range (after the caller's
 /// rounding), else nullopt. A plain static_cast of an out-of-range double is undefined.
 template <std::integral T>
