@@ -9,6 +9,8 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include "glfw_window_input.hpp"
+
 namespace loom::gl {
 namespace {
 
@@ -109,6 +111,8 @@ Result<std::unique_ptr<GlContext>> GlContext::create_windowed(const rhi::WindowD
     glfwSwapInterval(window.vsync ? 1 : 0);
     std::unique_ptr<GlContext> out(new GlContext());
     out->window_ = handle;
+    out->input_ = std::make_unique<backends::GlfwWindowInput>();
+    out->input_->attach(handle);
     return out;
 }
 
@@ -157,8 +161,11 @@ void GlContext::make_current() {
 bool GlContext::poll_events() {
     if (!window_) return false;
     glfwPollEvents();
+    input_->publish();
     return !glfwWindowShouldClose(window_);
 }
+
+const rhi::WindowInput* GlContext::input() const { return input_ ? &input_->input() : nullptr; }
 
 rhi::Extent3D GlContext::framebuffer_size() const {
     if (!window_) return {0, 0, 0};

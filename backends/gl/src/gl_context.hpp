@@ -7,6 +7,9 @@
 #include "loom/rhi/result.hpp"
 
 struct GLFWwindow;
+namespace loom::backends {
+class GlfwWindowInput;
+}
 
 namespace loom::gl {
 
@@ -33,6 +36,8 @@ public:
     [[nodiscard]] bool adopted() const { return adopted_; }
     /// Processes window events; false once the window should close (always false headless).
     bool poll_events();
+    /// The window's input as of the latest poll_events(); null without a window.
+    [[nodiscard]] const rhi::WindowInput* input() const;
     /// The window's framebuffer size in pixels (0x0 headless).
     [[nodiscard]] rhi::Extent3D framebuffer_size() const;
     /// Presents the default framebuffer (windowed only).
@@ -45,6 +50,7 @@ private:
     void* egl_display_ = nullptr;
     void* egl_context_ = nullptr;
     GLFWwindow* window_ = nullptr;
+    std::unique_ptr<backends::GlfwWindowInput> input_;
     bool adopted_ = false;
 };
 

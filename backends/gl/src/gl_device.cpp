@@ -206,6 +206,11 @@ bool GlDevice::poll_window() { return context_->poll_events(); }
 
 rhi::Extent3D GlDevice::window_size() const { return context_->framebuffer_size(); }
 
+const rhi::WindowInput& GlDevice::window_input() const {
+    const rhi::WindowInput* input = context_->input();
+    return input ? *input : Device::window_input();
+}
+
 rhi::TextureHandle GlDevice::backbuffer() {
     return (context_->windowed() && list_->recording()) ? backbuffer_ : rhi::TextureHandle{};
 }

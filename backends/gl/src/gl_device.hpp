@@ -320,6 +320,7 @@ public:
 
     bool poll_window() override;
     [[nodiscard]] rhi::Extent3D window_size() const override;
+    [[nodiscard]] const rhi::WindowInput& window_input() const override;
     rhi::TextureHandle backbuffer() override;
 
     [[nodiscard]] GlCacheStats cache_stats() const { return {framebuffers_.size(), vertex_arrays_.size()}; }

@@ -6,6 +6,8 @@
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
+#include "glfw_window_input.hpp"
+
 #include "loom/rhi/log.hpp"
 #include "loom/vulkan/context.hpp"
 
@@ -58,6 +60,8 @@ loom::Result<std::unique_ptr<Window>> Window::create(const rhi::WindowDesc& desc
     }
     std::unique_ptr<Window> out(new Window());
     out->window_ = window;
+    out->input_ = std::make_unique<backends::GlfwWindowInput>();
+    out->input_->attach(window);
     return out;
 }
 
@@ -86,8 +90,11 @@ loom::Result<VkSurfaceKHR> Window::create_surface(VkInstance instance) const {
 
 bool Window::poll() {
     glfwPollEvents();
+    input_->publish();
     return !glfwWindowShouldClose(window_);
 }
+
+const rhi::WindowInput& Window::input() const { return input_->input(); }
 
 rhi::Extent3D Window::framebuffer_size() const {
     int w = 0, h = 0;

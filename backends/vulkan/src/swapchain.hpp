@@ -14,6 +14,9 @@
 #include "loom/rhi/result.hpp"
 
 struct GLFWwindow;
+namespace loom::backends {
+class GlfwWindowInput;
+}
 
 namespace loom::vulkan {
 
@@ -34,10 +37,13 @@ public:
     bool poll();
     /// Framebuffer size in pixels (0x0 while minimised).
     [[nodiscard]] rhi::Extent3D framebuffer_size() const;
+    /// The input as of the latest poll().
+    [[nodiscard]] const rhi::WindowInput& input() const;
 
 private:
     Window() = default;
     GLFWwindow* window_ = nullptr;
+    std::unique_ptr<backends::GlfwWindowInput> input_;
 };
 
 class Swapchain {

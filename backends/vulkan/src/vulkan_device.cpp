@@ -216,6 +216,8 @@ rhi::ResourceStats VulkanDevice::resource_stats() const {
 
 bool VulkanDevice::poll_window() { return window_ ? window_->poll() : false; }
 
+const rhi::WindowInput& VulkanDevice::window_input() const { return window_ ? window_->input() : Device::window_input(); }
+
 rhi::Extent3D VulkanDevice::window_size() const { return window_ ? window_->framebuffer_size() : rhi::Extent3D{0, 0, 0}; }
 
 rhi::TextureHandle VulkanDevice::backbuffer() {

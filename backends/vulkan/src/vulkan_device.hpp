@@ -99,6 +99,7 @@ public:
 
     bool poll_window() override;
     [[nodiscard]] rhi::Extent3D window_size() const override;
+    [[nodiscard]] const rhi::WindowInput& window_input() const override;
     rhi::TextureHandle backbuffer() override;
 
     // ---- embedding (device_embed.cpp, loom/vulkan/vulkan_embed.hpp) ---------------------------

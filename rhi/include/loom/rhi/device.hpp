@@ -22,6 +22,7 @@
 #include "loom/rhi/image.hpp"
 #include "loom/rhi/result.hpp"
 #include "loom/rhi/shader.hpp"
+#include "loom/rhi/window_input.hpp"
 
 namespace loom::rhi {
 
@@ -365,6 +366,10 @@ public:
     virtual bool poll_window() = 0;
     /// Size of the window's framebuffer in pixels (0x0 headless).
     [[nodiscard]] virtual Extent3D window_size() const = 0;
+    /// The window's cursor, buttons, keys and text as of the latest poll_window() (see
+    /// WindowInput). Headless devices, and devices on the application's own context or
+    /// Vulkan device, report none: the application owns that window's events.
+    [[nodiscard]] virtual const WindowInput& window_input() const;
     /// The texture presented at end_frame(); render into it as a colour attachment. Valid
     /// between begin_frame() and end_frame(); null on a headless device.
     virtual TextureHandle backbuffer() = 0;
