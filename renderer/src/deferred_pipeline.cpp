@@ -63,19 +63,21 @@ Status DeferredPipeline::build() {
         if (!deferred) return deferred.take_error();
         deferred_ = *deferred;
     }
-    if (!scene_.blended.empty()) {
+    if (!scene_.blended.empty() && settings_.transparent) {
         auto transparent = add_pass(graph_, std::make_unique<renderer::TransparentPass>(config), passes_);
         if (!transparent) return transparent.take_error();
         transparent_ = *transparent;
     }
-    auto blur_h = add_pass(graph_, std::make_unique<passes::BlurPass>(config, passes::BlurAxis::Horizontal, 1, "blur-h"),
-                           passes_);
-    if (!blur_h) return blur_h.take_error();
-    blur_h_ = *blur_h;
-    auto blur_v = add_pass(graph_, std::make_unique<passes::BlurPass>(config, passes::BlurAxis::Vertical, 1, "blur-v"),
-                           passes_);
-    if (!blur_v) return blur_v.take_error();
-    blur_v_ = *blur_v;
+    if (settings_.bloom) {
+        auto blur_h = add_pass(graph_, std::make_unique<passes::BlurPass>(config, passes::BlurAxis::Horizontal, 1, "blur-h"),
+                               passes_);
+        if (!blur_h) return blur_h.take_error();
+        blur_h_ = *blur_h;
+        auto blur_v = add_pass(graph_, std::make_unique<passes::BlurPass>(config, passes::BlurAxis::Vertical, 1, "blur-v"),
+                               passes_);
+        if (!blur_v) return blur_v.take_error();
+        blur_v_ = *blur_v;
+    }
     auto composite = add_pass(graph_, std::make_unique<passes::CompositePass>(config), passes_);
     if (!composite) return composite.take_error();
     composite_ = *composite;
@@ -111,17 +113,22 @@ Status DeferredPipeline::build() {
         LOOM_TRY(graph_.connect(port(lit, "high_pass"), port(blended, "high_pass")));
         LOOM_TRY(graph_.connect(port(settings_.forward ? "forward" : "geometry", "depth"), port(blended, "depth")));
     }
-    LOOM_TRY(graph_.connect(port(blended, "high_pass"), port("blur-h", "previous_pass")));
     LOOM_TRY(graph_.connect(port(blended, "color"), port("composite", "color")));
-    LOOM_TRY(graph_.connect(port("blur-h", "color"), port("blur-v", "previous_pass")));
-    LOOM_TRY(graph_.connect(port("blur-v", "color"), port("composite", "bloom")));
+    if (settings_.bloom) {
+        LOOM_TRY(graph_.connect(port(blended, "high_pass"), port("blur-h", "previous_pass")));
+        LOOM_TRY(graph_.connect(port("blur-h", "color"), port("blur-v", "previous_pass")));
+        LOOM_TRY(graph_.connect(port("blur-v", "color"), port("composite", "bloom")));
+    } else {
+        // The composite's program always samples a bloom texture: it gets the high pass, weighted 0.
+        LOOM_TRY(graph_.connect(port(blended, "high_pass"), port("composite", "bloom")));
+    }
     LOOM_TRY(graph_.connect(port("composite", "final"), port("present", "source")));
     LOOM_TRY(graph_.mark_output(port("present", "target")));
 
     // An sRGB target encodes by itself.
     composite_->set_encode_srgb(!rhi::format_info(settings_.target_format).features.srgb);
     composite_->set_exposure(settings_.exposure);
-    composite_->set_bloom_strength(settings_.bloom_strength);
+    composite_->set_bloom_strength(settings_.bloom ? settings_.bloom_strength : 0.0f);
     if (deferred_) deferred_->set_threshold(settings_.threshold);
     if (forward_) forward_->set_threshold(settings_.threshold);
     if (transparent_) transparent_->set_threshold(settings_.threshold);
@@ -132,8 +139,10 @@ Status DeferredPipeline::build() {
     for (const auto& object : scene_.shadow_casters) LOOM_TRY(passes::register_object(*shadow_, object));
     for (const auto& object : scene_.masked_shadow_casters) LOOM_TRY(passes::register_object(*masked_shadow_, object));
     for (const auto& object : scene_.opaque) LOOM_TRY(passes::register_object(lit_pass, object));
-    for (const BlendedObject& blended_object : scene_.blended) {
-        LOOM_TRY(transparent_->register_object(blended_object.object, blended_object.bounds));
+    if (transparent_) {
+        for (const BlendedObject& blended_object : scene_.blended) {
+            LOOM_TRY(transparent_->register_object(blended_object.object, blended_object.bounds));
+        }
     }
     return {};
 }
@@ -202,8 +211,8 @@ Status DeferredPipeline::prepare(fg::Extent2D frame) {
     if (transparent_) transparent_->set_view(view);
     const uint32_t radius = settings_.blur_radius.value_or(
         std::clamp<uint32_t>(static_cast<uint32_t>(std::lround(frame.height / 24.0)), 1u, passes::kMaxBlurRadius));
-    LOOM_TRY(blur_h_->set_radius(radius));
-    LOOM_TRY(blur_v_->set_radius(radius));
+    if (blur_h_) LOOM_TRY(blur_h_->set_radius(radius));
+    if (blur_v_) LOOM_TRY(blur_v_->set_radius(radius));
     return {};
 }
 

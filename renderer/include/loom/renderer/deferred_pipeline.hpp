@@ -51,6 +51,11 @@ struct PipelineSettings {
     /// Light the objects as they are drawn (the forward pass, composed of the same
     /// "shadow-render" and "high-pass-render" parts) instead of the G-buffer and deferred passes.
     bool forward = false;
+    /// The blur passes (blur-h, blur-v) that make the bloom. Off, the graph has neither and the
+    /// composite adds no bloom (it reads the unblurred high pass, weighted 0).
+    bool bloom = true;
+    /// The transparent pass, where the scene has blended objects. Off, they are not drawn.
+    bool transparent = true;
     /// Ports ask for CopySrc and every pass copies its outputs for read-back (intermediates()).
     bool capture = true;
     uint32_t shadow_map_size = 2048;
@@ -138,12 +143,14 @@ public:
     /// The passes, in the order they are declared.
     [[nodiscard]] const std::vector<passes::ShaderPass*>& passes() const { return passes_; }
     [[nodiscard]] const passes::ShaderLibrary& library() const { return *library_; }
-    [[nodiscard]] uint32_t blur_radius() const { return blur_h_->radius(); }
+    /// Blur taps on each side; 0 without bloom (PipelineSettings::bloom off).
+    [[nodiscard]] uint32_t blur_radius() const { return blur_h_ ? blur_h_->radius() : 0; }
     /// The camera, light and shadow settings of a frame of size `frame`.
     [[nodiscard]] passes::SceneView view(fg::Extent2D frame) const;
     [[nodiscard]] const PipelineSettings& settings() const { return settings_; }
-    /// Sets the composite's bloom strength (for comparisons with and without bloom).
-    void set_bloom_strength(float strength) { composite_->set_bloom_strength(strength); }
+    /// Sets the composite's bloom strength (for comparisons with and without bloom); stays 0
+    /// without the blur passes (PipelineSettings::bloom off).
+    void set_bloom_strength(float strength) { composite_->set_bloom_strength(settings_.bloom ? strength : 0.0f); }
     [[nodiscard]] const PipelineScene& scene() const { return scene_; }
     /// The masked shadow pass; null when the scene has no masked shadow casters.
     [[nodiscard]] const renderer::MaskedShadowPass* masked_shadow() const { return masked_shadow_; }
