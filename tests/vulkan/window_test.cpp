@@ -10,7 +10,7 @@
 #include "loom/rhi/device.hpp"
 #include "loom_test/test_support.hpp"
 #include "vulkan_test_support.hpp"
-#include "x11_window.hpp"
+#include "loom_test/x11_window.hpp"
 
 namespace loom::test {
 namespace {
