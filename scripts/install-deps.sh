@@ -42,6 +42,8 @@ packages=(
   libgl1-mesa-dri libegl-mesa0 mesa-vulkan-drivers
   # maths, scenes, images, JSON
   libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
+  # Dear ImGui: the frame overlay of the windowed samples (samples/overlay), drawn through loom's RHI
+  libimgui-dev
   # zlib: loom-inspect embeds its input in the page compressed (samples/inspect)
   zlib1g-dev
   # tests and benchmarks

@@ -4,6 +4,7 @@
 // Figures 3-7), the plan as JSON and DOT, and prints what the plan and the device used. The
 // scene is the built-in procedural one or a glTF file (--scene FILE).
 #include <algorithm>
+#include <chrono>
 #include <cinttypes>
 #include <cstdint>
 #include <cstdio>
@@ -24,6 +25,7 @@
 #include "loom/rhi/image.hpp"
 #include "loom/sample_common/options.hpp"
 #include "inspect_input.hpp"
+#include "deferred_controls.hpp"
 #include "procedural_scene.hpp"
 #include "soak.hpp"
 #include "soak_plot.hpp"
@@ -53,6 +55,10 @@ struct Options {
     uint32_t rebuild_every = 10;
     /// --inspect FILE: the inspector input of the last frame (headless); empty: none.
     std::filesystem::path inspect;
+    /// --overlay: the frame overlay shown from the first frame (--window; F1 toggles it).
+    bool overlay = false;
+    /// --screenshot FILE: the back buffer of the last frame as a PNG (--window); empty: none.
+    std::filesystem::path screenshot;
 };
 
 const char* kUsage =
@@ -77,7 +83,10 @@ std::string extra_help() {
            "                        fails unless the live GPU objects repeat exactly once warmed up\n"
            "                        (docs/soak.md); N must exceed two periods (400 frames by default)\n"
            "  --inspect FILE        also write the inspector input of the last frame (plan, barriers, timings,\n"
-           "                        allocations, every allocator's memory) for loom-inspect (docs/inspector.md)\n";
+           "                        allocations, every allocator's memory) for loom-inspect (docs/inspector.md)\n"
+           "  --overlay             with --window: show the frame overlay from the start (F1 shows and hides it:\n"
+           "                        passes, GPU/CPU times, memory, allocator and pass switches that re-plan)\n"
+           "  --screenshot FILE     with --window: write the last frame's back buffer (overlay included) as a PNG\n";
 }
 
 loom::Result<Options> parse(int argc, char** argv) {
@@ -134,6 +143,13 @@ loom::Result<Options> parse(int argc, char** argv) {
             if (!v) return v.take_error();
             if (v->empty()) return loom::make_error(loom::ErrorCode::InvalidArgument, "--inspect needs a file");
             options.inspect = *v;
+        } else if (name == "--overlay") {
+            options.overlay = true;
+        } else if (name == "--screenshot") {
+            auto v = take();
+            if (!v) return v.take_error();
+            if (v->empty()) return loom::make_error(loom::ErrorCode::InvalidArgument, "--screenshot needs a file");
+            options.screenshot = *v;
         } else if (name == "--scene") {
             auto v = take();
             if (!v) return v.take_error();
@@ -154,6 +170,13 @@ loom::Result<Options> parse(int argc, char** argv) {
     }
     if (!options.inspect.empty() && (options.common.window || options.soak != 0)) {
         return loom::make_error(loom::ErrorCode::InvalidArgument, "--inspect writes the headless frame's input (leave out --window and --soak)");
+    }
+    if ((options.overlay || !options.screenshot.empty()) && !options.common.window) {
+        return loom::make_error(loom::ErrorCode::InvalidArgument,
+                                std::string(options.overlay ? "--overlay" : "--screenshot") + " needs --window");
+    }
+    if (!options.screenshot.empty() && options.frames == 0) {
+        return loom::make_error(loom::ErrorCode::InvalidArgument, "--screenshot needs a last frame (--frames N, not 0)");
     }
     if (options.camera && options.scene.empty()) {
         return loom::make_error(loom::ErrorCode::InvalidArgument, "--camera needs a glTF scene (--scene FILE)");
@@ -335,18 +358,45 @@ int run_window(const Options& options) {
     std::string scene_line;
     auto pipeline = make_pipeline(dev, options, settings, scene_line);
     if (!pipeline) return fail(pipeline.error());
+    deferred::DeferredFrameControls controls(**pipeline);
+    auto live = overlay::LiveOverlay::create(dev, controls, desc->format);
+    if (!live) return fail(live.error());
+    (*live)->overlay().set_visible(options.overlay);
     uint64_t frames = 0;
+    using Clock = std::chrono::steady_clock;
+    Clock::time_point last = Clock::now();
+    double frame_ms = 0.0;
     while (dev.poll_window()) {
-        rhi::CommandList& commands = dev.begin_frame();
         const rhi::Extent3D size = dev.window_size();
-        Status recorded = (*pipeline)->record(commands, dev.backbuffer(), {size.width, size.height});
+        const Clock::time_point now = Clock::now();
+        const double seconds = std::chrono::duration<double>(now - last).count();
+        last = now;
+        // Input first: a change re-plans before the frame is recorded.
+        auto updated = (*live)->update(dev.window_input(), size, seconds, frame_ms);
+        if (!updated) return fail(updated.error());
+        rhi::CommandList& commands = dev.begin_frame();
+        const rhi::TextureHandle backbuffer = dev.backbuffer();
+        const bool overlay = (*live)->overlay().visible();
+        Status recorded = (*pipeline)->record(commands, backbuffer, {size.width, size.height},
+                                              overlay ? rhi::ResourceState::RenderTarget : rhi::ResourceState::Present);
+        if (recorded && overlay) recorded = (*live)->record(commands, backbuffer);
+        const bool last_frame = options.frames != 0 && frames + 1 >= options.frames;
+        if (recorded && last_frame && !options.screenshot.empty()) {
+            auto image = dev.read_texture(backbuffer);
+            std::error_code ec;
+            if (options.screenshot.has_parent_path()) std::filesystem::create_directories(options.screenshot.parent_path(), ec);
+            recorded = image ? image_io::write_png(*image, options.screenshot) : Status(image.take_error());
+        }
         Status ended = dev.end_frame();
+        frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - now).count();
         if (!recorded) return fail(recorded.error());
         if (!ended) return fail(ended.error());
         if (options.frames != 0 && ++frames >= options.frames) break;
     }
     if (auto idle = dev.wait_idle(); !idle) return fail(idle.error());
     std::printf("%s", summary(**pipeline, (*pipeline)->executor(), dev, options, scene_line).c_str());
+    if ((*live)->replans() != 0) std::printf("overlay: re-planned %u time(s)\n", (*live)->replans());
+    if (!options.screenshot.empty()) std::printf("wrote the last frame to %s\n", options.screenshot.string().c_str());
     return EXIT_SUCCESS;
 }
 

@@ -372,10 +372,24 @@ Status EngineFrame::render(fg::Extent2D size) {
     return executor_.run_frame(graph_, plan_options(size));
 }
 
-Status EngineFrame::record(rhi::CommandList& commands, rhi::TextureHandle target, fg::Extent2D size) {
+Status EngineFrame::record(rhi::CommandList& commands, rhi::TextureHandle target, fg::Extent2D size,
+                           rhi::ResourceState final_state) {
     LOOM_TRY(prepare_frame(size));
-    executor_.import_texture(fg::port("tonemap", "final"), target, rhi::ResourceState::Present);
+    executor_.import_texture(fg::port("tonemap", "final"), target, final_state);
     return executor_.execute(graph_, commands, plan_options(size));
+}
+
+Status EngineFrame::replan(fg::AllocatorKind allocator, bool async_compute) {
+    if (allocator == fg::AllocatorKind::Paper && async_compute) {
+        return make_error(ErrorCode::InvalidArgument,
+                          "the paper allocator refuses async compute passes: switch async compute off first");
+    }
+    settings_.allocator = allocator;
+    if (async_compute == settings_.async_compute) return {};
+    // The passes' queues are fixed when they are added: a new graph, the same programs.
+    settings_.async_compute = async_compute;
+    graph_ = fg::FrameGraph();
+    return build_graph();
 }
 
 rhi::TextureHandle EngineFrame::final_texture() {

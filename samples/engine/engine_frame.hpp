@@ -79,8 +79,13 @@ public:
     /// end_frame. The picture is final_texture().
     Status render(fg::Extent2D size);
     /// Records the graph into a frame the caller began, drawing into `target` (a texture of
-    /// `size` in FrameSettings::target_format, e.g. the back buffer), left in Present.
-    Status record(rhi::CommandList& commands, rhi::TextureHandle target, fg::Extent2D size);
+    /// `size` in FrameSettings::target_format, e.g. the back buffer), left in `final_state`.
+    Status record(rhi::CommandList& commands, rhi::TextureHandle target, fg::Extent2D size,
+                  rhi::ResourceState final_state = rhi::ResourceState::Present);
+    /// Rebuilds the graph with another allocator and queue choice (the rest of the settings
+    /// stay); the next frame plans it. InvalidArgument, with the frame unchanged, for the paper
+    /// allocator with async compute on (it refuses async passes).
+    Status replan(fg::AllocatorKind allocator, bool async_compute);
 
     /// The final picture of the latest render() (its capture when capture is on).
     [[nodiscard]] rhi::TextureHandle final_texture();

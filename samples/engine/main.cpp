@@ -4,6 +4,7 @@
 // compute queue, forward+ shading with the sky, a bloom pyramid and tone mapping. Headless it
 // writes the picture, every intermediate (each mip level and layer), the plan as JSON and DOT
 // and a summary with the memory each allocator needs; with --window it shows the frame.
+#include <chrono>
 #include <cinttypes>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +21,7 @@
 #include "loom/image_io/image_io.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/sample_common/options.hpp"
+#include "engine_controls.hpp"
 #include "inspect_input.hpp"
 
 namespace {
@@ -39,6 +41,8 @@ struct Options {
     loom::engine::FrameSettings frame;
     /// --inspect FILE: the inspector input of the last frame (headless); empty: none.
     std::filesystem::path inspect;
+    /// --overlay: the frame overlay shown from the first frame (--window; F1 toggles it).
+    bool overlay = false;
 };
 
 const char* kUsage =
@@ -59,7 +63,9 @@ std::string extra_help() {
            "  --async on|off        SSAO on the async compute queue (default on; serial on one-queue devices)\n"
            "  --shadow-size N       texels per side of each shadow cascade (default 1024)\n"
            "  --inspect FILE        also write the inspector input of the last frame (plan, barriers, timings,\n"
-           "                        allocations, every allocator's memory) for loom-inspect (docs/inspector.md)\n";
+           "                        allocations, every allocator's memory) for loom-inspect (docs/inspector.md)\n"
+           "  --overlay             with --window: show the frame overlay from the start (F1 shows and hides it:\n"
+           "                        passes, GPU/CPU times, memory, allocator and async compute, which re-plan)\n";
 }
 
 loom::Result<uint64_t> number(const std::string& name, const std::string& text, uint64_t max) {
@@ -88,6 +94,10 @@ loom::Result<Options> parse(int argc, char** argv) {
     loom::samples::ArgumentReader args(options.common.rest);
     while (args.next()) {
         const std::string& name = args.name();
+        if (name == "--overlay") {
+            options.overlay = true;
+            continue;
+        }
         const bool known = name == "--scene" || name == "--lights" || name == "--frames" || name == "--allocator" ||
                            name == "--async" || name == "--shadow-size" || name == "--inspect";
         if (!known) return args.unknown();
@@ -120,6 +130,9 @@ loom::Result<Options> parse(int argc, char** argv) {
             if (!n) return n.take_error();
             options.frame.shadow_size = static_cast<uint32_t>(*n);
         }
+    }
+    if (options.overlay && !options.common.window) {
+        return loom::make_error(loom::ErrorCode::InvalidArgument, "--overlay needs --window");
     }
     if (!options.inspect.empty() && options.common.window) {
         return loom::make_error(loom::ErrorCode::InvalidArgument, "--inspect writes the headless frame's input (leave out --window)");
@@ -231,22 +244,42 @@ int run_window(Options options) {
     if (!scene) return fail(scene.error());
     auto frame = engine::EngineFrame::create(dev, *scene, options.frame);
     if (!frame) return fail(frame.error());
+    engine::EngineFrameControls controls(**frame);
+    auto live = overlay::LiveOverlay::create(dev, controls, desc->format);
+    if (!live) return fail(live.error());
+    (*live)->overlay().set_visible(options.overlay);
     uint64_t frames = 0;
     fg::Extent2D size{};
+    using Clock = std::chrono::steady_clock;
+    Clock::time_point last = Clock::now();
+    double frame_ms = 0.0;
     while (dev.poll_window()) {
-        rhi::CommandList& commands = dev.begin_frame();
         const rhi::Extent3D window = dev.window_size();
+        const Clock::time_point now = Clock::now();
+        const double seconds = std::chrono::duration<double>(now - last).count();
+        last = now;
+        // Input first: a change (F1 overlay) re-plans before the frame is recorded.
+        auto updated = (*live)->update(dev.window_input(), window, seconds, frame_ms);
+        if (!updated) return fail(updated.error());
+        rhi::CommandList& commands = dev.begin_frame();
+        const rhi::TextureHandle backbuffer = dev.backbuffer();
         size = {std::max(window.width, engine::kMinFrameSide), std::max(window.height, engine::kMinFrameSide)};
-        Status recorded = window.width < engine::kMinFrameSide || window.height < engine::kMinFrameSide
-                              ? Status{}  // a minimised or tiny window: nothing to draw this frame
-                              : (*frame)->record(commands, dev.backbuffer(), {window.width, window.height});
+        const bool drawn = window.width >= engine::kMinFrameSide && window.height >= engine::kMinFrameSide;
+        const bool overlay = drawn && (*live)->overlay().visible();
+        // A minimised or tiny window: nothing to draw this frame.
+        Status recorded = drawn ? (*frame)->record(commands, backbuffer, {window.width, window.height},
+                                                   overlay ? rhi::ResourceState::RenderTarget : rhi::ResourceState::Present)
+                                : Status{};
+        if (recorded && overlay) recorded = (*live)->record(commands, backbuffer);
         Status ended = dev.end_frame();
+        frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - now).count();
         if (!recorded) return fail(recorded.error());
         if (!ended) return fail(ended.error());
         if (options.frames != 0 && ++frames >= options.frames) break;
     }
     if (auto idle = dev.wait_idle(); !idle) return fail(idle.error());
     if ((*frame)->executor().plan()) std::printf("%s", summary(**frame, dev, options, size).c_str());
+    if ((*live)->replans() != 0) std::printf("overlay: re-planned %u time(s)\n", (*live)->replans());
     return EXIT_SUCCESS;
 }
 
