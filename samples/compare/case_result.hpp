@@ -30,6 +30,9 @@ struct BackendRun {
     double milliseconds = 0.0;
     /// The final picture, relative to the output directory (empty when not written).
     std::string image_file;
+    /// The inspector page of the frame (its plan, barriers, timings and what the device created;
+    /// docs/inspector.md), relative to the output directory (empty when not written).
+    std::string inspector_file;
 
     [[nodiscard]] bool rendered() const { return error.empty() && plan.has_value(); }
 };

@@ -5,11 +5,12 @@
 #include <cmath>
 #include <utility>
 
+#include "inspect_page.hpp"
+#include "log_router.hpp"
+#include "loom/gltf/gltf.hpp"
 #include "loom/image_io/image_io.hpp"
 #include "loom/renderer/gltf_scene.hpp"
 #include "loom/rhi/log.hpp"
-#include "loom/gltf/gltf.hpp"
-#include "log_router.hpp"
 
 namespace loom::compare {
 namespace {
@@ -41,6 +42,29 @@ ImageMetrics metrics_of(const rhi::ImageComparison& comparison) {
 
 /// One line of an error message (the importer's are one line already; a backend's may not be).
 std::string first_line(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+/// The inspector page of `pipeline`'s latest frame on `device`, as loom-deferred --inspect and
+/// loom-inspect make it, to cases/<id>/<backend>.inspector.html beside the case's pictures; named
+/// in `run` when written, a failure of `result` naming the file when not.
+void write_inspector_page(const std::filesystem::path& out, CaseResult& result, BackendRun& run,
+                          renderer::DeferredPipeline& pipeline, const rhi::Device& device) {
+    const std::string backend(rhi::backend_name(run.backend));
+    const std::filesystem::path file = std::filesystem::path("cases") / result.id / (backend + ".inspector.html");
+    std::error_code ignored;  // a directory that cannot be made is the page's Io error below
+    std::filesystem::create_directories((out / file).parent_path(), ignored);
+    // Compared on the options the frame was planned with, so the figures match the plan's.
+    const fg::PlanOptions planned = pipeline.executor().effective_options(pipeline.options());
+    const std::string source = "loom-compare on " + backend + ", " + device.capabilities().device_name;
+    const std::string title = result.scene + " — " + result.pipeline + " on " + backend;
+    if (Status written =
+            inspect::write_executor_page(out / file, pipeline.executor(), pipeline.graph(), planned, source, title);
+        !written) {
+        result.failures.push_back(backend + " inspector page " + file.generic_string() + ": " +
+                                  first_line(written.error().to_string()));
+        return;
+    }
+    run.inspector_file = file.generic_string();
+}
 
 }  // namespace
 
@@ -177,6 +201,9 @@ std::vector<CaseResult> CaseRunner::run(const SceneFile& file) {
             }
             if (!status) run.error = first_line(status.error().to_string());
             run.milliseconds += milliseconds_since(start);
+            // After the timing: the page is the report's, not the frame's.
+            if (options_.inspector_pages && run.plan)
+                write_inspector_page(options_.out, results[c], run, **pipeline, device);
         }
         // The pipelines are gone; what the scene's buffers and textures say on their way out
         // belongs to every case of this backend.

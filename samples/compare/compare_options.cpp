@@ -47,6 +47,8 @@ Result<Options> parse_options(std::span<const std::string> args) {
             options.json = true;
         } else if (name == "--expect-errors") {
             options.expect_errors = true;
+        } else if (name == "--no-inspect") {
+            options.inspector_pages = false;
         } else if (name == "--pipeline") {
             auto v = take();
             if (!v) return v.take_error();
@@ -101,11 +103,12 @@ Result<Options> parse_options(std::span<const std::string> args) {
 std::string usage() {
     return "usage: loom-compare [--pipeline deferred|forward|all] [--scenes DIR_OR_FILE...] [--size WxH]\n"
            "                    [--out DIR] [--threshold N] [--max-differing F] [--json] [--expect-errors]\n"
+           "                    [--no-inspect]\n"
            "Renders every glTF scene through each pipeline on every compiled-in backend (headless), and\n"
            "compares the backends: the plans (hash, textures, bytes, and what each backend created) and\n"
            "the final pictures (largest channel difference, pixels above the threshold, PSNR). Writes\n"
-           "DIR/report.html (with each case's pictures and difference heat map beside it) and\n"
-           "DIR/report.json; exits 1 when any case fails, 2 on a usage error.\n\n"
+           "DIR/report.html (with each case's pictures, difference heat map and inspector pages beside\n"
+           "it) and DIR/report.json; exits 1 when any case fails, 2 on a usage error.\n\n"
            "  --pipeline NAME     deferred, forward or all (default all)\n"
            "  --scenes PATH...    .gltf/.glb files and directories searched recursively (directories named\n"
            "                      'invalid' are skipped unless given themselves); default: the test data\n"
@@ -117,6 +120,8 @@ std::string usage() {
            "  --json              print the results as one JSON object on stdout\n"
            "  --expect-errors     every scene must fail to load with a one-line error naming the file\n"
            "                      (the check for invalid files); nothing is rendered\n"
+           "  --no-inspect        write no inspector page (the plan, barriers, timings and memory of each\n"
+           "                      case's frame on each backend, as loom-inspect shows them)\n"
            "  --help              this text\n";
 }
 

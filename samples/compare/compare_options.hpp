@@ -32,6 +32,8 @@ struct Options {
     bool json = false;
     /// Every scene must fail to load with a one-line error (the invalid-file check).
     bool expect_errors = false;
+    /// Write an inspector page (docs/inspector.md) of each case's frame on each backend.
+    bool inspector_pages = true;
     bool help = false;
 };
 

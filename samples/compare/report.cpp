@@ -45,6 +45,7 @@ json run_json(const BackendRun& run) {
         out["created"] = nullptr;
     }
     out["image"] = run.image_file.empty() ? json(nullptr) : json(run.image_file);
+    out["inspector"] = run.inspector_file.empty() ? json(nullptr) : json(run.inspector_file);
     return out;
 }
 
@@ -104,6 +105,25 @@ std::string plan_line(const CaseResult& c) {
     }
     line.pop_back();
     return line;
+}
+
+/// Links to the case's inspector pages, one per backend that has one, named by the backend
+/// (empty when none was written).
+std::string inspector_links(const CaseResult& c) {
+    std::string links;
+    for (const BackendRun& run : c.runs) {
+        if (run.inspector_file.empty()) continue;
+        const std::string_view backend = rhi::backend_name(run.backend);
+        links += links.empty() ? "" : " ";
+        links += "<a class=\"inspector\" data-backend=\"";
+        links += backend;
+        links += "\" href=\"";
+        links += escape_html(run.inspector_file);
+        links += "\">";
+        links += backend;
+        links += "</a>";
+    }
+    return links;
 }
 
 constexpr const char* kStyle = R"(
@@ -173,7 +193,7 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
 
     const std::vector<const CaseResult*> order = report_order(cases);
     html << "<table>\n<tr><th>result</th><th>scene</th><th>pipeline</th><th>max diff</th><th>pixels above</th>"
-            "<th>PSNR</th><th>first failure / error</th></tr>\n";
+            "<th>PSNR</th><th>inspector</th><th>first failure / error</th></tr>\n";
     for (const CaseResult* c : order) {
         html << "<tr><td class=\"" << (c->passed() ? "pass\">pass" : "fail\">FAIL") << "</td><td><a href=\"#"
              << escape_html(c->id) << "\">" << escape_html(c->scene) << "</a></td><td>" << escape_html(c->pipeline) << "</td>";
@@ -183,6 +203,7 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
         } else {
             html << "<td></td><td></td><td></td>";
         }
+        html << "<td>" << inspector_links(*c) << "</td>";
         const std::string note = !c->failures.empty() ? c->failures.front() : c->load_error;
         html << "<td><code>" << escape_html(note) << "</code></td></tr>\n";
     }
@@ -236,6 +257,9 @@ std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run
                  << psnr_text(*c->against_deferred) << ".</p>\n";
         }
         if (!c->runs.empty()) html << "<p>" << escape_html(plan_line(*c)) << "</p>\n";
+        if (const std::string links = inspector_links(*c); !links.empty()) {
+            html << "<p>Inspector (the plan, barriers, timings and memory of the frame): " << links << "</p>\n";
+        }
         std::vector<std::string> notes = c->warnings;
         for (const BackendRun& backend_run : c->runs) {
             for (const std::string& message : backend_run.messages) {

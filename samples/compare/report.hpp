@@ -1,6 +1,6 @@
 #pragma once
 // loom-compare's reports: one JSON object (--json, and report.json) and a self-contained HTML
-// page (report.html, the pictures beside it), failures first.
+// page (report.html, the pictures and inspector pages beside it), failures first.
 
 #include <string>
 #include <vector>
@@ -23,7 +23,8 @@ struct RunInfo {
 std::string report_json(const std::vector<CaseResult>& cases, const RunInfo& run);
 
 /// The HTML page: the run's summary, a table of every case, then per case (failures first) the
-/// backends' pictures, the difference heat map, the metrics, the plans and the failures. A click
+/// backends' pictures, the difference heat map, the metrics, the plans and the failures; the
+/// table and each case link the case's inspector pages (BackendRun::inspector_file). A click
 /// on a picture opens the viewer (report_viewer.hpp): the case's pictures one over the other, to
 /// flip between and zoom into pixel by pixel.
 std::string report_html(const std::vector<CaseResult>& cases, const RunInfo& run);

@@ -249,7 +249,11 @@ Result<std::pair<json, std::string>> member_of(const std::filesystem::path& path
 Result<json> read_input(const std::filesystem::path& path, const GraphPlanning& planning) {
     auto text = read_text(path);
     if (!text) return text.take_error();
-    json document = json::parse(*text, nullptr, false);
+    return parse_input(*text, path, planning);
+}
+
+Result<json> parse_input(const std::string& text, const std::filesystem::path& path, const GraphPlanning& planning) {
+    json document = json::parse(text, nullptr, false);
     if (document.is_discarded()) return make_error(ErrorCode::Parse, path.string() + ": not valid JSON");
 
     if (document.is_object() && document.contains("format")) {
@@ -271,7 +275,7 @@ Result<json> read_input(const std::filesystem::path& path, const GraphPlanning& 
                     {"plan", std::move(document)}};
     }
 
-    auto file = fg::parse_graph_json(*text, path.string());
+    auto file = fg::parse_graph_json(text, path.string());
     if (!file) return file.take_error();
     fg::PlanOptions options = planning.options;
     options.frame = planning.frame.value_or(file->frame);

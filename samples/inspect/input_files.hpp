@@ -32,6 +32,11 @@ struct GraphPlanning {
 /// file's own errors, located in the file as loom-plan reports them.
 Result<nlohmann::json> read_input(const std::filesystem::path& path, const GraphPlanning& planning);
 
+/// read_input of `text` as the contents of `path` (which is not read, only named in errors): for
+/// an input made in memory (write_input's text), checked as loom-inspect checks a file.
+Result<nlohmann::json> parse_input(const std::string& text, const std::filesystem::path& path,
+                                   const GraphPlanning& planning);
+
 /// Adds the per-pass timings of `path` to `input`: a file holding {"timings": [...]} (an
 /// inspector input too) or the array alone, each entry {"pass", "cpu_ms", "gpu_ms" (or null)}.
 /// Errors name the file and entry, also for a pass the plan does not have.

@@ -168,11 +168,10 @@ Status write_input_file(const std::filesystem::path& path, const fg::Plan& plan,
     return {};
 }
 
-Status write_executor_input(const std::filesystem::path& path, const fg::Executor& executor, const fg::FrameGraph& graph,
-                            const fg::PlanOptions& options, std::string source) {
-    const auto plan = executor.plan();
-    if (!plan || !executor.schedule()) {
-        return make_error(ErrorCode::InvalidState, "no frame was executed: nothing to write to " + path.string());
+Result<RunRecord> executor_run_record(const fg::Executor& executor, const fg::FrameGraph& graph,
+                                      const fg::PlanOptions& options, std::string source) {
+    if (!executor.plan() || !executor.schedule()) {
+        return make_error(ErrorCode::InvalidState, "no frame was executed: no inspector input to write");
     }
     RunRecord run;
     run.source = std::move(source);
@@ -182,7 +181,14 @@ Status write_executor_input(const std::filesystem::path& path, const fg::Executo
     auto allocators = compare_allocators(graph, options);
     if (!allocators) return allocators.take_error();
     run.allocators = std::move(*allocators);
-    return write_input_file(path, *plan, run);
+    return run;
+}
+
+Status write_executor_input(const std::filesystem::path& path, const fg::Executor& executor,
+                            const fg::FrameGraph& graph, const fg::PlanOptions& options, std::string source) {
+    auto run = executor_run_record(executor, graph, options, std::move(source));
+    if (!run) return run.take_error();
+    return write_input_file(path, *executor.plan(), *run);
 }
 
 }  // namespace loom::inspect

@@ -55,10 +55,16 @@ void write_input(std::ostream& out, const fg::Plan& plan, const RunRecord& run);
 /// write_input into the file `path`; Io error naming the file when it cannot be written.
 Status write_input_file(const std::filesystem::path& path, const fg::Plan& plan, const RunRecord& run);
 
-/// The inspector input of `executor`'s latest frame into `path`: its plan, schedule, per-pass
+/// What `executor`'s latest frame adds to its plan (executor.plan()): its schedule, per-pass
 /// timings and what it created, with every allocator's figures for `graph` planned with
-/// `options` (the options the frame was planned with; the allocator is replaced). InvalidState
-/// before the first frame; planning errors of the comparison; Io naming the file.
+/// `options` (the options the frame was planned with; the allocator is replaced). The record
+/// points into the executor: valid until its next frame. InvalidState before the first frame;
+/// planning errors of the comparison.
+Result<RunRecord> executor_run_record(const fg::Executor& executor, const fg::FrameGraph& graph,
+                                      const fg::PlanOptions& options, std::string source);
+
+/// The inspector input of `executor`'s latest frame (its plan and executor_run_record) into
+/// `path`. Errors: executor_run_record's; Io naming the file.
 Status write_executor_input(const std::filesystem::path& path, const fg::Executor& executor, const fg::FrameGraph& graph,
                             const fg::PlanOptions& options, std::string source);
 

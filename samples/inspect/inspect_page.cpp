@@ -3,13 +3,17 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <fstream>
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #define ZLIB_CONST
 #include <zlib.h>
 
+#include "input_files.hpp"
+#include "inspect_input.hpp"
 #include "loom/sample_common/html.hpp"
 
 namespace loom::inspect {
@@ -94,6 +98,34 @@ void write_page(std::ostream& out, const nlohmann::json& input, std::string_view
         at = found + marker.size();
     }
     out << page.substr(at);
+}
+
+Status write_page_file(const std::filesystem::path& path, const nlohmann::json& input, std::string_view title) {
+    std::ofstream out(path, std::ios::binary);
+    if (!out) return make_error(ErrorCode::Io, "cannot write " + path.string());
+    std::string why;
+    try {
+        write_page(out, input, title);
+    } catch (const std::exception& e) {
+        why = std::string(": ") + e.what();
+    }
+    out.close();
+    if (out && why.empty()) return {};
+    // The file was opened (made or emptied) here: no half page is left to be taken for one.
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+    return make_error(ErrorCode::Io, "cannot write " + path.string() + why);
+}
+
+Status write_executor_page(const std::filesystem::path& path, const fg::Executor& executor, const fg::FrameGraph& graph,
+                           const fg::PlanOptions& options, std::string source, std::string_view title) {
+    auto run = executor_run_record(executor, graph, options, std::move(source));
+    if (!run) return run.take_error();
+    std::ostringstream text;
+    write_input(text, *executor.plan(), *run);
+    auto input = parse_input(std::move(text).str(), path, {});
+    if (!input) return input.take_error();
+    return write_page_file(path, *input, title);
 }
 
 }  // namespace loom::inspect

@@ -9,7 +9,6 @@
 // which is planned here with the planning options. Exit status 0 on success, 1 for a bad input
 // file, 2 for bad arguments; errors are one line on stderr.
 
-#include <fstream>
 #include <iostream>
 #include <optional>
 #include <span>
@@ -131,10 +130,9 @@ int main(int argc, char** argv) {
         }
     }
     const std::string title = args.title.empty() ? std::filesystem::path(args.input).filename().string() : args.title;
-    std::ofstream out(args.out, std::ios::binary);
-    if (out) loom::inspect::write_page(out, *input, title);
-    out.close();
-    if (!out) return fail(1, "Io: cannot write " + args.out);
+    if (auto written = loom::inspect::write_page_file(args.out, *input, title); !written) {
+        return fail(1, written.error().to_string());
+    }
     std::cout << "loom-inspect: wrote " << args.out << "\n";
     return 0;
 }

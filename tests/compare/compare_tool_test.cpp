@@ -24,9 +24,11 @@ TEST(CompareOptions, DefaultsAndEveryOption) {
     EXPECT_TRUE(defaults->scenes.empty());
     EXPECT_EQ(defaults->threshold, 1.0);
     EXPECT_FALSE(defaults->json);
+    EXPECT_TRUE(defaults->inspector_pages);
 
-    auto options = parse({"--pipeline", "forward", "--scenes", "a.gltf", "dir", "--size=256x144", "--out", "o",
-                          "--threshold", "2.5", "--max-differing", "0.001", "--json", "--expect-errors"});
+    auto options =
+        parse({"--pipeline", "forward", "--scenes", "a.gltf", "dir", "--size=256x144", "--out", "o", "--threshold",
+               "2.5", "--max-differing", "0.001", "--json", "--expect-errors", "--no-inspect"});
     ASSERT_TRUE(options.ok()) << options.error().to_string();
     EXPECT_EQ(options->pipelines, std::vector<PipelineKind>{PipelineKind::Forward});
     EXPECT_EQ(options->scenes, (std::vector<std::filesystem::path>{"a.gltf", "dir"}));
@@ -37,6 +39,7 @@ TEST(CompareOptions, DefaultsAndEveryOption) {
     EXPECT_EQ(options->max_differing, 0.001);
     EXPECT_TRUE(options->json);
     EXPECT_TRUE(options->expect_errors);
+    EXPECT_FALSE(options->inspector_pages);
     EXPECT_EQ(parse({"--pipeline", "deferred"})->pipelines, std::vector<PipelineKind>{PipelineKind::Deferred});
     EXPECT_EQ(parse({"--pipeline", "all"})->pipelines.size(), 2u);
 }
@@ -109,6 +112,8 @@ std::vector<CaseResult> two_cases() {
     passed.pipeline = "deferred";
     passed.id = "models_Box.gltf.deferred";
     passed.runs = {BackendRun{rhi::Backend::OpenGL}, BackendRun{rhi::Backend::Vulkan}};
+    passed.runs[0].inspector_file = "cases/models_Box.gltf.deferred/gl.inspector.html";
+    passed.runs[1].inspector_file = "cases/models_Box.gltf.deferred/vulkan.inspector.html";
     passed.image = ImageMetrics{0.0, 0, 100, std::numeric_limits<double>::infinity(), "cases/x/diff.png"};
     CaseResult failed = passed;
     failed.scene = "models/<Duck>.gltf";
@@ -116,6 +121,9 @@ std::vector<CaseResult> two_cases() {
     failed.pipeline = "forward";
     failed.image = ImageMetrics{12.0, 3, 100, 41.5, "cases/y/diff.png"};
     failed.failures = {"pictures differ: 3 pixels"};
+    // GL's page was written, Vulkan's was not (a failure of its own).
+    failed.runs[0].inspector_file = "cases/models_Duck.gltf.forward/gl.inspector.html";
+    failed.runs[1].inspector_file.clear();
     return {passed, failed};
 }
 
@@ -136,6 +144,9 @@ TEST(CompareReport, JsonHasTheCasesAndTheSummary) {
     EXPECT_EQ(json["cases"][1]["failures"][0], "pictures differ: 3 pixels");
     EXPECT_EQ(json["cases"][1]["image"]["psnr"], 41.5);
     EXPECT_EQ(json["cases"][1]["backends"][1]["backend"], "vulkan");
+    EXPECT_EQ(json["cases"][0]["backends"][1]["inspector"], "cases/models_Box.gltf.deferred/vulkan.inspector.html");
+    EXPECT_EQ(json["cases"][1]["backends"][0]["inspector"], "cases/models_Duck.gltf.forward/gl.inspector.html");
+    EXPECT_TRUE(json["cases"][1]["backends"][1]["inspector"].is_null()) << "no page written: none named";
 }
 
 TEST(CompareReport, HtmlShowsFailuresFirstWithTheirPictures) {
@@ -157,6 +168,41 @@ TEST(CompareReport, HtmlShowsFailuresFirstWithTheirPictures) {
     EXPECT_EQ(html.find("<link"), std::string::npos);
     EXPECT_EQ(html.find("http"), std::string::npos);
     EXPECT_NE(html.find("id=\"viewer\""), std::string::npos);
+}
+
+// Each written page is linked twice, from the table (its row) and from its case, named by its
+// backend; a backend without a page has no link.
+TEST(CompareReport, HtmlLinksEveryInspectorPageFromTheTableAndItsCase) {
+    const std::vector<CaseResult> cases = two_cases();
+    Options options;
+    const RunInfo run{&options, {rhi::Backend::OpenGL, rhi::Backend::Vulkan}, summarize(cases, 1.0)};
+    const std::string html = report_html(cases, run);
+    const auto count = [&](const std::string& text) {
+        std::size_t n = 0;
+        for (std::size_t at = html.find(text); at != std::string::npos; at = html.find(text, at + 1)) ++n;
+        return n;
+    };
+    for (const CaseResult& c : cases) {
+        for (const BackendRun& backend_run : c.runs) {
+            const std::string backend(rhi::backend_name(backend_run.backend));
+            if (backend_run.inspector_file.empty()) continue;
+            EXPECT_EQ(count("<a class=\"inspector\" data-backend=\"" + backend + "\" href=\"" +
+                            backend_run.inspector_file + "\">" + backend + "</a>"),
+                      2u)
+                << backend_run.inspector_file;
+        }
+    }
+    EXPECT_EQ(count("class=\"inspector\""), 6u) << "three pages, two links each";
+    // The table's link comes in the case's row, before the case's section.
+    const auto row = html.find("<tr><td class=\"fail\">FAIL</td><td><a href=\"#models_Duck.gltf.forward\">");
+    ASSERT_NE(row, std::string::npos);
+    const auto row_end = html.find("</tr>", row);
+    EXPECT_NE(html.substr(row, row_end - row).find("cases/models_Duck.gltf.forward/gl.inspector.html"),
+              std::string::npos);
+    const auto section = html.find("id=\"models_Duck.gltf.forward\"");
+    const auto next_section = html.find("id=\"models_Box.gltf.deferred\"");
+    EXPECT_NE(html.substr(section, next_section - section).find("cases/models_Duck.gltf.forward/gl.inspector.html"),
+              std::string::npos);
 }
 
 }  // namespace

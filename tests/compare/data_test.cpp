@@ -1,36 +1,32 @@
 // The tools on the real test data (LOOM_DATA_DIR/gltf: glTF sample models and invalid files
 // written by others), as CI runs them: loom-compare over every valid model through both
 // pipelines on every compiled-in backend, loom-compare --expect-errors over every invalid file,
-// and loom-deferred --scene on models. Skipped with a message when the data is missing, failed
+// loom-compare's inspector pages (read back, and one opened in headless Chromium), and
+// loom-deferred --scene on models. Skipped with a message when the data is missing, failed
 // when CI=true.
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <sys/wait.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "inspect_test_support.hpp"
 #include "loom/image_io/image_io.hpp"
 #include "loom/rhi/image.hpp"
+#include "loom_test/browser.hpp"
 #include "loom_test/render_fixture.hpp"
 #include "loom_test/test_support.hpp"
 
 namespace loom::test {
 namespace {
-
-std::string read_file(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 /// Runs `exe` with `arguments`, stdout to `out`, stderr to `err`; returns the exit status.
 int run(const char* exe, const std::string& arguments, const std::filesystem::path& out, const std::filesystem::path& err) {
@@ -71,6 +67,7 @@ TEST(CompareOnData, EveryValidModelRendersAlikeOnEveryBackendThroughBothPipeline
     const std::set<std::string> expected = scene_files(data / "gltf", "invalid");
     ASSERT_GE(expected.size(), 10u);
     const std::size_t backends = backends_under_test().size();
+    const std::string html = read_file(dir / "report.html");
     EXPECT_EQ(json["summary"]["cases"], expected.size() * 2);
     EXPECT_EQ(json["summary"]["failed"], 0) << log;
     std::set<std::string> seen;
@@ -82,6 +79,10 @@ TEST(CompareOnData, EveryValidModelRendersAlikeOnEveryBackendThroughBothPipeline
             EXPECT_TRUE(run["rendered"].get<bool>()) << c["scene"] << " " << run["backend"];
             EXPECT_TRUE(run["messages"].empty()) << c["scene"] << " " << run["backend"] << ": " << run["messages"].dump();
             EXPECT_TRUE(std::filesystem::exists(dir / run["image"].get<std::string>()));
+            // Its inspector page, linked from the report (what a page holds: the tests below).
+            ASSERT_TRUE(run["inspector"].is_string()) << c["scene"] << " " << run["backend"];
+            EXPECT_TRUE(std::filesystem::exists(dir / run["inspector"].get<std::string>()));
+            EXPECT_NE(html.find("href=\"" + run["inspector"].get<std::string>() + "\""), std::string::npos);
         }
         if (backends == 2) {
             EXPECT_EQ(c["backends"][0]["plan"]["hash"], c["backends"][1]["plan"]["hash"]) << c["scene"];
@@ -123,7 +124,7 @@ TEST(CompareOnData, EveryValidModelRendersAlikeOnEveryBackendThroughBothPipeline
     std::set<std::string> canonical_seen;
     for (const std::string& file : seen) canonical_seen.insert(std::filesystem::path(file).lexically_normal().string());
     EXPECT_EQ(canonical_seen, canonical_expected);
-    EXPECT_NE(read_file(dir / "report.html").find("<img src=\"cases/"), std::string::npos);
+    EXPECT_NE(html.find("<img src=\"cases/"), std::string::npos);
     EXPECT_TRUE(std::filesystem::exists(dir / "report.json"));
 }
 
@@ -165,6 +166,164 @@ TEST(CompareOnData, AValidModelGivenAsInvalidFailsTheRun) {
     ASSERT_FALSE(json.is_discarded());
     EXPECT_EQ(json["summary"]["failed"], 1);
     EXPECT_NE(json["cases"][0]["failures"][0].get<std::string>().find("loaded without an error"), std::string::npos);
+}
+
+/// loom-compare on `scene` with `arguments` into `dir` (emptied first unless `keep`): its
+/// exit status and its report.json (null when stdout is not JSON; the log is in dir/stderr.txt).
+std::pair<int, nlohmann::json> run_compare(const std::filesystem::path& dir, const std::filesystem::path& scene,
+                                           const std::string& arguments, bool keep = false) {
+    if (!keep) std::filesystem::remove_all(dir);
+    const int status =
+        run(LOOM_COMPARE_EXE, "--scenes \"" + scene.string() + "\" --json --out \"" + dir.string() + "\" " + arguments,
+            dir / "stdout.json", dir / "stderr.txt");
+    return {status, nlohmann::json::parse(read_file(dir / "stdout.json"), nullptr, false)};
+}
+
+/// The files under `dir` whose names end in `suffix`, relative to `dir` ('/'-separated).
+std::set<std::string> files_ending_in(const std::filesystem::path& dir, const std::string& suffix) {
+    std::set<std::string> files;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+        const std::string name = entry.path().filename().string();
+        if (entry.is_regular_file() && name.size() > suffix.size() && name.ends_with(suffix)) {
+            files.insert(entry.path().lexically_relative(dir).generic_string());
+        }
+    }
+    return files;
+}
+
+std::size_t occurrences(const std::string& text, const std::string& part) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+    return n;
+}
+
+// Every case's frame on every backend gets an inspector page, linked from the report's table and
+// from its case, named in report.json; the page embeds that frame's input as loom-deferred
+// --inspect writes it: the plan the backend ran (the report's hash), its schedule, a timing per
+// pass, what the backend created, every allocator's figures.
+TEST(CompareOnData, EachCaseAndBackendGetsALinkedInspectorPageOfItsFrame) {
+    LOOM_REQUIRE_DATA_DIR(data);
+    const std::filesystem::path dir = output_dir() / "compare" / "inspector_pages";
+    const auto [status, json] = run_compare(dir, data / "gltf" / "Box" / "glTF-Binary" / "Box.glb", "--size 64x36");
+    const std::string log = read_file(dir / "stderr.txt");
+    EXPECT_EQ(status, 0) << log;
+    ASSERT_FALSE(json.is_discarded()) << log;
+    ASSERT_EQ(json["cases"].size(), 2u) << "deferred and forward";
+    const std::string html = read_file(dir / "report.html");
+    std::set<std::string> named;
+    for (const auto& c : json["cases"]) {
+        ASSERT_EQ(c["backends"].size(), backends_under_test().size());
+        for (const auto& run : c["backends"]) {
+            const std::string backend = run["backend"].get<std::string>();
+            SCOPED_TRACE(c["id"].get<std::string>() + " on " + backend);
+            ASSERT_TRUE(run["inspector"].is_string());
+            const std::string file = run["inspector"].get<std::string>();
+            EXPECT_EQ(file, "cases/" + c["id"].get<std::string>() + "/" + backend + ".inspector.html");
+            named.insert(file);
+            EXPECT_EQ(occurrences(html, "href=\"" + file + "\""), 2u) << "linked from the table and the case";
+
+            const std::string page = read_file(dir / file);
+            ASSERT_FALSE(page.empty());
+            EXPECT_NE(page.find("<title>loom inspector: Box.glb — " + c["pipeline"].get<std::string>() + " on " +
+                                backend + "</title>"),
+                      std::string::npos);
+            const nlohmann::json input = inspect_test::embedded_input(page);
+            ASSERT_TRUE(input.is_object());
+            EXPECT_EQ(input.at("format"), "loom-inspect-input");
+            EXPECT_EQ(input.at("source").get<std::string>().rfind("loom-compare on " + backend + ", ", 0), 0u)
+                << input.at("source");
+            const auto& plan = input.at("plan");
+            EXPECT_EQ(plan.at("hash"), run["plan"]["hash"]) << "the plan this backend ran";
+            const auto& passes = plan.at("passes");
+            EXPECT_EQ(passes.size(), run["plan"]["passes"].get<std::size_t>());
+            EXPECT_GE(passes.size(), 5u);
+            EXPECT_EQ(input.at("schedule").size(), passes.size());
+            ASSERT_EQ(input.at("timings").size(), passes.size());
+            for (std::size_t i = 0; i < passes.size(); ++i)
+                EXPECT_EQ(input.at("timings")[i].at("pass"), passes[i].at("name"));
+            EXPECT_EQ(input.at("allocations").at("textures"), run["created"]["textures"]);
+            EXPECT_EQ(input.at("allocations").at("texture_bytes"), run["created"]["bytes"]);
+            EXPECT_EQ(input.at("allocators").size(), 3u);
+        }
+    }
+    EXPECT_EQ(files_ending_in(dir, ".inspector.html"), named) << "a page for each case and backend, none besides";
+}
+
+TEST(CompareOnData, NoInspectWritesAndLinksNoPage) {
+    LOOM_REQUIRE_DATA_DIR(data);
+    const std::filesystem::path dir = output_dir() / "compare" / "no_inspect";
+    const auto [status, json] = run_compare(dir, data / "gltf" / "Box" / "glTF-Binary" / "Box.glb",
+                                            "--size 64x36 --pipeline deferred --no-inspect");
+    EXPECT_EQ(status, 0) << read_file(dir / "stderr.txt");
+    ASSERT_FALSE(json.is_discarded());
+    ASSERT_EQ(json["cases"].size(), 1u);
+    for (const auto& run : json["cases"][0]["backends"]) {
+        EXPECT_TRUE(run["rendered"].get<bool>());
+        EXPECT_TRUE(run["inspector"].is_null()) << run["backend"];
+    }
+    EXPECT_TRUE(files_ending_in(dir, ".inspector.html").empty());
+    EXPECT_EQ(read_file(dir / "report.html").find("class=\"inspector\""), std::string::npos);
+}
+
+// A page that cannot be written (a directory stands where it goes) fails its case with a message
+// naming the file; the run goes on, and the other backend's page is written and linked.
+TEST(CompareOnData, APageThatCannotBeWrittenFailsItsCaseNamingTheFile) {
+    LOOM_REQUIRE_DATA_DIR(data);
+    const std::filesystem::path dir = output_dir() / "compare" / "unwritable_page";
+    std::filesystem::remove_all(dir);
+    const std::string blocked = "cases/Box.glb.deferred/gl.inspector.html";
+    std::filesystem::create_directories(dir / blocked);
+    const auto [status, json] = run_compare(dir, data / "gltf" / "Box" / "glTF-Binary" / "Box.glb",
+                                            "--size 64x36 --pipeline deferred", /*keep=*/true);
+    const std::string log = read_file(dir / "stderr.txt");
+    EXPECT_EQ(status, 1) << log;
+    ASSERT_FALSE(json.is_discarded()) << log;
+    ASSERT_EQ(json["cases"].size(), 1u);
+    const auto& c = json["cases"][0];
+    EXPECT_EQ(c["passed"], false);
+    ASSERT_EQ(c["failures"].size(), 1u) << c["failures"].dump();
+    const std::string failure = c["failures"][0].get<std::string>();
+    EXPECT_EQ(failure.rfind("gl inspector page " + blocked + ": Io: cannot write ", 0), 0u) << failure;
+    EXPECT_NE(failure.find((dir / blocked).string()), std::string::npos) << failure;
+    EXPECT_TRUE(std::filesystem::is_directory(dir / blocked)) << "what stood there is left alone";
+    const std::string html = read_file(dir / "report.html");
+    for (const auto& run : c["backends"]) {
+        EXPECT_TRUE(run["rendered"].get<bool>()) << run["backend"];
+        if (run["backend"] == "gl") {
+            EXPECT_TRUE(run["inspector"].is_null());
+        } else {
+            ASSERT_TRUE(run["inspector"].is_string()) << run["backend"];
+            EXPECT_TRUE(std::filesystem::is_regular_file(dir / run["inspector"].get<std::string>()));
+        }
+    }
+    EXPECT_EQ(html.find("href=\"" + blocked + "\""), std::string::npos);
+}
+
+// A page loom-compare wrote, opened in headless Chromium: its script runs without an error and
+// lists the plan's passes in execution order.
+TEST(CompareOnData, AnInspectorPageOpensInChromiumWithTheCasesPasses) {
+    LOOM_REQUIRE_DATA_DIR(data);
+    LOOM_REQUIRE_CHROMIUM(chromium);
+    const std::filesystem::path dir = output_dir() / "compare" / "inspector_chromium";
+    const auto [status, json] =
+        run_compare(dir, data / "gltf" / "Box" / "glTF-Binary" / "Box.glb", "--size 64x36 --pipeline forward");
+    ASSERT_EQ(status, 0) << read_file(dir / "stderr.txt");
+    ASSERT_FALSE(json.is_discarded());
+    const auto& run = json["cases"][0]["backends"].back();
+    ASSERT_TRUE(run["inspector"].is_string());
+    const std::filesystem::path page = dir / run["inspector"].get<std::string>();
+    const nlohmann::json input = inspect_test::embedded_input(read_file(page));
+    ASSERT_TRUE(input.is_object());
+    std::vector<std::string> order;
+    for (const auto& pass : input.at("plan").at("order")) order.push_back(pass.get<std::string>());
+    ASSERT_FALSE(order.empty());
+
+    const PageDump dump = dump_dom(chromium, page, "", page.parent_path());
+    EXPECT_EQ(dump.status, 0) << dump.log;
+    EXPECT_EQ(attribute_of(dump.dom, "body", "data-status"), "ok") << from_element(dump.dom, "errors").substr(0, 2000);
+    EXPECT_EQ(attribute_of(dump.dom, "body", "data-errors"), "0");
+    const std::string_view passes = from_element(dump.dom, "pass-list");
+    EXPECT_EQ(attribute_values(passes.substr(0, passes.find("</ol>")), "data-pass"), order);
 }
 
 TEST(DeferredOnData, RendersAModelOnEveryBackendWithTheSamePlan) {

@@ -122,6 +122,20 @@ TEST(InspectTool, TimingsOfAPassThePlanLacksAreRefused) {
         << made.err;
 }
 
+// write_page_file, which loom-compare's pages go through too: a page that cannot be written is
+// an Io error naming the file, and what stood at its path is left alone.
+TEST(InspectTool, AnOutputThatCannotBeWrittenIsAnIoErrorNamingIt) {
+    const auto dir = test_dir();
+    for (const std::filesystem::path& out : {dir / "missing" / "page.html", dir / "taken.html"}) {
+        if (out.filename() == "taken.html") std::filesystem::create_directory(out);
+        const ToolRun made = run(LOOM_INSPECT_TOOL, graph("figure2.json") + " --out " + quoted(out));
+        EXPECT_EQ(made.status, 1) << out;
+        EXPECT_EQ(made.err, "loom-inspect: Io: cannot write " + out.string() + "\n");
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "missing"));
+    EXPECT_TRUE(std::filesystem::is_directory(dir / "taken.html"));
+}
+
 TEST(InspectTool, BadArgumentsAreArgumentErrors) {
     EXPECT_EQ(run(LOOM_INSPECT_TOOL, "").status, 2);
     EXPECT_EQ(run(LOOM_INSPECT_TOOL, graph("figure2.json") + " --bogus 1").status, 2);
