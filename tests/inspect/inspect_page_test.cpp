@@ -295,6 +295,72 @@ json big_graph(int passes) {
     return {{"passes", list}, {"connections", connections}, {"outputs", {"p" + std::to_string(passes - 1) + ".out"}}};
 }
 
+// Every graph loom-plan ships opens: the script finishes without an error and the lists hold
+// the plan's passes (culled ones last) and resources in order.
+TEST(InspectPage, EverySampleGraphOpensWithItsPassesAndResources) {
+    LOOM_REQUIRE_CHROMIUM(chromium);
+    const auto dir = test_dir();
+    std::vector<std::filesystem::path> graphs;
+    for (const auto& entry : std::filesystem::directory_iterator(LOOM_PLAN_GRAPHS)) {
+        if (entry.path().extension() == ".json") graphs.push_back(entry.path());
+    }
+    std::sort(graphs.begin(), graphs.end());
+    ASSERT_GE(graphs.size(), 10u);
+    for (const std::filesystem::path& file : graphs) {
+        SCOPED_TRACE(file.filename().string());
+        const ToolRun plan_json = run(LOOM_PLAN_TOOL, quoted(file) + " --json");
+        ASSERT_EQ(plan_json.status, 0) << plan_json.err;
+        const json plan = json::parse(plan_json.out);
+        const std::filesystem::path page = dir / (file.stem().string() + ".html");
+        const ToolRun made = run(LOOM_INSPECT_TOOL, quoted(file) + " --out " + quoted(page));
+        ASSERT_EQ(made.status, 0) << made.err;
+        const std::string dom = open_page(chromium, page, "");
+        // The passes that run, then the culled ones (shown faded).
+        std::vector<std::string> passes = names(plan.at("order"));
+        for (const std::string& culled : names(plan.at("culled"))) passes.push_back(culled);
+        EXPECT_EQ(attribute_values(list_of(dom, "pass-list"), "data-pass"), passes);
+        EXPECT_EQ(attribute_values(list_of(dom, "resource-list"), "data-resource"), names(plan.at("resources"), "name"));
+        EXPECT_EQ(attribute_values(from_element(dom, "overlap-check").substr(0, 200), "data-overlaps"),
+                  std::vector<std::string>{"0"});
+    }
+}
+
+// The frames the samples record with --inspect open with every pass, a timing row per pass and
+// the device's allocations.
+void check_sample_page(const std::string& chromium, const std::string& program, const std::string& arguments) {
+    const auto dir = test_dir();
+    const ToolRun rendered = run(program, "--backend gl --out " + quoted(dir / "out") + " --inspect " + quoted(dir / "in.json") + " " + arguments);
+    ASSERT_EQ(rendered.status, 0) << rendered.err;
+    const json input = json::parse(read_file(dir / "in.json"));
+    const ToolRun made = run(LOOM_INSPECT_TOOL, quoted(dir / "in.json") + " --out " + quoted(dir / "page.html"));
+    ASSERT_EQ(made.status, 0) << made.err;
+    const std::string dom = open_page(chromium, dir / "page.html", "");
+    const std::vector<std::string> passes = names(input.at("plan").at("order"));
+    EXPECT_EQ(attribute_values(list_of(dom, "pass-list"), "data-pass"), passes);
+    const std::string_view timings = from_element(dom, "timing-table");
+    EXPECT_EQ(attribute_values(timings.substr(0, timings.find("</table>")), "data-timing"), passes);
+    EXPECT_EQ(attribute_values(from_element(dom, "overlap-check").substr(0, 200), "data-overlaps"),
+              std::vector<std::string>{"0"});
+}
+
+TEST(InspectPage, TheDeferredSamplesFrameOpens) {
+#ifdef LOOM_DEFERRED_EXE
+    LOOM_REQUIRE_CHROMIUM(chromium);
+    check_sample_page(chromium, LOOM_DEFERRED_EXE, "--size 64x48");
+#else
+    GTEST_SKIP() << "loom-deferred is not built (LOOM_WITH_GLTF=OFF)";
+#endif
+}
+
+TEST(InspectPage, TheEngineSamplesFrameOpens) {
+#ifdef LOOM_ENGINE_EXE
+    LOOM_REQUIRE_CHROMIUM(chromium);
+    check_sample_page(chromium, LOOM_ENGINE_EXE, "--size 128x96 --shadow-size 256 --lights 32");
+#else
+    GTEST_SKIP() << "loom-engine is not built (LOOM_WITH_GLTF=OFF)";
+#endif
+}
+
 TEST(InspectPage, TenThousandPassesOpen) {
     LOOM_REQUIRE_CHROMIUM(chromium);
     const auto dir = test_dir();
