@@ -536,6 +536,18 @@ PlanOptions Executor::effective_options(PlanOptions options) const {
     return options;
 }
 
+Result<AllocatorKind> Executor::cheapest_allocator(const FrameGraph& graph, PlanOptions options) const {
+    options.memory_model = nullptr;
+    options.allocator = AllocatorKind::Interval;
+    auto interval = build_plan(graph, options);
+    if (!interval) return interval.take_error();
+    if (!impl_->device.capabilities().placed_resources) return AllocatorKind::Interval;
+    options.allocator = AllocatorKind::Heap;
+    auto heap = build_plan(graph, effective_options(options));
+    if (!heap) return heap.take_error();
+    return heap->summary.bytes < interval->summary.bytes ? AllocatorKind::Heap : AllocatorKind::Interval;
+}
+
 void Executor::import_texture(const PortRef& port, rhi::TextureHandle texture, rhi::ResourceState final_state) {
     impl_->bind(impl_->imports, port, texture, final_state);
 }

@@ -201,6 +201,7 @@ Status DeferredPipeline::prepare(fg::Extent2D frame) {
     }
     options_.frame = frame;
     options_.allocator = settings_.allocator;
+    options_.order = settings_.order;
 
     const passes::SceneView view = this->view(frame);
     shadow_->set_light_view_projection(view.shadow.light_view_projection);

@@ -44,7 +44,9 @@ int fail(const loom::Error& error) { return fail(error.to_string()); }
 struct Options {
     loom::samples::CommonOptions common;
     uint64_t frames = 1;
-    loom::fg::AllocatorKind allocator = loom::fg::AllocatorKind::Interval;
+    /// --allocator; none: the one that needs the fewest bytes on the device (choose_allocator).
+    std::optional<loom::fg::AllocatorKind> allocator;
+    loom::fg::PassOrder order = loom::fg::PassOrder::Declared;
     bool forward = false;
     /// A glTF file; empty: the built-in scene.
     std::filesystem::path scene;
@@ -71,9 +73,12 @@ const char* kUsage =
 
 std::string extra_help() {
     return "  --frames N            frames to render (default 1; with --window 0 runs until closed)\n"
-           "  --allocator NAME      paper, interval or heap (default interval, the same on every backend)\n"
+           "  --allocator NAME      paper, interval, heap or auto (the default: heap where the device places\n"
+           "                        resources and it needs fewer bytes, as on Vulkan; interval otherwise, as on GL)\n"
            "  --scene FILE|builtin  a glTF 2.0 file (.gltf, .glb), or the built-in procedural scene (the default)\n"
            "  --camera N            the file's camera N (default: its first camera, or one framing the scene)\n"
+           "  --order NAME          pass order: declared (the default) or memory (the lowest peak of live\n"
+           "                        bytes; the same pictures)\n"
            "  --pipeline NAME       deferred (Figure 2, the default) or forward (one forward pass with the\n"
            "                        same shadow-render and high-pass-render parts)\n"
            "  --soak N              soak run of N frames (headless): resize every --resize-every frames\n"
@@ -127,9 +132,13 @@ loom::Result<Options> parse(int argc, char** argv) {
         } else if (name == "--allocator") {
             auto v = take();
             if (!v) return v.take_error();
-            auto kind = loom::fg::parse_allocator(*v);
-            if (!kind) return loom::make_error(loom::ErrorCode::InvalidArgument, "--allocator: " + kind.error().message);
-            options.allocator = *kind;
+            if (*v != "auto") {
+                auto kind = loom::fg::parse_allocator(*v);
+                if (!kind) {
+                    return loom::make_error(loom::ErrorCode::InvalidArgument, "--allocator: " + kind.error().message + " (or auto)");
+                }
+                options.allocator = *kind;
+            }
         } else if (name == "--pipeline") {
             auto v = take();
             if (!v) return v.take_error();
@@ -138,6 +147,14 @@ loom::Result<Options> parse(int argc, char** argv) {
                                         "--pipeline expects deferred or forward, got '" + *v + "'");
             }
             options.forward = *v == "forward";
+        } else if (name == "--order") {
+            auto v = take();
+            if (!v) return v.take_error();
+            auto order = loom::fg::parse_pass_order(*v);
+            if (!order) {
+                return loom::make_error(loom::ErrorCode::InvalidArgument, "--order expects declared or memory, got '" + *v + "'");
+            }
+            options.order = *order;
         } else if (name == "--inspect") {
             auto v = take();
             if (!v) return v.take_error();
@@ -207,14 +224,31 @@ std::string file_name(const std::string& texture) { return texture + ".png"; }
 /// The pipeline settings the options choose (allocator, lit pass); the callers add the rest.
 loom::renderer::PipelineSettings pipeline_settings(const Options& options) {
     loom::renderer::PipelineSettings settings;
-    settings.allocator = options.allocator;
+    settings.allocator = options.allocator.value_or(loom::fg::AllocatorKind::Interval);
+    settings.order = options.order;
     settings.forward = options.forward;
     return settings;
 }
 
+/// Without --allocator: the pipeline rebuilt with the allocator that needs the fewest bytes for
+/// a frame of --size on this device (Executor::cheapest_allocator: heap on Vulkan where it
+/// saves memory, interval on GL).
+loom::Status choose_allocator(loom::renderer::DeferredPipeline& pipeline, const Options& options) {
+    if (options.allocator) return {};
+    loom::fg::PlanOptions planned;
+    planned.frame = {options.common.width, options.common.height};
+    planned.order = options.order;
+    auto kind = pipeline.executor().cheapest_allocator(pipeline.graph(), planned);
+    if (!kind) return kind.take_error();
+    if (*kind == pipeline.settings().allocator) return {};
+    loom::renderer::PipelineSettings settings = pipeline.settings();
+    settings.allocator = *kind;
+    return pipeline.rebuild(settings);
+}
+
 /// The pipeline on the scene the options name (built-in, or a glTF file seen from its camera).
 /// `scene_line` says what was loaded, for the summary.
-loom::Result<std::unique_ptr<loom::renderer::DeferredPipeline>> make_pipeline(loom::rhi::Device& device,
+loom::Result<std::unique_ptr<loom::renderer::DeferredPipeline>> load_pipeline(loom::rhi::Device& device,
                                                                              const Options& options,
                                                                              const loom::renderer::PipelineSettings& settings,
                                                                              std::string& scene_line) {
@@ -237,6 +271,17 @@ loom::Result<std::unique_ptr<loom::renderer::DeferredPipeline>> make_pipeline(lo
     return renderer::DeferredPipeline::create(device, std::move(content), settings);
 }
 
+/// load_pipeline, then choose_allocator.
+loom::Result<std::unique_ptr<loom::renderer::DeferredPipeline>> make_pipeline(loom::rhi::Device& device,
+                                                                             const Options& options,
+                                                                             const loom::renderer::PipelineSettings& settings,
+                                                                             std::string& scene_line) {
+    auto pipeline = load_pipeline(device, options, settings, scene_line);
+    if (!pipeline) return pipeline.take_error();
+    LOOM_TRY(choose_allocator(**pipeline, options));
+    return pipeline;
+}
+
 /// The plan, what the device created for it, and the timings of the latest frame.
 std::string summary(const loom::renderer::DeferredPipeline& pipeline, loom::fg::Executor& executor,
                     loom::rhi::Device& device, const Options& options, const std::string& scene_line) {
@@ -245,8 +290,10 @@ std::string summary(const loom::renderer::DeferredPipeline& pipeline, loom::fg::
     std::ostringstream out;
     const auto& caps = device.capabilities();
     out << kName << ": " << loom::rhi::backend_name(device.backend()) << ", " << caps.device_name << ", "
-        << plan->frame.width << "x" << plan->frame.height << ", allocator " << plan->allocator << ", "
-        << options.frames << " frame(s)\n";
+        << plan->frame.width << "x" << plan->frame.height << ", allocator " << plan->allocator
+        << (options.allocator ? "" : " (auto)")
+        << (plan->pass_order == loom::fg::PassOrder::Memory ? ", memory order" : "") << ", " << options.frames
+        << " frame(s)\n";
     out << scene_line << "\n";
     char hash[32];
     std::snprintf(hash, sizeof(hash), "%016" PRIx64, loom::fg::plan_hash(*plan));

@@ -137,6 +137,7 @@ fg::PlanOptions EngineFrame::plan_options(fg::Extent2D size) const {
     fg::PlanOptions options;
     options.frame = size;
     options.allocator = settings_.allocator;
+    options.order = settings_.order;
     return options;
 }
 

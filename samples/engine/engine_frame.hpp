@@ -45,6 +45,9 @@ struct FrameSettings {
     /// device has them, as on Vulkan), interval (shares whole textures of one shape) or
     /// paper (which refuses async passes: use it with async_compute off).
     fg::AllocatorKind allocator = fg::AllocatorKind::Heap;
+    /// The pass order the frame is planned in (fg::PlanOptions::order); the picture is the
+    /// same in both.
+    fg::PassOrder order = fg::PassOrder::Declared;
     /// SSAO and its blur on the async compute queue (run in order on devices with one queue).
     bool async_compute = true;
     /// Side of each shadow cascade, texels.

@@ -60,6 +60,7 @@ std::string extra_help() {
            "  --frames N            frames to render (default 1; with --window 0 runs until closed)\n"
            "  --allocator NAME      heap (default: aliasing in bytes), interval (whole textures), or paper\n"
            "                        (needs --async off)\n"
+           "  --order NAME          pass order: declared (the default) or memory (the lowest peak of live bytes)\n"
            "  --async on|off        SSAO on the async compute queue (default on; serial on one-queue devices)\n"
            "  --shadow-size N       texels per side of each shadow cascade (default 1024)\n"
            "  --inspect FILE        also write the inspector input of the last frame (plan, barriers, timings,\n"
@@ -99,7 +100,7 @@ loom::Result<Options> parse(int argc, char** argv) {
             continue;
         }
         const bool known = name == "--scene" || name == "--lights" || name == "--frames" || name == "--allocator" ||
-                           name == "--async" || name == "--shadow-size" || name == "--inspect";
+                           name == "--async" || name == "--shadow-size" || name == "--inspect" || name == "--order";
         if (!known) return args.unknown();
         auto v = args.value();
         if (!v) return v.take_error();
@@ -119,6 +120,12 @@ loom::Result<Options> parse(int argc, char** argv) {
             auto allocator = loom::fg::parse_allocator(*v);
             if (!allocator) return loom::make_error(loom::ErrorCode::InvalidArgument, "--allocator: " + allocator.error().message);
             options.frame.allocator = *allocator;
+        } else if (name == "--order") {
+            auto order = loom::fg::parse_pass_order(*v);
+            if (!order) {
+                return loom::make_error(loom::ErrorCode::InvalidArgument, "--order expects declared or memory, got '" + *v + "'");
+            }
+            options.frame.order = *order;
         } else if (name == "--async") {
             if (*v != "on" && *v != "off") return loom::make_error(loom::ErrorCode::InvalidArgument, "--async expects on or off, got '" + *v + "'");
             options.frame.async_compute = *v == "on";
@@ -205,7 +212,8 @@ std::string summary(loom::engine::EngineFrame& frame, loom::rhi::Device& device,
     std::ostringstream out;
     const auto& caps = device.capabilities();
     out << kName << ": " << loom::rhi::backend_name(device.backend()) << ", " << caps.device_name << ", " << size.width << "x"
-        << size.height << ", allocator " << loom::fg::allocator_name(frame.settings().allocator) << ", async compute "
+        << size.height << ", allocator " << loom::fg::allocator_name(frame.settings().allocator)
+        << (frame.settings().order == loom::fg::PassOrder::Memory ? ", memory order" : "") << ", async compute "
         << (frame.settings().async_compute ? (caps.async_compute ? "on (two queues)" : "on (one queue: run in order)") : "off") << ", "
         << options.frames << " frame(s)\n";
     out << "scene: " << frame.scene().description << "; textures with mipmaps: " << format_bytes(frame.gpu_scene().texture_bytes()) << "\n";

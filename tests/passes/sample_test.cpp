@@ -55,7 +55,10 @@ TEST(DeferredSample, GlAndVulkanWriteTheSamePlanAndPictures) {
         const std::filesystem::path dir = root / backend;
         std::filesystem::remove_all(dir);
         std::string output;
-        ASSERT_EQ(run_sample("--backend " + backend + " --size 256x144 --out \"" + dir.string() + "\"", output), 0)
+        // The same allocator on both: by default each device gets its cheapest (the next test).
+        ASSERT_EQ(run_sample("--backend " + backend + " --allocator interval --size 256x144 --out \"" + dir.string() + "\"",
+                             output),
+                  0)
             << output;
         EXPECT_EQ(output.find("[error]"), std::string::npos) << output;
         EXPECT_EQ(output.find("[warning]"), std::string::npos) << output;
@@ -84,6 +87,44 @@ TEST(DeferredSample, GlAndVulkanWriteTheSamePlanAndPictures) {
         if (comparison.pixels_differing != 0) {
             (void)image_io::compare_and_report(*gl, *vulkan, root, std::string(picture) + ".gl-vs-vulkan");
         }
+    }
+}
+
+/// The "bytes" of the plan loom-deferred wrote into `dir`.
+uint64_t plan_bytes(const std::filesystem::path& dir) {
+    const std::string plan = read_file(dir / "plan.json");
+    const std::size_t summary = plan.find("\"summary\"");
+    const std::size_t bytes = plan.find("\"bytes\":", summary);
+    if (summary == std::string::npos || bytes == std::string::npos) return 0;
+    return std::strtoull(plan.c_str() + bytes + 8, nullptr, 10);
+}
+
+TEST(DeferredSample, ByDefaultEachDeviceGetsItsCheapestAllocator) {
+    // Vulkan (placed resources): the heap allocator, which needs fewer bytes for this frame than
+    // the interval allocator; GL (none): interval. The picture does not depend on it.
+    const std::filesystem::path root = output_dir() / "passes" / "sample-auto";
+    for (rhi::Backend b : backends_under_test()) {
+        const std::string backend(rhi::backend_name(b));
+        SCOPED_TRACE(backend);
+        std::string output;
+        ASSERT_EQ(run_sample("--backend " + backend + " --size 256x144 --out \"" + (root / backend).string() + "\"", output), 0)
+            << output;
+        EXPECT_EQ(output.find("[error]"), std::string::npos) << output;
+        const bool placed = b == rhi::Backend::Vulkan;
+        EXPECT_NE(output.find(placed ? "allocator heap (auto)" : "allocator interval (auto)"), std::string::npos) << output;
+        if (!placed) continue;
+        ASSERT_EQ(run_sample("--backend vulkan --allocator interval --size 256x144 --out \"" + (root / "interval").string() + "\"",
+                             output),
+                  0)
+            << output;
+        EXPECT_NE(output.find("allocator interval, "), std::string::npos) << output;
+        const uint64_t heap = plan_bytes(root / backend), interval = plan_bytes(root / "interval");
+        EXPECT_GT(heap, 0u);
+        EXPECT_LT(heap, interval) << "heap " << heap << " bytes, interval " << interval;
+        auto chosen = image_io::read_png(root / backend / "final.png");
+        auto pooled = image_io::read_png(root / "interval" / "final.png");
+        ASSERT_TRUE(chosen.ok() && pooled.ok());
+        EXPECT_EQ(chosen->pixels, pooled->pixels);
     }
 }
 

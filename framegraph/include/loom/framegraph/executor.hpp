@@ -126,6 +126,13 @@ public:
     [[nodiscard]] std::shared_ptr<MemoryModel> memory_model() const;
     /// `options` as execute() plans with them (memory model filled in as described above).
     [[nodiscard]] PlanOptions effective_options(PlanOptions options) const;
+    /// The allocator that needs the fewest bytes for `graph` on this device: "heap" where the
+    /// device places resources (Capabilities::placed_resources) and its plan, with the
+    /// device's memory model, needs fewer bytes than the "interval" allocator's; "interval"
+    /// otherwise (a device without placed resources cannot alias a heap plan's textures).
+    /// Plans the graph with both (`options` gives the frame, order and limits; its allocator is
+    /// ignored). Errors: the graph's, as build_plan returns them.
+    [[nodiscard]] Result<AllocatorKind> cheapest_allocator(const FrameGraph& graph, PlanOptions options) const;
 
     /// Binds an application texture to `port` (see ImportBinding): the executor writes or reads
     /// it in place of a plan texture and leaves it in `final_state` after its last use in the
