@@ -29,13 +29,6 @@ void main() {
 }
 )";
 
-Result<rhi::ShaderHandle> compile(rhi::Device& device, shader_compiler::ShaderCompiler& compiler, rhi::ShaderStage stage,
-                                  const char* name, const char* source) {
-    auto module = compiler.compile({name, stage, source, {}});
-    if (!module) return module.take_error();
-    return device.create_shader(*module);
-}
-
 }  // namespace
 
 Result<std::unique_ptr<OverlayGraph>> OverlayGraph::create(rhi::Device& device, rhi::Format target_format) {
@@ -46,13 +39,13 @@ Result<std::unique_ptr<OverlayGraph>> OverlayGraph::create(rhi::Device& device, 
 
 Status OverlayGraph::build(rhi::Format target_format) {
     shader_compiler::ShaderCompiler compiler;
-    auto vs = compile(device_, compiler, rhi::ShaderStage::Vertex, "fullscreen.vert", kFullscreenVert);
+    auto vs = compiler.create_shader(device_, {"fullscreen.vert", rhi::ShaderStage::Vertex, kFullscreenVert, {}});
     if (!vs) return vs.take_error();
     vertex_ = *vs;
-    auto pattern_fs = compile(device_, compiler, rhi::ShaderStage::Fragment, "pattern.frag", kPatternFrag);
+    auto pattern_fs = compiler.create_shader(device_, {"pattern.frag", rhi::ShaderStage::Fragment, kPatternFrag, {}});
     if (!pattern_fs) return pattern_fs.take_error();
     pattern_fragment_ = *pattern_fs;
-    auto overlay_fs = compile(device_, compiler, rhi::ShaderStage::Fragment, "overlay.frag", kOverlayFrag);
+    auto overlay_fs = compiler.create_shader(device_, {"overlay.frag", rhi::ShaderStage::Fragment, kOverlayFrag, {}});
     if (!overlay_fs) return overlay_fs.take_error();
     overlay_fragment_ = *overlay_fs;
 

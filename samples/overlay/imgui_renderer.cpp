@@ -49,13 +49,6 @@ struct Transform {
     float padding[3];
 };
 
-Result<rhi::ShaderHandle> compile(rhi::Device& device, shader_compiler::ShaderCompiler& compiler, rhi::ShaderStage stage,
-                                  const char* name, const char* source) {
-    auto module = compiler.compile({name, stage, source, {}});
-    if (!module) return module.take_error();
-    return device.create_shader(*module);
-}
-
 }  // namespace
 
 Result<std::unique_ptr<ImGuiRenderer>> ImGuiRenderer::create(rhi::Device& device, rhi::Format target_format) {
@@ -69,10 +62,10 @@ Result<std::unique_ptr<ImGuiRenderer>> ImGuiRenderer::create(rhi::Device& device
 
 Status ImGuiRenderer::build() {
     shader_compiler::ShaderCompiler compiler;
-    auto vs = compile(device_, compiler, rhi::ShaderStage::Vertex, "imgui.vert", kVertexSource);
+    auto vs = compiler.create_shader(device_, {"imgui.vert", rhi::ShaderStage::Vertex, kVertexSource, {}});
     if (!vs) return vs.take_error();
     vertex_shader_ = *vs;
-    auto fs = compile(device_, compiler, rhi::ShaderStage::Fragment, "imgui.frag", kFragmentSource);
+    auto fs = compiler.create_shader(device_, {"imgui.frag", rhi::ShaderStage::Fragment, kFragmentSource, {}});
     if (!fs) return fs.take_error();
     fragment_shader_ = *fs;
 

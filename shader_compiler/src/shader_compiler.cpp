@@ -5,6 +5,8 @@
 
 #include <unordered_map>
 
+#include "loom/rhi/device.hpp"
+
 #include "spirv_cross.hpp"
 #include "glslang_compile.hpp"
 
@@ -59,6 +61,12 @@ Result<ShaderModule> ShaderCompiler::compile_cached(const ShaderSource& source) 
     auto module = compile(source);
     if (module) impl_->cache.emplace(std::move(key), *module);
     return module;
+}
+
+Result<rhi::ShaderHandle> ShaderCompiler::create_shader(rhi::Device& device, const ShaderSource& source) {
+    auto module = compile(source);
+    if (!module) return module.take_error();
+    return device.create_shader(*module);
 }
 
 Result<ShaderModule> ShaderCompiler::from_spirv(std::string name, ShaderStage stage, std::span<const uint32_t> spirv) {

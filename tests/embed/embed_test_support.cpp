@@ -48,10 +48,7 @@ Rgba8 expected_overlay(uint32_t x, uint32_t y, uint32_t width, uint32_t height) 
 
 Result<rhi::ShaderHandle> compile_shader(rhi::Device& device, rhi::ShaderStage stage, const std::string& name,
                                          const std::string& source) {
-    shader_compiler::ShaderCompiler compiler;
-    auto module = compiler.compile({name, stage, source, {}});
-    if (!module.ok()) return module.take_error();
-    return device.create_shader(*module);
+    return shader_compiler::ShaderCompiler().create_shader(device, {name, stage, source, {}});
 }
 
 }  // namespace loom::test

@@ -55,10 +55,7 @@ void main() {
 )";
 
 Result<rhi::ShaderHandle> compile(rhi::Device& device, rhi::ShaderStage stage, const std::string& name, const std::string& code) {
-    shader_compiler::ShaderCompiler compiler;
-    auto module = compiler.compile(shader_compiler::ShaderSource{name, stage, code, {}});
-    if (!module) return module.take_error();
-    return device.create_shader(*module);
+    return shader_compiler::ShaderCompiler().create_shader(device, {name, stage, code, {}});
 }
 
 }  // namespace

@@ -19,10 +19,7 @@ void main() { frag_color = pc.color; }
 
 Result<rhi::ShaderHandle> make_shader(rhi::Device& device, rhi::ShaderStage stage, const std::string& name,
                                       const std::string& code) {
-    shader_compiler::ShaderCompiler compiler;
-    auto module = compiler.compile(shader_compiler::ShaderSource{name, stage, code, {}});
-    if (!module.ok()) return module.take_error();
-    return device.create_shader(*module);
+    return shader_compiler::ShaderCompiler().create_shader(device, {name, stage, code, {}});
 }
 
 Result<rhi::BufferHandle> make_buffer(rhi::Device& device, const std::string& name, rhi::BufferUsage usage,

@@ -14,7 +14,12 @@
 #include <vector>
 
 #include "loom/rhi/result.hpp"
+#include "loom/rhi/handles.hpp"
 #include "loom/rhi/shader.hpp"
+
+namespace loom::rhi {
+class Device;
+}
 
 namespace loom::shader_compiler {
 
@@ -59,6 +64,10 @@ public:
     /// Like compile(), but returns the cached module when the same source (name, stage, code,
     /// defines) was compiled before by this compiler.
     Result<rhi::ShaderModule> compile_cached(const ShaderSource& source);
+
+    /// Compiles `source` and creates the shader on `device` (the module is not kept): inline
+    /// GLSL to a shader handle in one call, compile errors and the device's alike.
+    Result<rhi::ShaderHandle> create_shader(rhi::Device& device, const ShaderSource& source);
 
     /// Builds the GL source and reflection of already-compiled SPIR-V (used for the SPIR-V
     /// embedded at build time).
