@@ -27,17 +27,6 @@ passes::PassPart blended_high_pass_part(const passes::PassConfig& config) {
     return part;
 }
 
-/// "Over": colour × alpha + behind × (1 - alpha), on every colour attachment.
-rhi::BlendState over_blend() {
-    rhi::BlendState blend;
-    blend.enabled = true;
-    blend.src_color = rhi::BlendFactor::SrcAlpha;
-    blend.dst_color = rhi::BlendFactor::OneMinusSrcAlpha;
-    blend.src_alpha = rhi::BlendFactor::One;
-    blend.dst_alpha = rhi::BlendFactor::OneMinusSrcAlpha;
-    return blend;
-}
-
 }  // namespace
 
 TransparentPass::TransparentPass(const passes::PassConfig& config, passes::LightingParts parts, std::string name)
@@ -94,7 +83,7 @@ Status TransparentPass::execute(fg::PassContext& context) {
     auto state = attachment_state(context, colors, "depth");
     if (!state) return state.take_error();
     state->depth = rhi::DepthState{true, false, rhi::CompareOp::Less};
-    state->blend.assign(colors.size(), over_blend());
+    state->blend.assign(colors.size(), rhi::BlendState::over());
     rhi::SamplerHandle comparison;
     if (parts_.shadows) {
         auto made = sampler(context.device(), passes::shadow_comparison_sampler_desc());

@@ -82,13 +82,7 @@ Status ImGuiRenderer::build() {
     };
     desc.vertex_buffers = {layout};
     desc.color_formats = {target_format_};
-    rhi::BlendState blend;
-    blend.enabled = true;
-    blend.src_color = rhi::BlendFactor::SrcAlpha;
-    blend.dst_color = rhi::BlendFactor::OneMinusSrcAlpha;
-    blend.src_alpha = rhi::BlendFactor::One;
-    blend.dst_alpha = rhi::BlendFactor::OneMinusSrcAlpha;
-    desc.blend = {blend};
+    desc.blend = {rhi::BlendState::over()};
     auto pipeline = device_.create_graphics_pipeline(desc);
     if (!pipeline) return pipeline.take_error();
     pipeline_ = *pipeline;

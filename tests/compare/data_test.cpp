@@ -334,8 +334,9 @@ TEST(DeferredOnData, RendersAModelOnEveryBackendWithTheSamePlan) {
     for (rhi::Backend backend : backends_under_test()) {
         const std::filesystem::path dir = output_dir() / "compare" / "deferred" / std::string(rhi::backend_name(backend));
         std::filesystem::remove_all(dir);
+        // One allocator on both: by default each device gets its cheapest (heap on Vulkan).
         const int status = run(LOOM_DEFERRED_EXE, "--backend " + std::string(rhi::backend_name(backend)) +
-                                                      " --size 192x108 --scene \"" + model.string() + "\" --out \"" +
+                                                      " --allocator interval --size 192x108 --scene \"" + model.string() + "\" --out \"" +
                                                       dir.string() + "\"",
                                dir.parent_path() / (std::string(rhi::backend_name(backend)) + ".txt"),
                                dir.parent_path() / (std::string(rhi::backend_name(backend)) + ".err"));

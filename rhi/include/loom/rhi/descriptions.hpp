@@ -264,6 +264,18 @@ struct BlendState {
     BlendFactor dst_alpha = BlendFactor::Zero;
     BlendOp alpha_op = BlendOp::Add;
     ColorMask write_mask = ColorMask::All;
+
+    /// "Over" for straight (not premultiplied) alpha: colour × alpha + behind × (1 − alpha);
+    /// alpha accumulates as coverage (alpha + behind × (1 − alpha)).
+    static BlendState over() {
+        BlendState blend;
+        blend.enabled = true;
+        blend.src_color = BlendFactor::SrcAlpha;
+        blend.dst_color = BlendFactor::OneMinusSrcAlpha;
+        blend.src_alpha = BlendFactor::One;
+        blend.dst_alpha = BlendFactor::OneMinusSrcAlpha;
+        return blend;
+    }
 };
 
 /// Everything a graphics pipeline is created with: shaders, vertex layout, fixed-function state and the formats it renders to.
