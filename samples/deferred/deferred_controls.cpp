@@ -1,17 +1,6 @@
 #include "deferred_controls.hpp"
 
 namespace loom::deferred {
-namespace {
-
-const overlay::OverlaySwitch* find_switch(const overlay::OverlayControls& controls, std::string_view label) {
-    for (const overlay::OverlaySwitch& s : controls.switches) {
-        if (s.label == label) return &s;
-    }
-    return nullptr;
-}
-
-}  // namespace
-
 overlay::OverlayControls pipeline_controls(const renderer::PipelineSettings& settings, const renderer::PipelineScene& scene) {
     overlay::OverlayControls controls;
     controls.allocator = settings.allocator;
@@ -23,9 +12,9 @@ overlay::OverlayControls pipeline_controls(const renderer::PipelineSettings& set
 
 renderer::PipelineSettings apply_controls(renderer::PipelineSettings settings, const overlay::OverlayControls& controls) {
     settings.allocator = controls.allocator;
-    if (const auto* s = find_switch(controls, kDeferredSwitch)) settings.forward = !s->on;
-    if (const auto* s = find_switch(controls, kBloomSwitch)) settings.bloom = s->on;
-    if (const auto* s = find_switch(controls, kTransparentSwitch)) settings.transparent = s->on;
+    if (const auto* s = controls.find(kDeferredSwitch)) settings.forward = !s->on;
+    if (const auto* s = controls.find(kBloomSwitch)) settings.bloom = s->on;
+    if (const auto* s = controls.find(kTransparentSwitch)) settings.transparent = s->on;
     return settings;
 }
 

@@ -4,7 +4,6 @@
 // Figures 3-7), the plan as JSON and DOT, and prints what the plan and the device used. The
 // scene is the built-in procedural one or a glTF file (--scene FILE).
 #include <algorithm>
-#include <chrono>
 #include <cinttypes>
 #include <cstdint>
 #include <cstdio>
@@ -24,6 +23,7 @@
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/image.hpp"
 #include "loom/sample_common/options.hpp"
+#include "loom/sample_common/output.hpp"
 #include "inspect_input.hpp"
 #include "deferred_controls.hpp"
 #include "procedural_scene.hpp"
@@ -410,16 +410,12 @@ int run_window(const Options& options) {
     if (!live) return fail(live.error());
     (*live)->overlay().set_visible(options.overlay);
     uint64_t frames = 0;
-    using Clock = std::chrono::steady_clock;
-    Clock::time_point last = Clock::now();
-    double frame_ms = 0.0;
+    overlay::FrameClock clock;
     while (dev.poll_window()) {
         const rhi::Extent3D size = dev.window_size();
-        const Clock::time_point now = Clock::now();
-        const double seconds = std::chrono::duration<double>(now - last).count();
-        last = now;
+        const double seconds = clock.begin();
         // Input first: a change re-plans before the frame is recorded.
-        auto updated = (*live)->update(dev.window_input(), size, seconds, frame_ms);
+        auto updated = (*live)->update(dev.window_input(), size, seconds, clock.frame_ms());
         if (!updated) return fail(updated.error());
         rhi::CommandList& commands = dev.begin_frame();
         const rhi::TextureHandle backbuffer = dev.backbuffer();
@@ -429,13 +425,10 @@ int run_window(const Options& options) {
         if (recorded && overlay) recorded = (*live)->record(commands, backbuffer);
         const bool last_frame = options.frames != 0 && frames + 1 >= options.frames;
         if (recorded && last_frame && !options.screenshot.empty()) {
-            auto image = dev.read_texture(backbuffer);
-            std::error_code ec;
-            if (options.screenshot.has_parent_path()) std::filesystem::create_directories(options.screenshot.parent_path(), ec);
-            recorded = image ? image_io::write_png(*image, options.screenshot) : Status(image.take_error());
+            recorded = samples::save_texture_png(dev, backbuffer, options.screenshot);
         }
         Status ended = dev.end_frame();
-        frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - now).count();
+        clock.end();
         if (!recorded) return fail(recorded.error());
         if (!ended) return fail(ended.error());
         if (options.frames != 0 && ++frames >= options.frames) break;

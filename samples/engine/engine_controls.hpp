@@ -3,8 +3,6 @@
 // SSAO runs on the async compute queue. A change rebuilds the graph (EngineFrame::replan); the
 // paper allocator with async compute on is refused with a message, as on the command line.
 
-#include <algorithm>
-
 #include "engine_frame.hpp"
 #include "live_overlay.hpp"
 
@@ -24,9 +22,8 @@ public:
         return controls;
     }
     Status apply(const overlay::OverlayControls& controls) override {
-        const auto async = std::find_if(controls.switches.begin(), controls.switches.end(),
-                                        [](const overlay::OverlaySwitch& s) { return s.label == kAsyncComputeSwitch; });
-        return frame_.replan(controls.allocator, async == controls.switches.end() ? frame_.settings().async_compute : async->on);
+        const overlay::OverlaySwitch* async = controls.find(kAsyncComputeSwitch);
+        return frame_.replan(controls.allocator, async ? async->on : frame_.settings().async_compute);
     }
 
 private:

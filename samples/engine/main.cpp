@@ -4,7 +4,6 @@
 // compute queue, forward+ shading with the sky, a bloom pyramid and tone mapping. Headless it
 // writes the picture, every intermediate (each mip level and layer), the plan as JSON and DOT
 // and a summary with the memory each allocator needs; with --window it shows the frame.
-#include <chrono>
 #include <cinttypes>
 #include <cstdio>
 #include <cstdlib>
@@ -258,16 +257,12 @@ int run_window(Options options) {
     (*live)->overlay().set_visible(options.overlay);
     uint64_t frames = 0;
     fg::Extent2D size{};
-    using Clock = std::chrono::steady_clock;
-    Clock::time_point last = Clock::now();
-    double frame_ms = 0.0;
+    overlay::FrameClock clock;
     while (dev.poll_window()) {
         const rhi::Extent3D window = dev.window_size();
-        const Clock::time_point now = Clock::now();
-        const double seconds = std::chrono::duration<double>(now - last).count();
-        last = now;
+        const double seconds = clock.begin();
         // Input first: a change (F1 overlay) re-plans before the frame is recorded.
-        auto updated = (*live)->update(dev.window_input(), window, seconds, frame_ms);
+        auto updated = (*live)->update(dev.window_input(), window, seconds, clock.frame_ms());
         if (!updated) return fail(updated.error());
         rhi::CommandList& commands = dev.begin_frame();
         const rhi::TextureHandle backbuffer = dev.backbuffer();
@@ -280,7 +275,7 @@ int run_window(Options options) {
                                 : Status{};
         if (recorded && overlay) recorded = (*live)->record(commands, backbuffer);
         Status ended = dev.end_frame();
-        frame_ms = std::chrono::duration<double, std::milli>(Clock::now() - now).count();
+        clock.end();
         if (!recorded) return fail(recorded.error());
         if (!ended) return fail(ended.error());
         if (options.frames != 0 && ++frames >= options.frames) break;

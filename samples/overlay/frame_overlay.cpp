@@ -35,15 +35,16 @@ std::string milliseconds(std::optional<double> ms) {
 
 }  // namespace
 
-FrameOverlay::FrameOverlay(rhi::Device& device) : device_(device) {}
+// Out of line: ImGuiRenderer is complete here.
+FrameOverlay::FrameOverlay() = default;
 
 Result<std::unique_ptr<FrameOverlay>> FrameOverlay::create(rhi::Device& device, rhi::Format target_format) {
-    std::unique_ptr<FrameOverlay> overlay(new FrameOverlay(device));
-    LOOM_TRY(overlay->build(target_format));
+    std::unique_ptr<FrameOverlay> overlay(new FrameOverlay());
+    LOOM_TRY(overlay->build(device, target_format));
     return overlay;
 }
 
-Status FrameOverlay::build(rhi::Format target_format) {
+Status FrameOverlay::build(rhi::Device& device, rhi::Format target_format) {
     // CreateContext makes the new context current when none was; the scope restores either way.
     ImGuiContext* previous = ImGui::GetCurrentContext();
     context_ = ImGui::CreateContext();
@@ -77,7 +78,7 @@ Status FrameOverlay::build(rhi::Format target_format) {
     io.KeyMap[ImGuiKey_Y] = key_index(Key::Y);
     io.KeyMap[ImGuiKey_Z] = key_index(Key::Z);
     ImGui::StyleColorsDark();
-    auto renderer = ImGuiRenderer::create(device_, target_format);
+    auto renderer = ImGuiRenderer::create(device, target_format);
     if (!renderer) return renderer.take_error();
     renderer_ = std::move(*renderer);
     return {};

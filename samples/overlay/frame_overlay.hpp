@@ -40,6 +40,14 @@ struct OverlayControls {
     fg::AllocatorKind allocator = fg::AllocatorKind::Interval;
     std::vector<OverlaySwitch> switches;
 
+    /// The switch labelled `label`; null when there is none.
+    [[nodiscard]] const OverlaySwitch* find(std::string_view label) const {
+        for (const OverlaySwitch& s : switches) {
+            if (s.label == label) return &s;
+        }
+        return nullptr;
+    }
+
     friend bool operator==(const OverlayControls&, const OverlayControls&) = default;
 };
 
@@ -92,13 +100,12 @@ public:
     [[nodiscard]] bool wants_pointer() const { return wants_pointer_; }
 
 private:
-    explicit FrameOverlay(rhi::Device& device);
-    Status build(rhi::Format target_format);
+    FrameOverlay();
+    Status build(rhi::Device& device, rhi::Format target_format);
     void feed(const rhi::WindowInput& input, rhi::Extent3D size, double seconds);
     void layout(const OverlayFrame& frame, OverlayControls& controls);
     void remember(std::string name);
 
-    rhi::Device& device_;
     ImGuiContext* context_ = nullptr;
     std::unique_ptr<ImGuiRenderer> renderer_;
     bool visible_ = false;

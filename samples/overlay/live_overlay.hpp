@@ -4,6 +4,7 @@
 // re-planned before the next frame is recorded. The application says how controls map to its
 // settings through PlannedFrame; loom-deferred and loom-engine implement it.
 
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -22,6 +23,27 @@ public:
     /// Rebuilds the frame with what `controls` set. A combination the frame cannot run is an
     /// InvalidArgument error saying why, with the frame left as it was.
     virtual Status apply(const OverlayControls& controls) = 0;
+};
+
+/// The two times LiveOverlay::update takes, as a sample's window loop measures them.
+class FrameClock {
+public:
+    /// Marks the beginning of a frame; returns the seconds since the previous frame began.
+    double begin() {
+        const Clock::time_point now = Clock::now();
+        const double seconds = std::chrono::duration<double>(now - begun_).count();
+        begun_ = now;
+        return seconds;
+    }
+    /// Marks the end of the frame begun last (after end_frame).
+    void end() { frame_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - begun_).count(); }
+    /// CPU time of the last frame ended, from begin() to end(), in milliseconds (0 before one).
+    [[nodiscard]] double frame_ms() const { return frame_ms_; }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    Clock::time_point begun_ = Clock::now();
+    double frame_ms_ = 0.0;
 };
 
 class LiveOverlay {
