@@ -36,6 +36,31 @@ struct OrderedFrame {
     rhi::Image picture;
 };
 
+/// The frame `executor` ran last, its final picture `final` read back.
+Result<OrderedFrame> ordered_frame(rhi::Device& device, const fg::Executor& executor, rhi::TextureHandle final) {
+    OrderedFrame frame;
+    const auto plan = executor.plan();
+    frame.order = order_of(*plan);
+    frame.peak = plan->summary.lower_bound_bytes;
+    frame.planned = plan->pass_order;
+    auto picture = device.read_texture(final);
+    if (!picture) return picture.take_error();
+    frame.picture = std::move(*picture);
+    return frame;
+}
+
+/// What both frames must show: planned in memory order, a peak no higher, another order of the
+/// passes, and the same bytes.
+void expect_same_picture_in_another_order(const std::vector<OrderedFrame>& frames) {
+    ASSERT_EQ(frames.size(), 2u);
+    EXPECT_EQ(frames[1].planned, fg::PassOrder::Memory);
+    EXPECT_LE(frames[1].peak, frames[0].peak);
+    EXPECT_NE(frames[1].order, frames[0].order) << joined(frames[1].order);
+    ::testing::Test::RecordProperty("declared", joined(frames[0].order));
+    ::testing::Test::RecordProperty("memory", joined(frames[1].order));
+    EXPECT_EQ(frames[1].picture.pixels, frames[0].picture.pixels);
+}
+
 class FrameOrderTest : public RenderTest {};
 
 TEST_P(FrameOrderTest, FlagshipPicturesAreTheSameInMemoryOrder) {
@@ -46,25 +71,15 @@ TEST_P(FrameOrderTest, FlagshipPicturesAreTheSameInMemoryOrder) {
         settings.order = order;
         LOOM_ASSIGN_OR_FAIL(auto pipeline, deferred::create_procedural_pipeline(device(), deferred::procedural_scene(), settings));
         LOOM_ASSERT_OK(pipeline->render({320, 180}));
-        OrderedFrame frame;
-        const auto plan = pipeline->executor().plan();
-        frame.order = order_of(*plan);
-        frame.peak = plan->summary.lower_bound_bytes;
-        frame.planned = plan->pass_order;
-        LOOM_ASSIGN_OR_FAIL(frame.picture, device().read_texture(pipeline->final_texture()));
+        LOOM_ASSIGN_OR_FAIL(OrderedFrame frame, ordered_frame(device(), pipeline->executor(), pipeline->final_texture()));
         frames.push_back(std::move(frame));
     }
-    EXPECT_EQ(frames[1].planned, fg::PassOrder::Memory);
-    EXPECT_LE(frames[1].peak, frames[0].peak);
     // With a 2048² shadow map the memory order draws it after the G-buffer, not first.
-    EXPECT_NE(frames[1].order, frames[0].order) << joined(frames[1].order);
+    expect_same_picture_in_another_order(frames);
     std::vector<std::string> sorted_declared = frames[0].order, sorted_memory = frames[1].order;
     std::sort(sorted_declared.begin(), sorted_declared.end());
     std::sort(sorted_memory.begin(), sorted_memory.end());
     EXPECT_EQ(sorted_declared, sorted_memory);
-    RecordProperty("declared", joined(frames[0].order));
-    RecordProperty("memory", joined(frames[1].order));
-    EXPECT_EQ(frames[1].picture.pixels, frames[0].picture.pixels);
 }
 
 TEST_P(FrameOrderTest, EnginePicturesAreTheSameInMemoryOrder) {
@@ -81,22 +96,12 @@ TEST_P(FrameOrderTest, EnginePicturesAreTheSameInMemoryOrder) {
         settings.order = order;
         LOOM_ASSIGN_OR_FAIL(auto frame, engine::EngineFrame::create(device(), scene, settings));
         LOOM_ASSERT_OK(frame->render({192, 108}));
-        OrderedFrame result;
-        const auto plan = frame->executor().plan();
-        result.order = order_of(*plan);
-        result.peak = plan->summary.lower_bound_bytes;
-        result.planned = plan->pass_order;
-        LOOM_ASSIGN_OR_FAIL(result.picture, device().read_texture(frame->final_texture()));
+        LOOM_ASSIGN_OR_FAIL(OrderedFrame result, ordered_frame(device(), frame->executor(), frame->final_texture()));
         frames.push_back(std::move(result));
         LOOM_ASSERT_OK(device().wait_idle());
     }
-    EXPECT_EQ(frames[1].planned, fg::PassOrder::Memory);
-    EXPECT_LE(frames[1].peak, frames[0].peak);
     EXPECT_EQ(frames[1].order.size(), frames[0].order.size());
-    EXPECT_NE(frames[1].order, frames[0].order) << joined(frames[1].order);
-    RecordProperty("declared", joined(frames[0].order));
-    RecordProperty("memory", joined(frames[1].order));
-    EXPECT_EQ(frames[1].picture.pixels, frames[0].picture.pixels);
+    expect_same_picture_in_another_order(frames);
 }
 
 LOOM_INSTANTIATE_RENDER_TEST(FrameOrderTest);

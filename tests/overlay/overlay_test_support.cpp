@@ -2,28 +2,18 @@
 
 #include <algorithm>
 
+#include "render_helpers.hpp"
+
 namespace loom::test {
 
 Result<rhi::TextureHandle> cleared_target(rhi::Device& device, uint32_t width, uint32_t height,
                                           std::array<double, 4> color) {
-    rhi::TextureDesc desc;
-    desc.name = "overlay test target";
-    desc.format = rhi::Format::RGBA8Unorm;
-    desc.width = width;
-    desc.height = height;
-    desc.usage = rhi::TextureUsage::ColorAttachment | rhi::TextureUsage::Sampled;
-    auto target = device.create_texture(desc);
+    auto target = make_target(device, "overlay test target", rhi::Format::RGBA8Unorm, width, height);
     if (!target) return target.take_error();
-    rhi::CommandList& commands = device.begin_frame();
-    rhi::RenderPassDesc pass;
-    pass.label = "clear";
-    rhi::ColorAttachment attachment;
-    attachment.texture = *target;
-    attachment.clear = color;
-    pass.colors.push_back(attachment);
-    commands.begin_render_pass(pass);
-    commands.end_render_pass();
-    LOOM_TRY(device.end_frame());
+    LOOM_TRY(run_frame(device, [&](rhi::CommandList& commands) {
+        commands.begin_render_pass(clear_pass("clear", *target, color));
+        commands.end_render_pass();
+    }));
     return *target;
 }
 
