@@ -128,7 +128,7 @@ Status DeferredPipeline::build() {
     // An sRGB target encodes by itself.
     composite_->set_encode_srgb(!rhi::format_info(settings_.target_format).features.srgb);
     composite_->set_exposure(settings_.exposure);
-    composite_->set_bloom_strength(settings_.bloom ? settings_.bloom_strength : 0.0f);
+    set_bloom_strength(settings_.bloom_strength);
     if (deferred_) deferred_->set_threshold(settings_.threshold);
     if (forward_) forward_->set_threshold(settings_.threshold);
     if (transparent_) transparent_->set_threshold(settings_.threshold);
