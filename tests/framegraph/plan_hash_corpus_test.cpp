@@ -2,7 +2,9 @@
 // combined per way of planning, pinned to the values planning gave before the compile-speed
 // work (issue 16). A change to what a plan says (order, resources, sharing, placement, syncs)
 // changes a hash here; a deliberate change of plans updates the pinned values in the same
-// commit, saying why.
+// commit, saying why. (The memory order's heap plans changed where the memory order's
+// allocation needed more bytes than the declared order's: build_plan keeps the declared plan
+// there, issue 17.)
 #include <cstdint>
 #include <string>
 
@@ -70,12 +72,12 @@ TEST(PlanHashCorpus, TexturePlansAreUnchanged) {
 
 TEST(PlanHashCorpus, BufferAndSubresourcePlansAreUnchanged) {
     EXPECT_EQ(corpus_hash(Corpus::Mixed, AllocatorKind::Interval, SpecSharing::Equal, PassOrder::Declared), 0x6e82c040172e8fb0ull);
-    EXPECT_EQ(corpus_hash(Corpus::Mixed, AllocatorKind::Heap, SpecSharing::Equal, PassOrder::Memory), 0x24b1e4d36c16cacaull);
+    EXPECT_EQ(corpus_hash(Corpus::Mixed, AllocatorKind::Heap, SpecSharing::Equal, PassOrder::Memory), 0x4163d895abcd0593ull);
 }
 
 TEST(PlanHashCorpus, AsyncComputePlansAreUnchanged) {
     EXPECT_EQ(corpus_hash(Corpus::Async, AllocatorKind::Interval, SpecSharing::Equal, PassOrder::Declared), 0x9d9e6355016bb9b5ull);
-    EXPECT_EQ(corpus_hash(Corpus::Async, AllocatorKind::Heap, SpecSharing::Equal, PassOrder::Memory), 0x06fd52b264dda6cfull);
+    EXPECT_EQ(corpus_hash(Corpus::Async, AllocatorKind::Heap, SpecSharing::Equal, PassOrder::Memory), 0x11f0b733af913089ull);
 }
 
 // One large graph (3,000 passes declared in frame order), where the heap allocator keeps many

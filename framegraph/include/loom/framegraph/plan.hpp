@@ -35,8 +35,9 @@ enum class PassOrder : uint8_t {
     Declared,
     /// An order that lowers the peak of live bytes (PlanSummary::lower_bound_bytes, the heap
     /// allocator's target), keeping side-effect passes and passes pinned with
-    /// Pass::keep_declared_order in their declared relative order. Never a higher peak than
-    /// Declared: the planner keeps the declared order unless it finds a better one.
+    /// Pass::keep_declared_order in their declared relative order. Never a higher peak nor a
+    /// bigger allocation than Declared: the planner keeps the declared order unless another
+    /// lowers the peak and the chosen allocator places it in no more bytes.
     Memory,
 };
 
@@ -235,7 +236,8 @@ struct Plan {
     Extent2D frame{};
     SpecSharing sharing = SpecSharing::Equal;
     /// How `order` was chosen (PlanOptions::order). Under PassOrder::Memory the order may still
-    /// be the declared one, when no other lowers the peak.
+    /// be the declared one: when no other lowers the peak, or when the declared order's
+    /// allocation needs fewer bytes.
     PassOrder pass_order = PassOrder::Declared;
     std::vector<PlanPass> order;      ///< passes that run, in execution order
     std::vector<std::string> culled;  ///< passes that do not run, in declaration order
