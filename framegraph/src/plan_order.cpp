@@ -10,8 +10,8 @@
 // evaluated on the positions between its source and target only: the passes before and after
 // them, and so the bytes live there, do not change.
 #include <algorithm>
+#include <bit>
 #include <numeric>
-#include <set>
 #include <tuple>
 
 #include "plan_order.hpp"
@@ -55,6 +55,38 @@ PassResources index_resources(const OrderProblem& problem) {
 // time per step rather than quadratic.
 constexpr std::size_t kGreedyCandidates = 64;
 
+// The ready passes of a greedy schedule, visited in preference order (lowest key first): one bit
+// per pass, so that a step costs no allocation, and `low_` skips the words emptied before.
+class ReadyPasses {
+public:
+    explicit ReadyPasses(uint32_t n) : words_((n + 63) / 64, 0) {}
+    void insert(uint32_t key) {
+        words_[key / 64] |= uint64_t{1} << (key % 64);
+        low_ = std::min(low_, key / 64);
+        ++count_;
+    }
+    void erase(uint32_t key) {
+        words_[key / 64] &= ~(uint64_t{1} << (key % 64));
+        --count_;
+    }
+    [[nodiscard]] bool empty() const { return count_ == 0; }
+    // Calls visit(key) for the first `limit` keys in ascending order.
+    template <typename Visit>
+    void first(std::size_t limit, Visit&& visit) {
+        while (low_ < words_.size() && words_[low_] == 0) ++low_;
+        for (auto w = static_cast<std::size_t>(low_); w < words_.size() && limit > 0; ++w) {
+            for (uint64_t bits = words_[w]; bits != 0 && limit > 0; bits &= bits - 1, --limit) {
+                visit(static_cast<uint32_t>(w * 64 + static_cast<std::size_t>(std::countr_zero(bits))));
+            }
+        }
+    }
+
+private:
+    std::vector<uint64_t> words_;
+    uint32_t low_ = 0;
+    std::size_t count_ = 0;
+};
+
 // The greedy choice among ready passes: the one that raises the peak least, then leaves the
 // fewest bytes live after it, then the first in `preference`.
 struct GreedyKey {
@@ -78,7 +110,7 @@ std::vector<uint32_t> greedy_forward(const OrderProblem& problem, const PassReso
         if (!resource.graph_output && resource.users.size() == 1) frees[resource.users.front()] += resource.bytes;
     }
     std::vector<bool> placed(n, false);
-    std::set<uint32_t> ready;
+    ReadyPasses ready(n);
     for (uint32_t v = 0; v < n; ++v) {
         if (waiting[v] == 0) ready.insert(v);
     }
@@ -89,15 +121,14 @@ std::vector<uint32_t> greedy_forward(const OrderProblem& problem, const PassReso
     while (!ready.empty()) {
         uint32_t chosen = kNone;
         GreedyKey best;
-        std::size_t weighed = 0;
-        for (auto it = ready.begin(); it != ready.end() && weighed < kGreedyCandidates; ++it, ++weighed) {
-            const uint64_t step = live + index.produced_bytes[*it];
-            const GreedyKey key{std::max(step, peak), step - frees[*it], *it};
+        ready.first(kGreedyCandidates, [&](uint32_t v) {
+            const uint64_t step = live + index.produced_bytes[v];
+            const GreedyKey key{std::max(step, peak), step - frees[v], v};
             if (chosen == kNone || key < best) {
                 best = key;
-                chosen = *it;
+                chosen = v;
             }
-        }
+        });
         ready.erase(chosen);
         placed[chosen] = true;
         order.push_back(chosen);
@@ -137,9 +168,9 @@ std::vector<uint32_t> greedy_backward(const OrderProblem& problem, const PassRes
         for (uint32_t user : resource.users) allocates[user] += resource.bytes;
     }
     // Ready passes latest-declared first: the mirror of the forward tie break.
-    std::set<uint32_t, std::greater<>> ready;
+    ReadyPasses ready(n);  // keyed n - 1 - pass
     for (uint32_t v = 0; v < n; ++v) {
-        if (waiting[v] == 0) ready.insert(v);
+        if (waiting[v] == 0) ready.insert(n - 1 - v);
     }
     std::vector<uint32_t> reversed;
     reversed.reserve(n);
@@ -147,16 +178,16 @@ std::vector<uint32_t> greedy_backward(const OrderProblem& problem, const PassRes
     while (!ready.empty()) {
         uint32_t chosen = kNone;
         GreedyKey best;
-        std::size_t weighed = 0;
-        for (auto it = ready.begin(); it != ready.end() && weighed < kGreedyCandidates; ++it, ++weighed) {
-            const uint64_t step = live + allocates[*it];
-            const GreedyKey key{std::max(step, peak), step - index.produced_bytes[*it], n - 1 - *it};
+        ready.first(kGreedyCandidates, [&](uint32_t key_of_pass) {
+            const uint32_t v = n - 1 - key_of_pass;
+            const uint64_t step = live + allocates[v];
+            const GreedyKey key{std::max(step, peak), step - index.produced_bytes[v], key_of_pass};
             if (chosen == kNone || key < best) {
                 best = key;
-                chosen = *it;
+                chosen = v;
             }
-        }
-        ready.erase(chosen);
+        });
+        ready.erase(n - 1 - chosen);
         reversed.push_back(chosen);
         peak = best.peak;
         live = best.after;
@@ -166,7 +197,7 @@ std::vector<uint32_t> greedy_backward(const OrderProblem& problem, const PassRes
             for (uint32_t user : problem.resources[r].users) allocates[user] -= problem.resources[r].bytes;
         }
         for (uint32_t previous : problem.predecessors[chosen]) {
-            if (--waiting[previous] == 0) ready.insert(previous);
+            if (--waiting[previous] == 0) ready.insert(n - 1 - previous);
         }
     }
     std::reverse(reversed.begin(), reversed.end());

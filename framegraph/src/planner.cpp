@@ -55,6 +55,23 @@ std::optional<OrderCandidate> memory_order_candidate(const FrameGraph& graph, co
     return candidate;
 }
 
+// A lower bound of the bytes an allocator that places nothing in heaps needs for `resolved` in
+// its order, under equal sharing: a texture (or buffer) of such an allocator holds resources of
+// one shape, one at a time, so each class needs at least its peak count of live resources, each
+// at least as big as its smallest member. (Lifetimes: async occupancies only widen them.)
+uint64_t pooled_lower_bound(const detail::ResolvedResources& resolved, const PlanOptions& options,
+                            uint32_t positions) {
+    const detail::SpecClassAssignment classes =
+        detail::assign_spec_classes(resolved.resources, SpecSharing::Equal, options.frame, positions);
+    uint64_t bytes = 0;
+    for (const SpecClass& c : classes.classes) {
+        uint64_t smallest = UINT64_MAX;
+        for (uint32_t r : c.resources) smallest = std::min(smallest, resolved.resources[r].bytes);
+        if (!c.resources.empty()) bytes += smallest * c.peak_live;
+    }
+    return bytes;
+}
+
 // The phases after the order is fixed (queues, spec classes, allocation, summary), each a
 // function of plain data (plan_phases.hpp); what they decide is put together into the plan.
 Result<Plan> plan_in_order(const FrameGraph& graph, const PlanOptions& options, const Allocator& allocator,
@@ -129,8 +146,8 @@ Result<OrderProblem> order_problem_of(const FrameGraph& graph, const PlanOptions
 
 // The phases in order (plan_phases.hpp). Under PassOrder::Memory the plan of the memory order
 // is kept when its allocation is no bigger than the declared order's, as the chosen allocator
-// places them: the declared order is planned too only when the memory order's bytes exceed the
-// declared order's lower bound (below it no allocation of the declared order can be).
+// places them: the declared order is planned too only when the memory order's bytes exceed a
+// lower bound of the declared order's (below it no allocation of the declared order can be).
 Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
     if (options.frame.width == 0 || options.frame.height == 0) {
         return make_error(ErrorCode::InvalidArgument, "plan: frame size " + std::to_string(options.frame.width) + "x" +
@@ -164,6 +181,13 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
     auto reordered = plan_in_order(graph, options, *allocator, *memory, *dependencies, *kept, candidate->schedule,
                                    std::move(candidate->resolved));
     if (reordered && reordered->summary.bytes <= declared_peak) return reordered;
+    // Pooled allocators (interval, paper) rarely come down to the peak of live bytes; their own
+    // bound often settles it without planning the declared order.
+    if (reordered && reordered->heaps.empty() && options.sharing == SpecSharing::Equal &&
+        reordered->summary.bytes <=
+            pooled_lower_bound(*resolved, options, static_cast<uint32_t>(schedule.order.size()))) {
+        return reordered;
+    }
     auto declared =
         plan_in_order(graph, options, *allocator, *memory, *dependencies, *kept, schedule, std::move(*resolved));
     // An order the allocator cannot place (a heap limit) falls back to the other.
