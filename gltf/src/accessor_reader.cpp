@@ -95,7 +95,7 @@ uint32_t AccessorReader::components(int index) const {
 }
 
 template <class T>
-Result<std::vector<T>> AccessorReader::read(int index, uint32_t components) const {
+Result<std::vector<T>> AccessorReader::read(int index, uint32_t components, bool as_stored) const {
     const JsonPointer where = JsonPointer{} / "accessors" / static_cast<uint64_t>(std::max(index, 0));
     if (index < 0 || static_cast<std::size_t>(index) >= model_.accessors.size()) {
         return error(where, "accessor " + std::to_string(index) + " does not exist");
@@ -123,8 +123,9 @@ Result<std::vector<T>> AccessorReader::read(int index, uint32_t components) cons
     std::vector<T> values(static_cast<std::size_t>(*value_count), T{});
     auto store = [&](uint64_t element_index, const unsigned char* bytes) -> Status {
         for (uint32_t c = 0; c < components; ++c) {
-            const double value = load_component(bytes + uint64_t{c} * size, accessor.componentType, accessor.normalized);
-            if (!std::isfinite(value)) {
+            const double value =
+                load_component(bytes + uint64_t{c} * size, accessor.componentType, accessor.normalized && !as_stored);
+            if (!as_stored && !std::isfinite(value)) {
                 return error(where, "element " + std::to_string(element_index) + " component " + std::to_string(c) +
                                         " is not a finite number");
             }
@@ -190,6 +191,16 @@ Result<std::vector<T>> AccessorReader::read(int index, uint32_t components) cons
 
 Result<std::vector<float>> AccessorReader::read_floats(int index, uint32_t components) const {
     return read<float>(index, components);
+}
+
+Result<std::vector<double>> AccessorReader::read_stored(int index) const {
+    const uint32_t count = components(index);
+    if (count == 0) return error(JsonPointer{} / "accessors" / static_cast<uint64_t>(std::max(index, 0)), "accessor does not exist");
+    const tinygltf::Accessor& accessor = model_.accessors[static_cast<std::size_t>(index)];
+    const bool padded_columns = (accessor.type == TINYGLTF_TYPE_MAT2 || accessor.type == TINYGLTF_TYPE_MAT3) &&
+                                component_size(accessor.componentType) < 4;
+    if (padded_columns) return error(JsonPointer{} / "accessors" / static_cast<uint64_t>(index), "padded matrix columns are not read");
+    return read<double>(index, count, true);
 }
 
 Result<std::vector<uint32_t>> AccessorReader::read_indices(int index) const {

@@ -29,6 +29,11 @@ public:
     /// other integers converted, sparse values substituted. Non-finite values are an error.
     [[nodiscard]] Result<std::vector<float>> read_floats(int index, uint32_t components) const;
 
+    /// Accessor `index`'s components as stored (normalised integers not mapped, non-finite
+    /// floats kept), for checks of values the importer does not read; every type but matrices
+    /// whose columns are padded (MAT2/MAT3 of bytes or shorts).
+    [[nodiscard]] Result<std::vector<double>> read_stored(int index) const;
+
     /// Index accessor `index` (SCALAR, unsigned integer components) as u32 values.
     [[nodiscard]] Result<std::vector<uint32_t>> read_indices(int index) const;
 
@@ -38,7 +43,7 @@ public:
 
 private:
     template <class T>
-    Result<std::vector<T>> read(int index, uint32_t components) const;
+    Result<std::vector<T>> read(int index, uint32_t components, bool as_stored = false) const;
 
     Error error(const JsonPointer& where, const std::string& what) const;
 

@@ -1,7 +1,10 @@
 #include "gltf_convert.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
+#include <sstream>
 #include <optional>
 #include <utility>
 
@@ -29,6 +32,9 @@ const T* element(const std::vector<T>& items, int index) {
 }
 
 uint64_t as_index(std::size_t index) { return static_cast<uint64_t>(index); }
+
+// How far from 1 the length of a unit quaternion may be (as in the validator's node checks).
+constexpr double kUnitQuaternionTolerance = 0.00769;
 
 glm::vec4 to_vec4(const std::vector<double>& values, const glm::vec4& fallback) {
     if (values.size() != 4) return fallback;
@@ -112,6 +118,9 @@ public:
         LOOM_TRY(convert_meshes());
         LOOM_TRY(convert_nodes());
         LOOM_TRY(flatten_scene());
+        check_accessor_bounds();
+        check_animation_data();
+        check_skin_data();
         return std::move(scene_);
     }
 
@@ -121,6 +130,140 @@ private:
     }
     void warn(const JsonPointer& where, const std::string& what) {
         warnings_.push_back(located_message(file_label_, where.str(), what));
+    }
+
+    // ---- data the importer does not use ------------------------------------------------------
+    //
+    // Animations and skins are not imported: what the specification forbids in their values is
+    // a warning naming the accessor's user (the validator checked their formats and counts and
+    // warned about those; only accessors of the right format are read here).
+
+    // Accessor `index` as floats when it has `components` per element, else nullopt; a read
+    // error (missing data) is a warning at `where`.
+    std::optional<std::vector<float>> read_unused(int index, uint32_t components, const JsonPointer& where) {
+        if (reader_.components(index) != components) return std::nullopt;
+        auto values = reader_.read_floats(index, components);
+        if (!values) {
+            warn(where, "cannot be checked: " + values.error().message);
+            return std::nullopt;
+        }
+        return std::move(*values);
+    }
+
+    // Every accessor's values against its declared min and max, and float values for finiteness
+    // (the importer reads neither min nor max; the accessors it reads were checked for finite
+    // values as they were read). One warning per accessor, at the first value at fault; an
+    // accessor whose data cannot be read was reported where it is used, or is not used.
+    void check_accessor_bounds() {
+        for (std::size_t a = 0; a < model_.accessors.size(); ++a) {
+            const tinygltf::Accessor& accessor = model_.accessors[a];
+            const bool is_float = accessor.componentType == component_type::kFloat;
+            const bool bounded = !accessor.minValues.empty() || !accessor.maxValues.empty();
+            if (!is_float && !bounded) continue;
+            const auto values = reader_.read_stored(static_cast<int>(a));
+            if (!values) continue;
+            const JsonPointer where = JsonPointer{} / "accessors" / as_index(a);
+            const auto components = static_cast<std::size_t>(reader_.components(static_cast<int>(a)));
+            check_bounds(*values, components, accessor, is_float, where);
+        }
+    }
+    // Warns at the first value of `values` that is not finite (at the accessor), or at the first
+    // component whose declared min or max is not the data's (at that bound).
+    void check_bounds(const std::vector<double>& values, std::size_t components, const tinygltf::Accessor& accessor,
+                      bool is_float, const JsonPointer& where) {
+        // Declared bounds are compared as the component type stores them (floats as floats).
+        const auto stored = [&](double v) { return is_float ? static_cast<double>(static_cast<float>(v)) : v; };
+        for (std::size_t i = 0; i < values.size(); ++i) {
+            if (!std::isfinite(values[i])) {
+                return warn(where, "element " + std::to_string(i / components) + " component " +
+                                       std::to_string(i % components) + " is not a finite number");
+            }
+        }
+        if (values.empty()) return;
+        for (std::size_t c = 0; c < components; ++c) {
+            double low = std::numeric_limits<double>::infinity();
+            double high = -std::numeric_limits<double>::infinity();
+            for (std::size_t i = c; i < values.size(); i += components) {
+                low = std::min(low, values[i]);
+                high = std::max(high, values[i]);
+            }
+            if (c < accessor.minValues.size() && stored(accessor.minValues[c]) != low) {
+                return warn(where / "min" / as_index(c), "the declared minimum " + format_value(accessor.minValues[c]) +
+                                                             " is not the data's, " + format_value(low));
+            }
+            if (c < accessor.maxValues.size() && stored(accessor.maxValues[c]) != high) {
+                return warn(where / "max" / as_index(c), "the declared maximum " + format_value(accessor.maxValues[c]) +
+                                                             " is not the data's, " + format_value(high));
+            }
+        }
+    }
+    static std::string format_value(double value) {
+        std::ostringstream out;
+        out << value;
+        return out.str();
+    }
+
+    void check_animation_data() {
+        for (std::size_t a = 0; a < model_.animations.size(); ++a) {
+            const tinygltf::Animation& animation = model_.animations[a];
+            const JsonPointer where = JsonPointer{} / "animations" / as_index(a);
+            for (std::size_t s = 0; s < animation.samplers.size(); ++s) {
+                const JsonPointer input_where = where / "samplers" / as_index(s) / "input";
+                const auto times = read_unused(animation.samplers[s].input, 1, input_where);
+                if (!times) continue;
+                for (std::size_t k = 0; k < times->size(); ++k) {
+                    if ((*times)[k] < 0.0f) {
+                        warn(input_where, "keyframe " + std::to_string(k) + " has a negative time");
+                        break;
+                    }
+                    if (k > 0 && !((*times)[k] > (*times)[k - 1])) {
+                        warn(input_where, "keyframe times must increase, keyframe " + std::to_string(k) +
+                                              " is not after keyframe " + std::to_string(k - 1));
+                        break;
+                    }
+                }
+            }
+            for (std::size_t c = 0; c < animation.channels.size(); ++c) {
+                const tinygltf::AnimationChannel& channel = animation.channels[c];
+                if (channel.target_path != "rotation" || channel.sampler < 0 ||
+                    static_cast<std::size_t>(channel.sampler) >= animation.samplers.size()) {
+                    continue;
+                }
+                const tinygltf::AnimationSampler& sampler = animation.samplers[static_cast<std::size_t>(channel.sampler)];
+                const JsonPointer sampler_where = where / "channels" / as_index(c) / "sampler";
+                const auto quaternions = read_unused(sampler.output, 4, sampler_where);
+                if (!quaternions) continue;
+                // A cubic spline's elements are in-tangent, value, out-tangent: only values are rotations.
+                const bool cubic = sampler.interpolation == "CUBICSPLINE";
+                for (std::size_t e = cubic ? 1 : 0; e * 4 + 3 < quaternions->size(); e += cubic ? 3 : 1) {
+                    const float* q = quaternions->data() + e * 4;
+                    const double length = std::sqrt(double{q[0]} * q[0] + double{q[1]} * q[1] + double{q[2]} * q[2] +
+                                                    double{q[3]} * q[3]);
+                    if (std::abs(length - 1.0) > kUnitQuaternionTolerance) {
+                        warn(sampler_where, "output element " + std::to_string(e) + " is not a unit quaternion (length " +
+                                                std::to_string(length) + ")");
+                        break;
+                    }
+                }
+            }
+        }
+    }
+
+    void check_skin_data() {
+        for (std::size_t s = 0; s < model_.skins.size(); ++s) {
+            const JsonPointer where = JsonPointer{} / "skins" / as_index(s) / "inverseBindMatrices";
+            if (model_.skins[s].inverseBindMatrices < 0) continue;
+            const auto matrices = read_unused(model_.skins[s].inverseBindMatrices, 16, where);
+            if (!matrices) continue;
+            for (std::size_t m = 0; m * 16 + 15 < matrices->size(); ++m) {
+                const float* column_major = matrices->data() + m * 16;
+                if (column_major[3] != 0.0f || column_major[7] != 0.0f || column_major[11] != 0.0f ||
+                    column_major[15] != 1.0f) {
+                    warn(where, "matrix " + std::to_string(m) + " is not affine (its last row must be 0 0 0 1)");
+                    break;
+                }
+            }
+        }
     }
 
     // ---- materials, textures, images ------------------------------------------------------

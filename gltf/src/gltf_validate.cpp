@@ -117,6 +117,33 @@ std::string format_number(double value) {
     return text;
 }
 
+// How far from 1 the length of a unit quaternion may be: a little more than the error of 8-bit
+// signed quantisation, as glTF-Validator allows.
+constexpr double kUnitLengthTolerance = 0.00769;
+
+// Whether a node matrix (16 numbers, column-major, already checked) is a translation, rotation
+// and scale: its last row 0 0 0 1 and its three axes orthogonal (no shear, no projection).
+bool decomposable_to_trs(const json& matrix) {
+    std::array<double, 16> m{};
+    for (std::size_t i = 0; i < 16; ++i) m[i] = matrix[i].get<double>();
+    constexpr double kTolerance = 1e-5;
+    if (std::abs(m[3]) > kTolerance || std::abs(m[7]) > kTolerance || std::abs(m[11]) > kTolerance ||
+        std::abs(m[15] - 1.0) > kTolerance) {
+        return false;
+    }
+    const auto axis = [&](std::size_t c) { return std::array<double, 3>{m[4 * c], m[4 * c + 1], m[4 * c + 2]}; };
+    const auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    };
+    for (std::size_t a = 0; a < 3; ++a) {
+        for (std::size_t b = a + 1; b < 3; ++b) {
+            const double scale = std::sqrt(dot(axis(a), axis(a)) * dot(axis(b), axis(b)));
+            if (std::abs(dot(axis(a), axis(b))) > 1e-4 * scale) return false;
+        }
+    }
+    return true;
+}
+
 // A finite number in [min, max] (bounds exclusive when asked).
 struct Range {
     double min = -std::numeric_limits<double>::infinity();
@@ -149,6 +176,7 @@ public:
         LOOM_TRY(check_nodes());
         LOOM_TRY(check_scenes());
         LOOM_TRY(check_animations());
+        check_unused_data();
         return {};
     }
 
@@ -1089,7 +1117,9 @@ private:
     }
 
     Status check_meshes() {
-        return for_each(Collection::Meshes, [&](const json& mesh, const JsonPointer& where, std::size_t) -> Status {
+        mesh_targets_.assign(count(Collection::Meshes), 0);
+        mesh_has_joints_.assign(count(Collection::Meshes), false);
+        return for_each(Collection::Meshes, [&](const json& mesh, const JsonPointer& where, std::size_t index) -> Status {
             auto primitives = array_member(mesh, "primitives", where, true);
             if (!primitives) return primitives.take_error();
             if ((*primitives)->empty()) return parse_error(where / "primitives", "a mesh needs at least one primitive");
@@ -1109,6 +1139,13 @@ private:
                     return parse_error(where / "primitives" / p / "targets",
                                        "has " + std::to_string(target_count((**primitives)[p])) + " morph targets, primitive 0 " +
                                            std::to_string(targets) + " (all primitives of a mesh need the same number)");
+                }
+            }
+            mesh_targets_[index] = targets;
+            for (const json& primitive : **primitives) {
+                const auto attributes = primitive.find("attributes");
+                if (attributes != primitive.end() && attributes->is_object() && attributes->contains("JOINTS_0")) {
+                    mesh_has_joints_[index] = true;
                 }
             }
             LOOM_TRY(number_array_member(mesh, "weights", where, 0));
@@ -1222,6 +1259,18 @@ private:
                 (find(node, "translation") != nullptr || find(node, "rotation") != nullptr || find(node, "scale") != nullptr)) {
                 return parse_error(where / "matrix", "a node must not have both 'matrix' and translation/rotation/scale");
             }
+            if (const json* rotation = find(node, "rotation")) {
+                double squares = 0.0;
+                for (const json& value : *rotation) squares += value.get<double>() * value.get<double>();
+                if (std::abs(std::sqrt(squares) - 1.0) > kUnitLengthTolerance) {
+                    return parse_error(where / "rotation", "must be a unit quaternion, its length is " +
+                                                               format_number(std::sqrt(squares)));
+                }
+            }
+            if (const json* matrix = find(node, "matrix"); matrix != nullptr && !decomposable_to_trs(*matrix)) {
+                return parse_error(where / "matrix", "must be decomposable into translation, rotation and scale (last row "
+                                                     "0 0 0 1, orthogonal axes)");
+            }
             return {};
         }); !status) {
             return status;
@@ -1324,6 +1373,219 @@ private:
         return {};
     }
 
+    // ---- data the importer does not use -----------------------------------------------------
+    //
+    // Animations, skins and morph weights are not imported, so what the specification forbids in
+    // them is a warning naming its place (the file still loads), not an error. The references
+    // were checked above; this checks how they fit together. (Their values are checked by the
+    // converter, which reads the data.)
+
+    // "{VEC4, FLOAT}", or "{VEC4, normalized UNSIGNED_BYTE}".
+    std::string format_of(const AccessorInfo& accessor) const {
+        return "{" + std::string(accessor.type.name) + ", " + (accessor.normalized ? "normalized " : "") +
+               std::string(component_type_name(accessor.component_type)) + "}";
+    }
+    bool has_stride(const AccessorInfo& accessor) const {
+        return accessor.buffer_view && *accessor.buffer_view < views_.size() && views_[*accessor.buffer_view].byte_stride;
+    }
+    static bool is_float(const AccessorInfo& accessor) {
+        return accessor.component_type == component_type::kFloat && !accessor.normalized;
+    }
+    // FLOAT, or a normalized (unsigned) byte or short: what rotations and weights may be stored as.
+    static bool is_float_or_normalized(const AccessorInfo& accessor) {
+        if (is_float(accessor)) return true;
+        const int c = accessor.component_type;
+        return accessor.normalized && (c == component_type::kByte || c == component_type::kUnsignedByte ||
+                                       c == component_type::kShort || c == component_type::kUnsignedShort);
+    }
+    // The node at the top of `node`'s hierarchy.
+    uint64_t root_of(uint64_t node) const {
+        while (parents_[node]) node = *parents_[node];
+        return node;
+    }
+    bool is_ancestor_or_self(uint64_t ancestor, uint64_t node) const {
+        for (std::optional<uint64_t> at = node; at; at = parents_[*at]) {
+            if (*at == ancestor) return true;
+        }
+        return false;
+    }
+    std::optional<uint64_t> index_in(const json& object, std::string_view key) const {
+        const json* value = find(object, key);
+        if (value == nullptr || !value->is_number_unsigned()) return std::nullopt;
+        return value->get<uint64_t>();
+    }
+
+    void check_unused_data() {
+        check_animation_use();
+        check_skin_use();
+        check_node_use();
+    }
+
+    void check_animation_use() {
+        const json* animations = find(root_, "animations");
+        const json* nodes = find(root_, "nodes");
+        if (animations == nullptr) return;
+        for (std::size_t a = 0; a < animations->size(); ++a) {
+            const json& animation = (*animations)[a];
+            const JsonPointer where = JsonPointer{} / "animations" / a;
+            const json& samplers = animation.at("samplers");
+            for (std::size_t s = 0; s < samplers.size(); ++s) {
+                const JsonPointer sampler_where = where / "samplers" / s;
+                const AccessorInfo& input = accessors_[*index_in(samplers[s], "input")];
+                const AccessorInfo& output = accessors_[*index_in(samplers[s], "output")];
+                if (input.type.components != 1 || input.type.columns != 0 || !is_float(input)) {
+                    warn(sampler_where / "input", "an animation's input accessor must be {SCALAR, FLOAT}, got " + format_of(input));
+                } else if (!input.has_bounds) {
+                    warn(sampler_where / "input", "an animation's input accessor must define min and max");
+                }
+                for (const auto& [key, accessor] : {std::pair{"input", &input}, std::pair{"output", &output}}) {
+                    if (has_stride(*accessor)) {
+                        warn(sampler_where / key, "the buffer view of an animation sampler's accessor must not define byteStride");
+                    }
+                }
+                if (cubic(samplers[s]) && input.count < 2) {
+                    warn(sampler_where / "input", "a CUBICSPLINE sampler needs at least 2 keyframes, its input has " +
+                                                      std::to_string(input.count));
+                }
+            }
+            const json& channels = animation.at("channels");
+            std::map<std::pair<uint64_t, std::string>, std::size_t> first_channel_of_target;
+            for (std::size_t c = 0; c < channels.size(); ++c) {
+                const JsonPointer channel_where = where / "channels" / c;
+                const json& channel = channels[c];
+                const json& sampler = samplers[*index_in(channel, "sampler")];
+                const json& target = channel.at("target");
+                const json* path_value = find(target, "path");
+                if (path_value == nullptr || !path_value->is_string()) continue;
+                const std::string path = path_value->get<std::string>();
+                if (path != "translation" && path != "rotation" && path != "scale" && path != "weights") continue;
+                const std::optional<uint64_t> node = index_in(target, "node");
+                std::optional<std::size_t> targets;  // morph targets of the node's mesh
+                if (node) {
+                    const json& node_object = (*nodes)[*node];
+                    const std::optional<uint64_t> mesh = index_in(node_object, "mesh");
+                    targets = mesh ? mesh_targets_[*mesh] : 0;
+                    if (path == "weights" && *targets == 0) {
+                        warn(channel_where / "target", "animates the morph weights of node " + std::to_string(*node) +
+                                                           ", whose mesh has no morph targets");
+                    }
+                    if (path != "weights" && find(node_object, "matrix") != nullptr) {
+                        warn(channel_where / "target", "animates the " + path + " of node " + std::to_string(*node) +
+                                                           ", which has a matrix instead of translation/rotation/scale");
+                    }
+                    const auto [first, inserted] = first_channel_of_target.try_emplace({*node, path}, c);
+                    if (!inserted) {
+                        warn(where / "channels" / first->second / "target",
+                             "has the same target as channel " + std::to_string(c) + " (node " + std::to_string(*node) +
+                                 ", " + path + ")");
+                    }
+                }
+                const AccessorInfo& input = accessors_[*index_in(sampler, "input")];
+                const AccessorInfo& output = accessors_[*index_in(sampler, "output")];
+                const bool vec3 = path == "translation" || path == "scale";
+                const bool format_ok = vec3 ? output.type.components == 3 && is_float(output)
+                                       : path == "rotation"
+                                           ? output.type.components == 4 && output.type.columns == 0 && is_float_or_normalized(output)
+                                           : output.type.components == 1 && is_float_or_normalized(output);
+                if (!format_ok) {
+                    warn(channel_where / "sampler", "the output accessor's format " + format_of(output) + " does not fit path '" +
+                                                        path + "'");
+                    continue;
+                }
+                const uint64_t per_key = (cubic(sampler) ? 3 : 1) * (path == "weights" ? targets.value_or(0) : 1);
+                if ((path != "weights" || targets.value_or(0) != 0) && output.count != input.count * per_key) {
+                    warn(channel_where / "sampler", "the output accessor has " + std::to_string(output.count) +
+                                                        " elements, " + std::to_string(input.count * per_key) +
+                                                        " expected from the input's " + std::to_string(input.count) +
+                                                        " keyframes");
+                }
+            }
+        }
+    }
+    bool cubic(const json& sampler) const {
+        const json* interpolation = find(sampler, "interpolation");
+        return interpolation != nullptr && interpolation->is_string() && *interpolation == "CUBICSPLINE";
+    }
+
+    void check_skin_use() {
+        const json* skins = find(root_, "skins");
+        if (skins == nullptr) return;
+        for (std::size_t s = 0; s < skins->size(); ++s) {
+            const json& skin = (*skins)[s];
+            const JsonPointer where = JsonPointer{} / "skins" / s;
+            const json& joints = skin.at("joints");
+            if (const std::optional<uint64_t> matrices = index_in(skin, "inverseBindMatrices")) {
+                const AccessorInfo& accessor = accessors_[*matrices];
+                if (accessor.type.columns != 4 || !is_float(accessor)) {
+                    warn(where / "inverseBindMatrices", "must be a {MAT4, FLOAT} accessor, got " + format_of(accessor));
+                } else if (accessor.count < joints.size()) {
+                    warn(where / "inverseBindMatrices", "has " + std::to_string(accessor.count) + " matrices for " +
+                                                            std::to_string(joints.size()) + " joints");
+                }
+                if (has_stride(accessor)) {
+                    warn(where / "inverseBindMatrices", "the buffer view of inverse bind matrices must not define byteStride");
+                }
+            }
+            const uint64_t root = root_of(joints[0].get<uint64_t>());
+            bool common_root = true;
+            for (const json& joint : joints) common_root = common_root && root_of(joint.get<uint64_t>()) == root;
+            if (!common_root) warn(where / "joints", "the joints do not have a common root");
+            if (const std::optional<uint64_t> skeleton = index_in(skin, "skeleton")) {
+                bool above_all = true;
+                for (const json& joint : joints) above_all = above_all && is_ancestor_or_self(*skeleton, joint.get<uint64_t>());
+                if (!above_all) warn(where / "skeleton", "node " + std::to_string(*skeleton) + " is not a common root of the joints");
+            }
+        }
+    }
+
+    void check_node_use() {
+        const json* nodes = find(root_, "nodes");
+        if (nodes == nullptr) return;
+        const json* skins = find(root_, "skins");
+        for (std::size_t n = 0; n < nodes->size(); ++n) {
+            const json& node = (*nodes)[n];
+            const JsonPointer where = JsonPointer{} / "nodes" / n;
+            const std::optional<uint64_t> mesh = index_in(node, "mesh");
+            const std::optional<uint64_t> skin = index_in(node, "skin");
+            if (skin && !mesh) warn(where / "skin", "a node with a skin needs a mesh");
+            if (find(node, "weights") != nullptr) {
+                if (!mesh) {
+                    warn(where / "weights", "a node with morph weights needs a mesh");
+                } else if ((*nodes)[n].at("weights").size() != mesh_targets_[*mesh]) {
+                    warn(where / "weights", "has " + std::to_string(node.at("weights").size()) + " weights for the " +
+                                                std::to_string(mesh_targets_[*mesh]) + " morph targets of mesh " +
+                                                std::to_string(*mesh));
+                }
+            }
+            if (!skin || !mesh) continue;
+            if (!mesh_has_joints_[*mesh]) {
+                warn(where, "has a skin, but mesh " + std::to_string(*mesh) + " has no JOINTS_0 attribute");
+                continue;
+            }
+            // The scene that holds the skinned node must hold a joint too.
+            const uint64_t root = root_of(n);
+            bool joint_in_its_tree = false;
+            for (const json& joint : (*skins)[*skin].at("joints")) {
+                joint_in_its_tree = joint_in_its_tree || root_of(joint.get<uint64_t>()) == root;
+            }
+            if (!joint_in_its_tree && in_a_scene(root)) {
+                warn(where, "is skinned, but no joint of skin " + std::to_string(*skin) + " is in its scene");
+            }
+        }
+    }
+    bool in_a_scene(uint64_t root) const {
+        const json* scenes = find(root_, "scenes");
+        if (scenes == nullptr) return false;
+        for (const json& scene : *scenes) {
+            const json* roots = find(scene, "nodes");
+            if (roots == nullptr) continue;
+            for (const json& r : *roots) {
+                if (r.get<uint64_t>() == root) return true;
+            }
+        }
+        return false;
+    }
+
     const json& root_;
     const ValidationInput& input_;
     ValidationOutput& output_;
@@ -1333,6 +1595,8 @@ private:
     std::vector<ViewInfo> views_;
     std::vector<AccessorInfo> accessors_;
     std::vector<std::optional<uint64_t>> parents_;
+    std::vector<std::size_t> mesh_targets_;  // per mesh: its morph targets
+    std::vector<bool> mesh_has_joints_;      // per mesh: a primitive has JOINTS_0
     std::map<uint64_t, uint64_t> view_usage_;                   // buffer view -> kArrayBuffer / kElementArrayBuffer
     std::map<uint64_t, std::set<uint64_t>> vertex_view_accessors_;  // buffer view -> vertex attribute accessors
 };
