@@ -1409,9 +1409,10 @@ private:
         }
         return false;
     }
+    // A reference checked above (so a non-negative integer, "-0" included), or nullopt when absent.
     std::optional<uint64_t> index_in(const json& object, std::string_view key) const {
         const json* value = find(object, key);
-        if (value == nullptr || !value->is_number_unsigned()) return std::nullopt;
+        if (value == nullptr || !value->is_number_integer() || value->get<int64_t>() < 0) return std::nullopt;
         return value->get<uint64_t>();
     }
 
@@ -1431,8 +1432,11 @@ private:
             const json& samplers = animation.at("samplers");
             for (std::size_t s = 0; s < samplers.size(); ++s) {
                 const JsonPointer sampler_where = where / "samplers" / s;
-                const AccessorInfo& input = accessors_[*index_in(samplers[s], "input")];
-                const AccessorInfo& output = accessors_[*index_in(samplers[s], "output")];
+                const std::optional<uint64_t> input_index = index_in(samplers[s], "input");
+                const std::optional<uint64_t> output_index = index_in(samplers[s], "output");
+                if (!input_index || !output_index) continue;  // checked above: never
+                const AccessorInfo& input = accessors_[*input_index];
+                const AccessorInfo& output = accessors_[*output_index];
                 if (input.type.components != 1 || input.type.columns != 0 || !is_float(input)) {
                     warn(sampler_where / "input", "an animation's input accessor must be {SCALAR, FLOAT}, got " + format_of(input));
                 } else if (!input.has_bounds) {
@@ -1453,7 +1457,9 @@ private:
             for (std::size_t c = 0; c < channels.size(); ++c) {
                 const JsonPointer channel_where = where / "channels" / c;
                 const json& channel = channels[c];
-                const json& sampler = samplers[*index_in(channel, "sampler")];
+                const std::optional<uint64_t> sampler_index = index_in(channel, "sampler");
+                if (!sampler_index) continue;  // checked above: never
+                const json& sampler = samplers[*sampler_index];
                 const json& target = channel.at("target");
                 const json* path_value = find(target, "path");
                 if (path_value == nullptr || !path_value->is_string()) continue;
@@ -1480,8 +1486,11 @@ private:
                                  ", " + path + ")");
                     }
                 }
-                const AccessorInfo& input = accessors_[*index_in(sampler, "input")];
-                const AccessorInfo& output = accessors_[*index_in(sampler, "output")];
+                const std::optional<uint64_t> input_index = index_in(sampler, "input");
+                const std::optional<uint64_t> output_index = index_in(sampler, "output");
+                if (!input_index || !output_index) continue;
+                const AccessorInfo& input = accessors_[*input_index];
+                const AccessorInfo& output = accessors_[*output_index];
                 const bool vec3 = path == "translation" || path == "scale";
                 const bool format_ok = vec3 ? output.type.components == 3 && is_float(output)
                                        : path == "rotation"
