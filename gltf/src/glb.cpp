@@ -43,12 +43,15 @@ Result<GlbChunks> parse_glb(std::span<const unsigned char> file) {
     const uint32_t version = read_u32(file, 4);
     if (version != 2) return glb_error("unsupported container version " + std::to_string(version) + " (expected 2)");
     const uint32_t length = read_u32(file, 8);
-    if (length != file.size()) {
-        return glb_error("declared length " + std::to_string(length) + " does not match the file size " +
+    if (length > file.size()) {
+        return glb_error("declared length " + std::to_string(length) + " exceeds the file size " +
                          std::to_string(file.size()));
     }
-
     GlbChunks chunks;
+    // Bytes after the declared length are not part of the GLB (a warning, as the validator has it).
+    chunks.trailing_bytes = file.size() - length;
+    file = file.first(length);
+
     bool have_json = false;
     std::size_t offset = kHeaderSize;
     unsigned index = 0;

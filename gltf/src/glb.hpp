@@ -16,13 +16,15 @@ namespace loom::gltf::detail {
 struct GlbChunks {
     std::string_view json;
     std::optional<std::span<const unsigned char>> bin;
+    std::size_t trailing_bytes = 0;  ///< bytes after the declared length, ignored
 };
 
 /// True when the bytes start with the GLB magic "glTF".
 [[nodiscard]] bool has_glb_magic(std::span<const unsigned char> file);
 
 /// Splits a GLB file into its chunks, checking magic, version 2, the declared length against
-/// the file size, chunk headers, lengths and alignment, and the chunk order. The error message
+/// the file size (bytes beyond it are ignored and counted), chunk headers, lengths and
+/// alignment, and the chunk order. The error message
 /// says what is wrong, without naming the file.
 [[nodiscard]] Result<GlbChunks> parse_glb(std::span<const unsigned char> file);
 

@@ -33,8 +33,10 @@ const T* element(const std::vector<T>& items, int index) {
 
 uint64_t as_index(std::size_t index) { return static_cast<uint64_t>(index); }
 
-// How far from 1 the length of a unit quaternion may be (as in the validator's node checks).
+// How far from 1 the length of a unit quaternion, or of a unit vector, may be: a little more
+// than the error of 8-bit signed quantisation (as the validator's node checks).
 constexpr double kUnitQuaternionTolerance = 0.00769;
+constexpr double kUnitVectorTolerance = 0.00674;
 
 glm::vec4 to_vec4(const std::vector<double>& values, const glm::vec4& fallback) {
     if (values.size() != 4) return fallback;
@@ -118,6 +120,7 @@ public:
         LOOM_TRY(convert_meshes());
         LOOM_TRY(convert_nodes());
         LOOM_TRY(flatten_scene());
+        check_unused_images();
         check_accessor_bounds();
         check_animation_data();
         check_skin_data();
@@ -150,6 +153,22 @@ private:
         return std::move(*values);
     }
 
+    // Images no material uses are not part of the scene, but their data must still be an image:
+    // each is decoded once to find out (a warning names the image when it does not decode).
+    void check_unused_images() {
+        for (std::size_t i = 0; i < model_.images.size(); ++i) {
+            const int image = static_cast<int>(i);
+            if (images_.count({image, false}) != 0 || images_.count({image, true}) != 0) continue;
+            const tinygltf::Image& source = model_.images[i];
+            if (const tinygltf::BufferView* view = element(model_.bufferViews, source.bufferView);
+                view != nullptr && view->buffer >= 0 && unavailable_buffers_.count(static_cast<uint64_t>(view->buffer)) != 0) {
+                continue;  // no data to check (the buffer's warning says so)
+            }
+            auto decoded = decode_image(source.image, rhi::Format::RGBA8Unorm, options_.max_image_dimension);
+            if (!decoded) warn(JsonPointer{} / "images" / as_index(i), "no material uses it, and it does not decode: " + decoded.error().message);
+        }
+    }
+
     // Every accessor's values against its declared min and max, and float values for finiteness
     // (the importer reads neither min nor max; the accessors it reads were checked for finite
     // values as they were read). One warning per accessor, at the first value at fault; an
@@ -160,6 +179,9 @@ private:
             const bool is_float = accessor.componentType == component_type::kFloat;
             const bool bounded = !accessor.minValues.empty() || !accessor.maxValues.empty();
             if (!is_float && !bounded) continue;
+            // Without a bufferView the values are zeros (and any sparse ones): the validator checks
+            // the data a file carries, not those zeros.
+            if (accessor.bufferView < 0 && !accessor.sparse.isSparse) continue;
             const auto values = reader_.read_stored(static_cast<int>(a));
             if (!values) continue;
             const JsonPointer where = JsonPointer{} / "accessors" / as_index(a);
@@ -476,6 +498,57 @@ private:
         return {};
     }
 
+    // What the specification requires of vertex values the importer reads (normals and tangents
+    // of unit length, a tangent's w of 1 or -1, colours in 0..1), made so with one warning per
+    // attribute naming the first vertex at fault: the picture is the one the file means, and
+    // the file still loads.
+    void fix_vertex_values(std::vector<Vertex>& vertices, bool normals, bool tangents, bool colors,
+                           const JsonPointer& where) {
+        const auto off_unit = [](const glm::vec3& v) {
+            return std::abs(static_cast<double>(glm::length(v)) - 1.0) > kUnitVectorTolerance;
+        };
+        const auto first = [&](auto&& faulty) -> std::optional<std::size_t> {
+            for (std::size_t v = 0; v < vertices.size(); ++v) {
+                if (faulty(vertices[v])) return v;
+            }
+            return std::nullopt;
+        };
+        if (normals) {
+            if (const auto v = first([&](const Vertex& x) { return off_unit(x.normal); })) {
+                warn(where / "NORMAL", "vertex " + std::to_string(*v) + "'s normal has length " +
+                                           std::to_string(glm::length(vertices[*v].normal)) + ", not 1; normals are normalised");
+                for (Vertex& x : vertices) {
+                    if (glm::length(x.normal) > 0.0f) x.normal = glm::normalize(x.normal);
+                }
+            }
+        }
+        if (tangents) {
+            if (const auto v = first([&](const Vertex& x) { return off_unit(glm::vec3(x.tangent)); })) {
+                warn(where / "TANGENT", "vertex " + std::to_string(*v) + "'s tangent has length " +
+                                            std::to_string(glm::length(glm::vec3(vertices[*v].tangent))) +
+                                            ", not 1; tangents are normalised");
+                for (Vertex& x : vertices) {
+                    const glm::vec3 t(x.tangent);
+                    if (glm::length(t) > 0.0f) x.tangent = glm::vec4(glm::normalize(t), x.tangent.w);
+                }
+            }
+            if (const auto v = first([](const Vertex& x) { return x.tangent.w != 1.0f && x.tangent.w != -1.0f; })) {
+                warn(where / "TANGENT", "vertex " + std::to_string(*v) + "'s tangent has w = " +
+                                            std::to_string(vertices[*v].tangent.w) + ", not 1 or -1; w becomes its sign");
+                for (Vertex& x : vertices) x.tangent.w = x.tangent.w < 0.0f ? -1.0f : 1.0f;
+            }
+        }
+        if (colors) {
+            const auto outside = [](const Vertex& x) {
+                return glm::any(glm::lessThan(x.color, glm::vec4(0.0f))) || glm::any(glm::greaterThan(x.color, glm::vec4(1.0f)));
+            };
+            if (const auto v = first(outside)) {
+                warn(where / "COLOR_0", "vertex " + std::to_string(*v) + "'s colour is outside 0..1; colours are clamped");
+                for (Vertex& x : vertices) x.color = glm::clamp(x.color, glm::vec4(0.0f), glm::vec4(1.0f));
+            }
+        }
+    }
+
     Result<std::optional<Primitive>> convert_primitive(const tinygltf::Primitive& source, const JsonPointer& where) {
         const int mode = source.mode < 0 ? TINYGLTF_MODE_TRIANGLES : source.mode;
         if (mode < TINYGLTF_MODE_TRIANGLES || mode > TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -526,6 +599,7 @@ private:
                                         [](Vertex& v, const float* x) { v.color = glm::vec4(x[0], x[1], x[2], x[3]); }));
             }
         }
+        fix_vertex_values(primitive.vertices, has("NORMAL"), has("TANGENT"), has("COLOR_0"), where / "attributes");
         if (has("NORMAL")) primitive.from_file |= kAttributeNormal;
         if (has("TANGENT")) primitive.from_file |= kAttributeTangent;
         if (has("TEXCOORD_0")) primitive.from_file |= kAttributeUv0;
@@ -565,14 +639,7 @@ private:
         primitive.material = source.material >= 0 ? static_cast<uint32_t>(source.material) : default_material();
         if (primitive.material >= scene_.materials.size()) return error(where / "material", "material does not exist");
         const Material& material = scene_.materials[primitive.material];
-        for (const auto& ref : {material.base_color_texture, material.metallic_roughness_texture, material.normal_texture,
-                                material.occlusion_texture, material.emissive_texture}) {
-            if (ref && !(primitive.from_file & (ref->uv_set == 0 ? kAttributeUv0 : kAttributeUv1))) {
-                warn(where, "material " + std::to_string(primitive.material) + " samples TEXCOORD_" +
-                                std::to_string(ref->uv_set) + ", which the primitive does not have (it reads (0, 0))");
-                break;
-            }
-        }
+        // (A material sampling a UV set the primitive lacks was reported by the validator.)
 
         if (!(primitive.from_file & kAttributeNormal)) {
             if (options_.normals == NormalGeneration::Flat) {

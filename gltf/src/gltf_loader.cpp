@@ -122,6 +122,10 @@ bool keep_encoded_image(tinygltf::Image* image, const int, std::string* err, std
 // Gives buffers the names under which the file store serves their data, and index accessors
 // without a bufferView a zero-filled one (buffers and views appended, so indices stay valid).
 void apply_rewrites(nlohmann::json& root, const detail::ValidationOutput& validated) {
+    for (const std::string& pointer : validated.integers_written_as_floats) {
+        nlohmann::json& value = root[nlohmann::json::json_pointer(pointer)];
+        value = static_cast<uint64_t>(value.get<double>());
+    }
     for (const auto& [index, rewrite] : validated.buffer_rewrites) {
         nlohmann::json& buffer = root["buffers"][index];
         buffer["uri"] = rewrite.first;
@@ -145,11 +149,13 @@ Result<Scene> load_file(const std::filesystem::path& path, const LoadOptions& op
     const bool is_glb = detail::has_glb_magic(*bytes) || has_glb_extension(path);
     std::string_view json_text(reinterpret_cast<const char*>(bytes->data()), bytes->size());
     std::optional<std::span<const unsigned char>> bin;
+    std::size_t glb_trailing_bytes = 0;
     if (is_glb) {
         auto chunks = detail::parse_glb(*bytes);
         if (!chunks) return parse_error(file_label, chunks.error().message);
         json_text = chunks->json;
         bin = chunks->bin;
+        glb_trailing_bytes = chunks->trailing_bytes;
     }
 
     // The JSON itself.
@@ -201,6 +207,15 @@ Result<Scene> load_file(const std::filesystem::path& path, const LoadOptions& op
         return parse_error(file_label, "tinygltf: " + (err.empty() ? std::string("loading failed") : one_line(err)));
     }
     std::vector<std::string> warnings = std::move(validated->warnings);
+    if (const auto& fractional = validated->integers_written_as_floats; !fractional.empty()) {
+        warnings.push_back(located_message(file_label, fractional.front(),
+                                           std::to_string(fractional.size()) +
+                                               " integer(s) written with a fraction (as 1.0), read as integers"));
+    }
+    if (glb_trailing_bytes != 0) {
+        warnings.insert(warnings.begin(), located_message(file_label, "", "GLB: " + std::to_string(glb_trailing_bytes) +
+                                                                              " bytes after the declared length are ignored"));
+    }
     if (!warn.empty()) warnings.push_back(located_message(file_label, "", "tinygltf: " + one_line(warn)));
 
     auto scene = detail::convert_model(model, file_label, options, validated->unavailable_buffers, warnings);

@@ -254,6 +254,15 @@ private:
                 return parse_error(where, "must be at least " + std::to_string(min) + ", got " + std::to_string(signed_value));
             }
             result = static_cast<uint64_t>(signed_value);
+        } else if (const double number = value.is_number_float() ? value.get<double>() : 0.5;
+                   std::floor(number) == number && std::abs(number) <= static_cast<double>(kMaxSafeInteger)) {
+            // An integer written with a fraction ("1.0"): JSON has one number type, and the
+            // validator reads it as the integer. tinygltf is handed the integer (ValidationOutput).
+            if (number < 0) {
+                return parse_error(where, "must be at least " + std::to_string(min) + ", got " + format_number(number));
+            }
+            result = static_cast<uint64_t>(number);
+            output_.integers_written_as_floats.push_back(where.str());
         } else {
             return parse_error(where, "must be an integer, got " + short_dump(value));
         }
@@ -456,6 +465,39 @@ private:
             }
         }
         mesh_quantization_ = used.count("KHR_mesh_quantization") != 0;
+        return check_extension_objects(root_, root, used);
+    }
+
+    // Every "extensions" object of the document (outside the application's "extras"): an object
+    // of objects, each named in extensionsUsed (an undeclared one is a warning: the importer
+    // reads only the extensions it supports, declared or not).
+    Status check_extension_objects(const json& value, const JsonPointer& where, const std::set<std::string>& declared) {
+        if (value.is_array()) {
+            for (std::size_t i = 0; i < value.size(); ++i) {
+                if (value[i].is_structured()) LOOM_TRY(check_extension_objects(value[i], where / i, declared));
+            }
+            return {};
+        }
+        for (const auto& [key, member] : value.items()) {
+            if (key == "extras" || !member.is_structured()) {
+                if (key == "extensions" && !member.is_object()) {
+                    return parse_error(where / key, "must be an object, got " + short_dump(member));
+                }
+                continue;
+            }
+            if (key == "extensions") {
+                if (!member.is_object()) return parse_error(where / key, "must be an object, got " + short_dump(member));
+                for (const auto& [name, extension] : member.items()) {
+                    if (!extension.is_object()) {
+                        return parse_error(where / key / name, "must be an object, got " + short_dump(extension));
+                    }
+                    if (declared.count(name) == 0) {
+                        warn(where / key / name, "extension '" + name + "' is not declared in extensionsUsed");
+                    }
+                }
+            }
+            LOOM_TRY(check_extension_objects(member, where / key, declared));
+        }
         return {};
     }
 
@@ -559,6 +601,11 @@ private:
 
     // Decodes a data URI strictly and checks that tinygltf will recognise it as one.
     Result<uint64_t> check_data_uri(const std::string& uri, const JsonPointer& where) const {
+        auto data = checked_data_uri(uri, where);
+        if (!data) return data.take_error();
+        return static_cast<uint64_t>(data->data.size());
+    }
+    Result<DataUri> checked_data_uri(const std::string& uri, const JsonPointer& where) const {
         auto data = decode_data_uri(uri);
         if (!data) return parse_error(where, data.error().message);
         if (!tinygltf_decodes_media_type(data->media_type) ||
@@ -566,7 +613,25 @@ private:
             return parse_error(where, "data URI media type '" + data->media_type + "' is not supported (supported: " +
                                           std::string(tinygltf_media_types()) + ")");
         }
-        return static_cast<uint64_t>(data->data.size());
+        return data;
+    }
+
+    // An embedded image's media type is image/png or image/jpeg, and its bytes are what the
+    // mimeType (or the URI) declares. Images are decoded by their content, so a mismatch is a
+    // warning.
+    void check_image_media_type(const DataUri& image, const std::optional<std::string>& mime, const JsonPointer& where) {
+        const std::string declared = mime ? *mime : image.media_type;
+        if (declared != "image/png" && declared != "image/jpeg") {
+            warn(where, "declares media type '" + declared + "'; glTF images are image/png or image/jpeg (decoded by their content)");
+            return;
+        }
+        const auto& d = image.data;
+        const bool png = d.size() >= 4 && d[0] == 0x89 && d[1] == 'P' && d[2] == 'N' && d[3] == 'G';
+        const bool jpeg = d.size() >= 3 && d[0] == 0xFF && d[1] == 0xD8 && d[2] == 0xFF;
+        if ((png && declared != "image/png") || (jpeg && declared != "image/jpeg")) {
+            warn(where, "holds a " + std::string(png ? "PNG" : "JPEG") + " image but declares '" + declared +
+                            "' (decoded by its content)");
+        }
     }
 
     Status check_buffers() {
@@ -819,11 +884,16 @@ private:
                 if (**mime != "image/png" && **mime != "image/jpeg") {
                     return parse_error(where / "mimeType", "'" + **mime + "' is not a glTF image type (image/png, image/jpeg)");
                 }
+                if (**view < views_.size() && views_[**view].byte_stride) {
+                    return parse_error(where / "bufferView", "buffer view " + std::to_string(**view) +
+                                                                 " holds image data and must not define byteStride");
+                }
                 return cover_unavailable_image(**view, where);
             }
             if (is_data_uri(**uri)) {
-                auto size = check_data_uri(**uri, where / "uri");
-                if (!size) return size.take_error();
+                auto data = checked_data_uri(**uri, where / "uri");
+                if (!data) return data.take_error();
+                check_image_media_type(*data, *mime, where / "uri");
                 return {};
             }
             auto size = load_file(**uri, where / "uri", std::nullopt);
@@ -977,6 +1047,45 @@ private:
                (accessor.normalized ? " normalized" : "");
     }
 
+    // The UV sets a primitive's material samples exist on the primitive (a texture without its
+    // set reads (0, 0): a warning, as the importer draws it so).
+    void check_material_uv_sets(const json& primitive, const JsonPointer& where) {
+        const json* material_index = find(primitive, "material");
+        const json* materials = find(root_, "materials");
+        if (material_index == nullptr || materials == nullptr || !material_index->is_number_integer()) return;
+        const json& material = (*materials)[material_index->get<std::size_t>()];
+        uint64_t sets = 0;
+        const json& attributes = primitive.at("attributes");
+        while (attributes.contains("TEXCOORD_" + std::to_string(sets))) ++sets;
+        const auto uv_set_of = [](const json& info) -> uint64_t {
+            uint64_t set = info.contains("texCoord") && info["texCoord"].is_number_unsigned() ? info["texCoord"].get<uint64_t>() : 0;
+            const json* transform = info.contains("extensions") && info["extensions"].is_object() &&
+                                            info["extensions"].contains("KHR_texture_transform")
+                                        ? &info["extensions"]["KHR_texture_transform"]
+                                        : nullptr;
+            if (transform && transform->is_object() && transform->contains("texCoord") && (*transform)["texCoord"].is_number_unsigned()) {
+                set = (*transform)["texCoord"].get<uint64_t>();
+            }
+            return set;
+        };
+        std::vector<const json*> infos;
+        for (const char* key : {"normalTexture", "occlusionTexture", "emissiveTexture"}) {
+            if (const json* info = find(material, key); info && info->is_object()) infos.push_back(info);
+        }
+        if (const json* pbr = find(material, "pbrMetallicRoughness"); pbr && pbr->is_object()) {
+            for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"}) {
+                if (const json* info = find(*pbr, key); info && info->is_object()) infos.push_back(info);
+            }
+        }
+        for (const json* info : infos) {
+            if (const uint64_t set = uv_set_of(*info); set >= sets) {
+                warn(where / "material", "material " + std::to_string(material_index->get<uint64_t>()) + " samples TEXCOORD_" +
+                                             std::to_string(set) + ", which the primitive does not have (it reads (0, 0))");
+                return;
+            }
+        }
+    }
+
     Status check_primitive(const json& primitive, const JsonPointer& where) {
         auto attributes = object_member(primitive, "attributes", where, true);
         if (!attributes) return attributes.take_error();
@@ -1127,6 +1236,7 @@ private:
                 const json& primitive = (**primitives)[p];
                 if (!primitive.is_object()) return parse_error(where / "primitives" / p, "must be an object");
                 LOOM_TRY(check_primitive(primitive, where / "primitives" / p));
+                check_material_uv_sets(primitive, where / "primitives" / p);
             }
             // Every primitive of a mesh has the same number of morph targets; weights, one each.
             auto target_count = [](const json& primitive) -> std::size_t {

@@ -50,6 +50,9 @@ struct ValidationOutput {
     /// rejects): each gets a zero-filled buffer and view, served as a file under this name
     /// (with its byte length), keyed by accessor index.
     std::map<uint64_t, std::pair<std::string, uint64_t>> zero_index_accessors;
+    /// JSON pointers of integer properties written with a fraction ("1.0"), accepted as the
+    /// integer; tinygltf, which reads only integers there, is given the integer.
+    std::vector<std::string> integers_written_as_floats;
 };
 
 /// Validates the parsed document. The error is ErrorCode::Io for files that cannot be read,
