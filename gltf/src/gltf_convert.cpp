@@ -124,6 +124,7 @@ public:
         check_accessor_bounds();
         check_animation_data();
         check_skin_data();
+        check_skinning_attributes();
         return std::move(scene_);
     }
 
@@ -267,6 +268,85 @@ private:
                         break;
                     }
                 }
+            }
+        }
+    }
+
+    // JOINTS_n / WEIGHTS_n of every primitive (skins are not imported): weights non-negative and
+    // summing to 1 per vertex over all sets, no joint twice in a vertex with weight, joint
+    // indices inside the smallest skin of the nodes that draw the mesh. One warning per check.
+    void check_skinning_attributes() {
+        std::vector<std::size_t> joints_of_mesh(model_.meshes.size(), SIZE_MAX);  // smallest skin's joint count
+        for (const tinygltf::Node& node : model_.nodes) {
+            if (node.mesh < 0 || node.skin < 0 || static_cast<std::size_t>(node.skin) >= model_.skins.size() ||
+                static_cast<std::size_t>(node.mesh) >= model_.meshes.size()) {
+                continue;
+            }
+            std::size_t& joints = joints_of_mesh[static_cast<std::size_t>(node.mesh)];
+            joints = std::min(joints, model_.skins[static_cast<std::size_t>(node.skin)].joints.size());
+        }
+        for (std::size_t m = 0; m < model_.meshes.size(); ++m) {
+            for (std::size_t p = 0; p < model_.meshes[m].primitives.size(); ++p) {
+                check_skinning_attributes(model_.meshes[m].primitives[p], joints_of_mesh[m],
+                                          JsonPointer{} / "meshes" / as_index(m) / "primitives" / as_index(p) / "attributes");
+            }
+        }
+    }
+    void check_skinning_attributes(const tinygltf::Primitive& primitive, std::size_t joint_count, const JsonPointer& where) {
+        struct Set {
+            std::string joints_name, weights_name;
+            std::vector<double> joints, weights;
+        };
+        std::vector<Set> sets;
+        for (std::size_t n = 0;; ++n) {
+            const auto joints = primitive.attributes.find("JOINTS_" + std::to_string(n));
+            const auto weights = primitive.attributes.find("WEIGHTS_" + std::to_string(n));
+            if (joints == primitive.attributes.end() || weights == primitive.attributes.end()) break;
+            auto joint_values = reader_.read_stored(joints->second);
+            auto weight_values = reader_.read_floats(weights->second, 4);
+            if (!joint_values || !weight_values || reader_.components(joints->second) != 4 ||
+                joint_values->size() != weight_values->size()) {
+                return;  // formats and counts are the validator's; data it cannot read is not checked
+            }
+            sets.push_back({joints->first, weights->first, std::move(*joint_values),
+                            std::vector<double>(weight_values->begin(), weight_values->end())});
+        }
+        if (sets.empty()) return;
+        const std::size_t vertices = sets[0].joints.size() / 4;
+        bool negative = false, unnormalized = false, duplicate = false, outside = false;
+        for (std::size_t v = 0; v < vertices; ++v) {
+            double sum = 0.0;
+            std::vector<double> used;
+            for (const Set& set : sets) {
+                if (set.joints.size() != vertices * 4) return;
+                for (std::size_t c = 0; c < 4; ++c) {
+                    const double joint = set.joints[v * 4 + c];
+                    const double weight = set.weights[v * 4 + c];
+                    sum += weight;
+                    if (weight < 0.0 && !negative) {
+                        negative = true;
+                        warn(where / set.weights_name, "vertex " + std::to_string(v) + " has a negative weight");
+                    }
+                    if (weight == 0.0) continue;
+                    if (joint >= static_cast<double>(joint_count) && !outside) {
+                        outside = true;
+                        warn(where / set.joints_name, "vertex " + std::to_string(v) + " uses joint " +
+                                                          std::to_string(static_cast<uint64_t>(joint)) + " of a skin with " +
+                                                          std::to_string(joint_count) + " joints");
+                    }
+                    if (std::find(used.begin(), used.end(), joint) != used.end() && !duplicate) {
+                        duplicate = true;
+                        warn(where / set.joints_name, "vertex " + std::to_string(v) + " uses joint " +
+                                                          std::to_string(static_cast<uint64_t>(joint)) + " twice");
+                    }
+                    used.push_back(joint);
+                }
+            }
+            // Normalised weights may be off by their quantisation step per component.
+            if (std::abs(sum - 1.0) > 2e-3 * static_cast<double>(sets.size() * 4) && !unnormalized) {
+                unnormalized = true;
+                warn(where / sets[0].weights_name, "vertex " + std::to_string(v) + "'s weights sum to " + std::to_string(sum) +
+                                                       ", not 1");
             }
         }
     }

@@ -130,8 +130,6 @@ const std::vector<KnownShortfall> kKnownShortfalls = {
      "the error names the first of the attributes sharing the view, not the second"},
     {"mesh_data/joints_no_weights.gltf", Outcome::RejectedElsewhere,
      "the buffer view range error is found before the pointer the validator names"},
-    {"mesh_data/joints_weights_complex.gltf", Outcome::SilentlyAccepted,
-     "JOINTS_n/WEIGHTS_n are not imported; their data is not checked"},
     {"node/infinite_transform.gltf", Outcome::RejectedElsewhere,
      "the JSON parser rejects 1e309 before the validator can name its pointer"},
     {"root/duplicate_extension_entry.gltf", Outcome::RejectedElsewhere,
