@@ -122,6 +122,7 @@ bool keep_encoded_image(tinygltf::Image* image, const int, std::string* err, std
 // Gives buffers the names under which the file store serves their data, and index accessors
 // without a bufferView a zero-filled one (buffers and views appended, so indices stay valid).
 void apply_rewrites(nlohmann::json& root, const detail::ValidationOutput& validated) {
+    for (const auto& [index, name] : validated.image_rewrites) root["images"][index]["uri"] = name;
     for (const std::string& pointer : validated.integers_written_as_floats) {
         nlohmann::json& value = root[nlohmann::json::json_pointer(pointer)];
         value = static_cast<uint64_t>(value.get<double>());

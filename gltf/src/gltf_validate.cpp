@@ -465,6 +465,9 @@ private:
             }
         }
         mesh_quantization_ = used.count("KHR_mesh_quantization") != 0;
+        // EXT_texture_webp (not decoded): its WebP images are allowed, and textures draw with
+        // their `source`, the PNG or JPEG fallback the extension requires when it is not required.
+        webp_images_allowed_ = used.count("EXT_texture_webp") != 0;
         return check_extension_objects(root_, root, used);
     }
 
@@ -869,7 +872,7 @@ private:
     }
 
     Status check_images() {
-        return for_each(Collection::Images, [&](const json& image, const JsonPointer& where, std::size_t) -> Status {
+        return for_each(Collection::Images, [&](const json& image, const JsonPointer& where, std::size_t index) -> Status {
             auto uri = string_member(image, "uri", where, false);
             if (!uri) return uri.take_error();
             auto view = reference_member(image, "bufferView", where, Collection::BufferViews, false);
@@ -881,7 +884,8 @@ private:
             }
             if (*view) {
                 if (!*mime) return parse_error(where, "required property 'mimeType' is missing (the image uses a bufferView)");
-                if (**mime != "image/png" && **mime != "image/jpeg") {
+                const bool webp = webp_images_allowed_ && **mime == "image/webp";
+                if (**mime != "image/png" && **mime != "image/jpeg" && !webp) {
                     return parse_error(where / "mimeType", "'" + **mime + "' is not a glTF image type (image/png, image/jpeg)");
                 }
                 if (**view < views_.size() && views_[**view].byte_stride) {
@@ -889,6 +893,17 @@ private:
                                                                  " holds image data and must not define byteStride");
                 }
                 return cover_unavailable_image(**view, where);
+            }
+            if (is_data_uri(**uri) && webp_images_allowed_) {
+                // tinygltf does not take WebP data URIs: the bytes are served as a file.
+                auto data = decode_data_uri(**uri);
+                if (!data) return parse_error(where / "uri", data.error().message);
+                if (data->media_type == "image/webp") {
+                    const std::string name = "__loom_webp_image_" + std::to_string(index) + ".webp";
+                    output_.files[store_key(name)] = std::move(data->data);
+                    output_.image_rewrites[index] = name;
+                    return {};
+                }
             }
             if (is_data_uri(**uri)) {
                 auto data = checked_data_uri(**uri, where / "uri");
@@ -934,6 +949,13 @@ private:
             if (!sampler) return sampler.take_error();
             auto source = reference_member(texture, "source", where, Collection::Images, false);
             if (!source) return source.take_error();
+            if (const json* extensions = find(texture, "extensions"); extensions != nullptr && extensions->is_object()) {
+                if (const json* webp = find(*extensions, "EXT_texture_webp"); webp != nullptr && webp->is_object()) {
+                    auto webp_source = reference_member(*webp, "source", where / "extensions" / "EXT_texture_webp",
+                                                        Collection::Images, true);
+                    if (!webp_source) return webp_source.take_error();
+                }
+            }
             return {};
         });
     }
@@ -1710,6 +1732,7 @@ private:
     ValidationOutput& output_;
     std::array<std::size_t, kCollectionCount> counts_{};
     bool mesh_quantization_ = false;
+    bool webp_images_allowed_ = false;
     std::vector<uint64_t> buffer_lengths_;
     std::vector<ViewInfo> views_;
     std::vector<AccessorInfo> accessors_;

@@ -289,6 +289,47 @@ TEST(SceneImport, UnsupportedUsedExtensionsAreIgnoredWithAWarning) {
     EXPECT_EQ(scene.draw_items.size(), 1u);
 }
 
+// EXT_texture_webp, used but not required: its WebP images (a data URI, a buffer view) are
+// allowed and never decoded; every texture draws with its PNG fallback `source`. Without the
+// extension declared, a WebP image is an error.
+TEST(SceneImport, WebpTexturesDrawTheirPngFallback) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    rhi::Image pixel(1, 1, rhi::Format::RGBA8Unorm);
+    pixel.pixels = {std::byte{200}, std::byte{10}, std::byte{20}, std::byte{255}};
+    ASSERT_TRUE(image_io::write_png(pixel, dir / "pixel.png").ok());
+    const std::vector<unsigned char> webp = {'R', 'I', 'F', 'F', 4, 0, 0, 0, 'W', 'E', 'B', 'P'};
+    const auto build = [&](bool declared) {
+        GltfBuilder builder;
+        builder.add_quad(true, 0);
+        const int webp_view = builder.add_view(webp.data(), webp.size());
+        builder.json()["images"] = nlohmann::json::array({{{"uri", "pixel.png"}},
+                                                          {{"uri", "data:image/webp;base64,UklGRgQAAABXRUJQ"}},
+                                                          {{"bufferView", webp_view}, {"mimeType", "image/webp"}}});
+        builder.json()["textures"] = nlohmann::json::array(
+            {{{"source", 0}, {"extensions", {{"EXT_texture_webp", {{"source", 1}}}}}},
+             {{"source", 0}, {"extensions", {{"EXT_texture_webp", {{"source", 2}}}}}}});
+        builder.json()["materials"] = nlohmann::json::array(
+            {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}},
+             {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 1}}}}}}});
+        if (declared) builder.json()["extensionsUsed"] = {"EXT_texture_webp"};
+        return builder.write(dir, declared ? "webp" : "webp_undeclared", Layout::External);
+    };
+    ScopedLogCapture capture;
+    const Scene scene = load_ok(build(true));
+    ASSERT_EQ(scene.textures.size(), 2u);
+    ASSERT_EQ(scene.images.size(), 1u);  // the PNG, shared; the WebP images are not decoded
+    EXPECT_EQ(scene.images[0].image.pixels[0], std::byte{200});
+    ASSERT_EQ(scene.warnings.size(), 1u);
+    EXPECT_NE(scene.warnings[0].find("/extensionsUsed/0: extension 'EXT_texture_webp' is not supported"), std::string::npos)
+        << scene.warnings[0];
+
+    auto undeclared = gltf::load(build(false));
+    ASSERT_FALSE(undeclared.ok());
+    EXPECT_NE(undeclared.error().message.find("/images/1/uri: data URI media type 'image/webp' is not supported"),
+              std::string::npos)
+        << undeclared.error().message;
+}
+
 TEST(SceneImport, SamplersMapToRhiSamplerDescriptions) {
     const std::filesystem::path dir = synthetic_dir(current_test());
     struct Case {
