@@ -164,6 +164,31 @@ TEST_P(UniformsTest, PerDrawUniformsBetweenConsecutiveDraws) {
     }
 }
 
+// Two per-draw uniform blocks changing between consecutive draws (set 0's `material` and set
+// 1's `extra`): GL rebinds one range per draw without copying its bindings, and copies them
+// when a second range changes too. Each draw must see both of its own blocks.
+TEST_P(UniformsTest, TwoPerDrawUniformBlocksBetweenConsecutiveDraws) {
+    if (!device().capabilities().format(rhi::Format::RGBA32Float).blendable) GTEST_SKIP() << "RGBA32Float does not blend here";
+    const rhi::BlendState add{.enabled = true, .dst_color = rhi::BlendFactor::One, .dst_alpha = rhi::BlendFactor::One};
+    LOOM_ASSIGN_OR_FAIL(auto pipeline, uniform_pipeline(device(), "two summed uniforms", {add}));
+    LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "two-block sum target", rhi::Format::RGBA32Float, 1, 1));
+    LOOM_ASSERT_OK(run_frame(device(), [&](rhi::CommandList& list) {
+        list.begin_render_pass(clear_pass("two-block sum", target, {0, 0, 0, 0}));
+        list.set_pipeline(pipeline);
+        list.push_constants_of(std::array<float, 4>{});
+        for (uint32_t i = 0; i < 8; ++i) {
+            // Draws 0-3 change both blocks, 4-7 only `extra` (after draw 3's material).
+            if (i < 4) list.set_uniforms_of(0, 0, Material{{0.0f, 0.0f, 0.0f, static_cast<float>(i + 1)}, 1.0f, {}});
+            list.set_uniforms_of(1, 2, std::array<float, 4>{static_cast<float>(i), 1.0f, 0.0f, 0.0f});
+            list.draw(3);
+        }
+        list.end_render_pass();
+    }));
+    LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(target));
+    // x: 0 + 1 + ... + 7; y: one per draw; w: the material's alpha, 1 + 2 + 3 + 4 and then 4 four times.
+    EXPECT_EQ(image.load(0, 0), (std::array<double, 4>{28.0, 8.0, 0.0, 26.0}));
+}
+
 // set_buffer is checked like a bind group at the draw: a destroyed buffer is a stale handle,
 // and a range past the buffer's end is refused although the set was bound before with a good one.
 TEST_P(UniformsTest, SetBufferIsCheckedAtTheDraw) {

@@ -81,6 +81,7 @@ void GlCommandList::begin() {
     pipeline_states_.clear();
     vertex_states_.clear();
     binding_states_.clear();
+    offset_override_ = {};
     binding_state_drawn_ = vertex_state_drawn_ = false;
     draw_pipeline_ = nullptr;
     blends_.clear();
@@ -274,6 +275,10 @@ LOOM_GL_HOT void GlCommandList::next_binding_state() {
     next.first_binding = static_cast<uint32_t>(bindings_.size());
     next.binding_count = last.binding_count;
     for (uint32_t i = 0; i < last.binding_count; ++i) bindings_.push_back(bindings_[last.first_binding + i]);
+    if (offset_override_.binding != kNoOverride) {
+        bindings_[next.first_binding + (offset_override_.binding - last.first_binding)].offset = offset_override_.offset;
+        offset_override_ = {};
+    }
     binding_states_.push_back(next);
     binding_state_drawn_ = false;
 }
@@ -289,9 +294,14 @@ LOOM_GL_HOT bool GlCommandList::rebinds_offset(uint32_t set, uint32_t binding, c
                                                bool transient) {
     if (!binding_state_valid_ || !pipeline_state_valid_) return false;
     const std::vector<PipelineBinding>& bindings = draw_pipeline_->bindings;
-    std::size_t i = 0;
-    while (i < bindings.size() && (bindings[i].set != set || bindings[i].binding != binding)) ++i;
-    if (i == bindings.size()) return true;  // the pipeline does not read it: its draws are unchanged
+    // Per-draw data rebinds the same binding draw after draw: try the last one found first.
+    std::size_t i = last_rebound_;
+    if (i >= bindings.size() || bindings[i].set != set || bindings[i].binding != binding) {
+        i = 0;
+        while (i < bindings.size() && (bindings[i].set != set || bindings[i].binding != binding)) ++i;
+        if (i == bindings.size()) return true;  // the pipeline does not read it: its draws are unchanged
+        last_rebound_ = i;
+    }
     if (transient) {
         // The device's own transient memory: alive, aligned and inside by construction.
         auto* then = std::get_if<rhi::BufferBinding>(&resolved_entries_[i].resource);
@@ -303,8 +313,20 @@ LOOM_GL_HOT bool GlCommandList::rebinds_offset(uint32_t set, uint32_t binding, c
     } else if (!takes_new_offset(i, range)) {
         return false;
     }
-    if (binding_state_drawn_) next_binding_state();  // drawn with the old offset
-    bindings_[binding_states_.back().first_binding + i].offset = static_cast<GLintptr>(range.offset);
+    const auto resolved = static_cast<uint32_t>(binding_states_.back().first_binding + i);
+    const auto offset = static_cast<GLintptr>(range.offset);
+    if (offset_override_.binding == resolved) {
+        offset_override_.offset = offset;  // the next draws rebind it at the new offset
+    } else if (!binding_state_drawn_) {
+        bindings_[resolved].offset = offset;
+    } else if (offset_override_.binding == kNoOverride) {
+        // Drawn with the old offset: the next draws carry the new one instead of a copy of
+        // the whole binding state (one uniform range per draw is the common case).
+        offset_override_ = {resolved, offset};
+    } else {
+        next_binding_state();  // a second range changes: copy the state (with the override)
+        bindings_[binding_states_.back().first_binding + i].offset = offset;
+    }
     return true;
 }
 
@@ -606,6 +628,7 @@ bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool i
     if (!binding_state_valid_) {
         BindingState b;
         b.first_binding = static_cast<uint32_t>(bindings_.size());
+        offset_override_ = {};  // the bound groups hold every offset the new state resolves
         if (!resolve_bindings(p, command)) {
             bindings_.shrink_to(b.first_binding);
             binding_states_.push_back(b);  // keeps the indices of the others in step; never drawn
@@ -644,6 +667,10 @@ LOOM_GL_HOT void GlCommandList::replay_draw(GlStateCache& cache, const Draw& dra
         const BindingState& b = binding_states_[draw.binding_state];
         apply_bindings(cache, b.first_binding, b.binding_count);
         replayed_bindings_ = draw.binding_state;
+    }
+    if (draw.override_binding != kNoOverride) {
+        const ResolvedBinding& b = bindings_[draw.override_binding];
+        cache.bind_uniform_buffer(b.point, b.object, draw.override_offset, b.size);
     }
     if (draw.push.object != 0) {
         cache.bind_uniform_buffer(rhi::kGlPushConstantBinding, draw.push.object, draw.push.offset, draw.push.size);
@@ -689,22 +716,25 @@ LOOM_GL_HOT void GlCommandList::draw_common(bool indexed, uint32_t count, uint32
     if (indexed && !indirect && !accepted(state_.check_index_range(first, count))) return;
     // Checked like any other draw (as Vulkan records it), then nothing to draw.
     if (indirect ? indirect->count == 0 : (count == 0 || instance_count == 0)) return;
-    Draw& draw = draws_.emplace_back();
-    draw.pipeline_state = static_cast<uint32_t>(pipeline_states_.size() - 1);
-    draw.vertex_state = static_cast<uint32_t>(vertex_states_.size() - 1);
-    draw.binding_state = static_cast<uint32_t>(binding_states_.size() - 1);
-    draw.indexed = indexed;
-    draw.count = count;
-    draw.instance_count = instance_count;
-    draw.first = first;
-    draw.base_vertex = base_vertex;
-    draw.first_instance = first_instance;
+    uint32_t indirect_index = UINT32_MAX;
     if (indirect) {
-        draw.indirect = static_cast<uint32_t>(indirect_draws_.size());
+        indirect_index = static_cast<uint32_t>(indirect_draws_.size());
         indirect_draws_.push_back(*indirect);
     }
-    // The pipeline was found alive for this state (nothing destroyed since).
-    draw.push = push_constant_range(*draw_pipeline_);
+    // Written once, in place (the pipeline was found alive for this state: nothing destroyed since).
+    draws_.push_back(Draw{.pipeline_state = static_cast<uint32_t>(pipeline_states_.size() - 1),
+                          .vertex_state = static_cast<uint32_t>(vertex_states_.size() - 1),
+                          .binding_state = static_cast<uint32_t>(binding_states_.size() - 1),
+                          .indirect = indirect_index,
+                          .indexed = indexed,
+                          .count = count,
+                          .instance_count = instance_count,
+                          .first = first,
+                          .base_vertex = base_vertex,
+                          .first_instance = first_instance,
+                          .push = push_constant_range(*draw_pipeline_),
+                          .override_binding = offset_override_.binding,
+                          .override_offset = offset_override_.offset});
     binding_state_drawn_ = vertex_state_drawn_ = true;
     if (draw_run_open_) {
         ++draw_runs_.back().count;

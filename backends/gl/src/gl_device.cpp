@@ -3,6 +3,7 @@
 #include "loom/rhi/validation.hpp"
 
 #include <algorithm>
+#include <bit>
 
 #include "gl_debug.hpp"
 #include "loom/rhi/log.hpp"
@@ -106,6 +107,9 @@ void GlDevice::init_capabilities() {
     caps_.max_color_attachments = std::min({integer(GL_MAX_COLOR_ATTACHMENTS), integer(GL_MAX_DRAW_BUFFERS),
                                             kMaxColorAttachments});
     caps_.uniform_buffer_offset_alignment = std::max<uint32_t>(1, integer(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT));
+    if (std::has_single_bit(caps_.uniform_buffer_offset_alignment)) {
+        uniform_alignment_mask_ = caps_.uniform_buffer_offset_alignment - 1;
+    }
     caps_.storage_buffer_offset_alignment = std::max<uint32_t>(1, integer(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT));
     limits_.max_image_units = integer(GL_MAX_IMAGE_UNITS);
     limits_.max_storage_buffer_bindings = integer(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS);

@@ -211,7 +211,20 @@ private:
         int32_t base_vertex = 0;
         uint32_t first_instance = 0;
         PushRange push;
+        /// A uniform range of the binding state drawn at another offset (offset_override_), or none.
+        uint32_t override_binding = kNoOverride;
+        GLintptr override_offset = 0;
     };
+    static constexpr uint32_t kNoOverride = UINT32_MAX;
+    /// Per-draw uniform data without copying the binding state: one uniform range of
+    /// binding_states_.back() (an index into bindings_) rebound at `offset` by the draws recorded
+    /// while it is set; a new binding state takes the offset over and clears it.
+    struct OffsetOverride {
+        uint32_t binding = kNoOverride;
+        GLintptr offset = 0;
+    };
+    OffsetOverride offset_override_;
+    std::size_t last_rebound_ = 0;  ///< the pipeline binding rebinds_offset found last (a hint)
     /// Whether the state checked and resolved for the previous draw holds for this one as it
     /// is; when something it relied on changed (a destruction, an indirect draw, the first
     /// indexed draw without an index buffer recorded), forgets it all.
@@ -359,10 +372,13 @@ public:
         // The common case inline (per draw for push constants): room in the frame's last chunk.
         if (!frame_chunks_.empty()) [[likely]] {
             TransientChunk& chunk = frame_chunks_.back();
-            const uint64_t offset = checked::align_up_in_range(chunk.used, caps_.uniform_buffer_offset_alignment);
+            // GL's offset alignments are powers of two in practice; any other takes the division.
+            const uint64_t offset = uniform_alignment_mask_ != 0
+                                        ? (chunk.used + uniform_alignment_mask_) & ~uniform_alignment_mask_
+                                        : checked::align_up_in_range(chunk.used, caps_.uniform_buffer_offset_alignment);
             const uint64_t size = data.empty() ? 1 : data.size();
             if (offset + size <= chunk.size) [[likely]] {
-                if (!data.empty()) std::memcpy(chunk.data + offset, data.data(), data.size());
+                copy_small(chunk.data + offset, data);
                 chunk.used = offset + size;
                 pending_uploads_ += data.size();
                 if (name) *name = chunk.name;
@@ -370,6 +386,16 @@ public:
             }
         }
         return allocate_transient_chunk(data, name);
+    }
+    /// memcpy, with the sizes of per-draw constants copied inline (no call into the C library).
+    LOOM_GL_HOT static void copy_small(std::byte* to, std::span<const std::byte> data) {
+        switch (data.size()) {
+            case 0: return;
+            case 16: std::memcpy(to, data.data(), 16); return;
+            case 32: std::memcpy(to, data.data(), 32); return;
+            case 64: std::memcpy(to, data.data(), 64); return;
+            default: std::memcpy(to, data.data(), data.size());
+        }
     }
     GLuint acquire_query();
     void discard_first_timer_query();
@@ -431,6 +457,9 @@ private:
     std::unique_ptr<GlAppState> app_state_;
     std::optional<SavedDebugOutput> saved_debug_output_;
     rhi::Capabilities caps_;
+    /// uniform_buffer_offset_alignment - 1 when it is a power of two (0 otherwise): the per-draw
+    /// transient allocation rounds up with a mask instead of a division.
+    uint64_t uniform_alignment_mask_ = 0;
     rhi::validation::ResourceLookup resource_lookup_;  ///< see resource_lookup()
     Limits limits_;
     rhi::HandlePool<rhi::TextureTag, GlTexture> textures_;
