@@ -343,9 +343,8 @@ void GlCommandList::set_buffer(uint32_t set, uint32_t binding, const rhi::Buffer
 void GlCommandList::set_uniforms(uint32_t set, uint32_t binding, std::span<const std::byte> data) {
     if (!accepted(state_.check_recording("set_uniforms"))) return;
     const rhi::BufferBinding range = device_->allocate_transient(data);
-    if (!accepted(state_.set_buffer(set, binding, range)) || !rebinds_offset(set, binding, range, true)) {
-        binding_state_valid_ = false;
-    }
+    const bool replaced = state_.replace_buffer(set, binding, range) || accepted(state_.set_buffer(set, binding, range));
+    if (!replaced || !rebinds_offset(set, binding, range, true)) binding_state_valid_ = false;
 }
 
 void GlCommandList::push_constants(std::span<const std::byte> data, uint32_t offset) {

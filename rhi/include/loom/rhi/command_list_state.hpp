@@ -128,15 +128,22 @@ public:
     /// joins it; a set with no group gets one). Inline: per-draw data comes this way, and most
     /// calls replace a buffer range the group already has.
     Status set_buffer(uint32_t set, uint32_t binding, const BufferBinding& range) {
+        if (replace_buffer(set, binding, range)) [[likely]] return {};
+        return set_buffer_slow(set, binding, range);
+    }
+    /// set_buffer's common case alone, without a Status: true when the group bound to `set`
+    /// has a buffer at `binding` and `range` replaced it; false (nothing changed) otherwise,
+    /// when set_buffer must be called.
+    bool replace_buffer(uint32_t set, uint32_t binding, const BufferBinding& range) {
         if (set < kMaxBindGroups && groups_[set]) [[likely]] {
             if (BindingEntry* entry = bound_entry(&*groups_[set], binding)) {
                 if (auto* buffer = std::get_if<BufferBinding>(&entry->resource)) [[likely]] {
                     *buffer = range;
-                    return {};
+                    return true;
                 }
             }
         }
-        return set_buffer_slow(set, binding, range);
+        return false;
     }
     /// The group bound to `set`, or null.
     [[nodiscard]] const BindGroup* bind_group(uint32_t set) const {
