@@ -603,14 +603,10 @@ private:
     }
 
     // Decodes a data URI strictly and checks that tinygltf will recognise it as one.
-    Result<uint64_t> check_data_uri(const std::string& uri, const JsonPointer& where) const {
-        auto data = checked_data_uri(uri, where);
-        if (!data) return data.take_error();
-        return static_cast<uint64_t>(data->data.size());
-    }
     Result<DataUri> checked_data_uri(const std::string& uri, const JsonPointer& where) const {
         auto data = decode_data_uri(uri);
         if (!data) return parse_error(where, data.error().message);
+        if (!data->base64) return data;  // served to tinygltf as a file (it decodes base64 only)
         if (!tinygltf_decodes_media_type(data->media_type) ||
             uri.compare(0, 5 + data->media_type.size(), "data:" + data->media_type) != 0) {
             return parse_error(where, "data URI media type '" + data->media_type + "' is not supported (supported: " +
@@ -664,11 +660,16 @@ private:
                              "the buffer's data is unavailable");
                 mark_unavailable(index);
             } else if (is_data_uri(**uri)) {
-                auto size = check_data_uri(**uri, where / "uri");
-                if (!size) return size.take_error();
-                if (*size != declared) {
-                    return parse_error(where / "uri", "data URI holds " + std::to_string(*size) +
+                auto data = checked_data_uri(**uri, where / "uri");
+                if (!data) return data.take_error();
+                if (data->data.size() != declared) {
+                    return parse_error(where / "uri", "data URI holds " + std::to_string(data->data.size()) +
                                                           " bytes, but the buffer's byteLength is " + std::to_string(declared));
+                }
+                if (!data->base64) {
+                    const std::string name = "__loom_data_uri_buffer_" + std::to_string(index) + ".bin";
+                    output_.files[store_key(name)] = std::move(data->data);
+                    output_.buffer_rewrites[index] = {name, declared};
                 }
             } else {
                 auto size = load_file(**uri, where / "uri", declared);
@@ -909,6 +910,11 @@ private:
                 auto data = checked_data_uri(**uri, where / "uri");
                 if (!data) return data.take_error();
                 check_image_media_type(*data, *mime, where / "uri");
+                if (!data->base64) {
+                    const std::string name = "__loom_data_uri_image_" + std::to_string(index);
+                    output_.files[store_key(name)] = std::move(data->data);
+                    output_.image_rewrites[index] = name;
+                }
                 return {};
             }
             auto size = load_file(**uri, where / "uri", std::nullopt);

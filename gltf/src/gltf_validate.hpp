@@ -53,8 +53,8 @@ struct ValidationOutput {
     /// JSON pointers of integer properties written with a fraction ("1.0"), accepted as the
     /// integer; tinygltf, which reads only integers there, is given the integer.
     std::vector<std::string> integers_written_as_floats;
-    /// Images whose data URI tinygltf does not take (WebP, with EXT_texture_webp): served as
-    /// files under these names, keyed by image index.
+    /// Images whose data URI tinygltf does not take (WebP with EXT_texture_webp; data URIs
+    /// without ";base64"): served as files under these names, keyed by image index.
     std::map<uint64_t, std::string> image_rewrites;
 };
 

@@ -96,14 +96,27 @@ Result<DataUri> decode_data_uri(std::string_view uri) {
     const std::size_t comma = uri.find(',');
     if (comma == std::string_view::npos) return make_error(ErrorCode::Parse, "data URI has no ',' before its data");
     const std::string_view header = uri.substr(kDataScheme.size(), comma - kDataScheme.size());
-    if (header.size() < kBase64Marker.size() ||
-        header.substr(header.size() - kBase64Marker.size()) != kBase64Marker) {
-        return make_error(ErrorCode::Parse, "data URI is not base64-encoded (only ';base64,' data URIs are supported)");
-    }
     DataUri result;
-    result.media_type = std::string(header.substr(0, header.size() - kBase64Marker.size()));
+    result.base64 = header.size() >= kBase64Marker.size() &&
+                    header.substr(header.size() - kBase64Marker.size()) == kBase64Marker;
+    result.media_type = std::string(result.base64 ? header.substr(0, header.size() - kBase64Marker.size()) : header);
     if (!is_valid_media_type(result.media_type)) {
         return make_error(ErrorCode::Parse, "data URI has a malformed media type '" + result.media_type + "'");
+    }
+    if (!result.base64) {
+        // RFC 2397 without ";base64": the data are the URI's characters, percent-escapes decoded.
+        for (std::size_t i = comma + 1; i < uri.size(); ++i) {
+            if (uri[i] != '%') {
+                result.data.push_back(static_cast<unsigned char>(uri[i]));
+                continue;
+            }
+            if (i + 2 >= uri.size() || hex_value(uri[i + 1]) < 0 || hex_value(uri[i + 2]) < 0) {
+                return make_error(ErrorCode::Parse, "malformed percent escape at character " + std::to_string(i) + " of the URI");
+            }
+            result.data.push_back(static_cast<unsigned char>(hex_value(uri[i + 1]) * 16 + hex_value(uri[i + 2])));
+            i += 2;
+        }
+        return result;
     }
 
     const std::string_view payload = uri.substr(comma + 1);

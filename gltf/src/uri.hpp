@@ -18,11 +18,12 @@ namespace loom::gltf::detail {
 struct DataUri {
     std::string media_type;  ///< as written (may be empty)
     std::vector<unsigned char> data;
+    bool base64 = true;      ///< ";base64,"; else the data were percent-encoded
 };
 
-/// Parses "data:[<media type>];base64,<data>" (RFC 2397) and decodes the base64 payload
-/// strictly (alphabet, padding, length). The error message says what is wrong and where,
-/// without naming the file.
+/// Parses "data:[<media type>][;base64],<data>" (RFC 2397): decodes a base64 payload strictly
+/// (alphabet, padding, length), or percent-escapes in one without ";base64". The error message
+/// says what is wrong and where, without naming the file.
 [[nodiscard]] Result<DataUri> decode_data_uri(std::string_view uri);
 
 /// True for the data URI media types tinygltf decodes (it treats any other data URI as a file

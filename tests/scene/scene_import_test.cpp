@@ -544,10 +544,23 @@ TEST(SceneImport, LayoutsGiveIdenticalScenes) {
     const Scene external = load_ok(builder.write(dir, "external", Layout::External));
     const Scene embedded = load_ok(builder.write(dir, "embedded", Layout::Embedded));
     const Scene binary = load_ok(builder.write(dir, "binary", Layout::Binary));
+    // RFC 2397 data URIs without ";base64": the bytes percent-encoded (every one, so that the
+    // URI holds no raw binary), the PNG as an image of its own.
+    const auto percent_encoded = [](const std::vector<unsigned char>& bytes, const std::string& media) {
+        static constexpr char kHex[] = "0123456789ABCDEF";
+        std::string uri = "data:" + media + ",";
+        for (const unsigned char b : bytes) uri += {'%', kHex[b >> 4], kHex[b & 15]};
+        return uri;
+    };
+    const Scene percent = load_ok(builder.write(dir, "percent", Layout::Embedded, [&](nlohmann::json& doc) {
+        doc["buffers"][0]["uri"] = percent_encoded(builder.bin(), "application/octet-stream");
+        doc["images"][0] = {{"uri", percent_encoded(png_bytes, "image/png")}};
+    }));
     EXPECT_EQ(external.vertex_count(), 6u);  // flat normals for the quad without them
     EXPECT_EQ(external.meshes.at(0).primitives.at(0).generated, scene::kAttributeNormal | scene::kAttributeTangent);
     expect_same_scene(external, embedded);
     expect_same_scene(external, binary);
+    expect_same_scene(external, percent);
 }
 
 }  // namespace

@@ -405,8 +405,8 @@ TEST_F(BrokenFile, BadUris) {
                  "invalid base64 data ('%' at character 25 of the URI)");
     expect_error([](nlohmann::json& doc) { doc["images"][0] = {{"uri", "data:image/png;base64,abc"}}; }, "/images/0/uri",
                  "not a multiple of 4");
-    expect_error([](nlohmann::json& doc) { doc["images"][0] = {{"uri", "data:image/png,rawbytes"}}; }, "/images/0/uri",
-                 "not base64-encoded");
+    expect_error([](nlohmann::json& doc) { doc["images"][0] = {{"uri", "data:image/png,raw%zzbytes"}}; }, "/images/0/uri",
+                 "malformed percent escape at character 18 of the URI");
     expect_error([](nlohmann::json& doc) { doc["images"][0] = {{"uri", "data:image/webp;base64,AAAA"}}; }, "/images/0/uri",
                  "media type 'image/webp' is not supported");
     expect_error([](nlohmann::json& doc) { doc["images"][0] = {{"uri", "https://example.com/a.png"}}; }, "/images/0/uri",

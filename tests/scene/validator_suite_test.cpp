@@ -118,8 +118,6 @@ const std::vector<KnownShortfall> kKnownShortfalls = {
      "an unknown accessor type is an error even in an unused accessor"},
     {"asset/min_version_valid.gltf", Outcome::WronglyRejected,
      "deliberate: a glTF 2.0 importer must not load an asset whose minVersion is 2.1"},
-    {"buffer/data_uri.glb", Outcome::WronglyRejected,
-     "data URIs that are not base64-encoded are not supported"},
     {"buffer_view/invalid_length.gltf", Outcome::RejectedElsewhere,
      "the first of two range errors is reported with the whole view's pointer"},
     {"camera/infinite_znear.gltf", Outcome::RejectedElsewhere,
