@@ -1,6 +1,6 @@
 #pragma once
-// glTF 2.0 enumeration values and the sizes derived from them, shared by the validator and the
-// converter.
+// glTF 2.0 enumeration values, the sizes derived from them and the validator's tolerances,
+// shared by the validator and the converter.
 
 #include <cstdint>
 #include <string_view>
@@ -92,5 +92,11 @@ struct ElementType {
     const uint32_t rows = type.components / type.columns;
     return element_size(type, component) / type.columns * (type.columns - 1) + rows * component_size(component);
 }
+
+/// How far from 1 the length of a unit quaternion (node rotations, rotation keyframes) or of a
+/// unit vector (normals, tangents) may be: a little more than the error of 8-bit signed
+/// quantisation, as glTF-Validator allows.
+inline constexpr double kUnitQuaternionTolerance = 0.00769;
+inline constexpr double kUnitVectorTolerance = 0.00674;
 
 }  // namespace loom::gltf::detail

@@ -4,8 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <sstream>
 #include <optional>
+#include <set>
+#include <sstream>
 #include <utility>
 
 #include <glm/gtc/quaternion.hpp>
@@ -32,11 +33,6 @@ const T* element(const std::vector<T>& items, int index) {
 }
 
 uint64_t as_index(std::size_t index) { return static_cast<uint64_t>(index); }
-
-// How far from 1 the length of a unit quaternion, or of a unit vector, may be: a little more
-// than the error of 8-bit signed quantisation (as the validator's node checks).
-constexpr double kUnitQuaternionTolerance = 0.00769;
-constexpr double kUnitVectorTolerance = 0.00674;
 
 glm::vec4 to_vec4(const std::vector<double>& values, const glm::vec4& fallback) {
     if (values.size() != 4) return fallback;
@@ -185,7 +181,8 @@ private:
             const tinygltf::Accessor& accessor = model_.accessors[a];
             const bool is_float = accessor.componentType == component_type::kFloat;
             const bool bounded = !accessor.minValues.empty() || !accessor.maxValues.empty();
-            if (!is_float && !bounded) continue;
+            // An accessor the conversion read is finite (read_floats refuses anything else).
+            if (!bounded && (!is_float || read_as_floats_.count(static_cast<int>(a)) != 0)) continue;
             // Without a bufferView the values are zeros (and any sparse ones): the validator checks
             // the data a file carries, not those zeros.
             if (accessor.bufferView < 0 && !accessor.sparse.isSparse) continue;
@@ -576,6 +573,7 @@ private:
         if (found == source.attributes.end()) return {};
         auto values = reader_.read_floats(found->second, components);
         if (!values) return values.take_error();
+        read_as_floats_.insert(found->second);
         if (values->size() != vertices.size() * components) {
             return error(JsonPointer{} / "accessors" / static_cast<uint64_t>(std::max(found->second, 0)),
                          std::string(semantic) + " count differs from POSITION's");
@@ -659,6 +657,7 @@ private:
         Primitive primitive;
         auto positions = reader_.read_floats(position->second, 3);
         if (!positions) return positions.take_error();
+        read_as_floats_.insert(position->second);
         const std::size_t vertex_count = positions->size() / 3;
         primitive.vertices.resize(vertex_count);
         for (std::size_t v = 0; v < vertex_count; ++v) {
@@ -884,6 +883,7 @@ private:
     AccessorReader reader_;
     Scene scene_;
     std::map<std::pair<int, bool>, uint32_t> textures_;  // (glTF texture, sRGB) → Scene::textures
+    std::set<int> read_as_floats_;  // accessors the conversion read with read_floats (so finite)
     std::map<std::pair<int, bool>, uint32_t> images_;    // (glTF image, sRGB) → Scene::images
     std::optional<uint32_t> default_material_;
 };

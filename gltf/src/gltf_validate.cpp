@@ -117,10 +117,6 @@ std::string format_number(double value) {
     return text;
 }
 
-// How far from 1 the length of a unit quaternion may be: a little more than the error of 8-bit
-// signed quantisation, as glTF-Validator allows.
-constexpr double kUnitLengthTolerance = 0.00769;
-
 // Whether a node matrix (16 numbers, column-major, already checked) is a translation, rotation
 // and scale: its last row 0 0 0 1 and its three axes orthogonal (no shear, no projection).
 bool decomposable_to_trs(const json& matrix) {
@@ -482,12 +478,7 @@ private:
             return {};
         }
         for (const auto& [key, member] : value.items()) {
-            if (key == "extras" || !member.is_structured()) {
-                if (key == "extensions" && !member.is_object()) {
-                    return parse_error(where / key, "must be an object, got " + short_dump(member));
-                }
-                continue;
-            }
+            if (key == "extras") continue;
             if (key == "extensions") {
                 if (!member.is_object()) return parse_error(where / key, "must be an object, got " + short_dump(member));
                 for (const auto& [name, extension] : member.items()) {
@@ -499,7 +490,7 @@ private:
                     }
                 }
             }
-            LOOM_TRY(check_extension_objects(member, where / key, declared));
+            if (member.is_structured()) LOOM_TRY(check_extension_objects(member, where / key, declared));
         }
         return {};
     }
@@ -602,17 +593,21 @@ private:
         return full_size;
     }
 
-    // Decodes a data URI strictly and checks that tinygltf will recognise it as one.
-    Result<DataUri> checked_data_uri(const std::string& uri, const JsonPointer& where) const {
+    // Decodes a data URI strictly.
+    Result<DataUri> decoded_data_uri(const std::string& uri, const JsonPointer& where) const {
         auto data = decode_data_uri(uri);
         if (!data) return parse_error(where, data.error().message);
-        if (!data->base64) return data;  // served to tinygltf as a file (it decodes base64 only)
-        if (!tinygltf_decodes_media_type(data->media_type) ||
-            uri.compare(0, 5 + data->media_type.size(), "data:" + data->media_type) != 0) {
-            return parse_error(where, "data URI media type '" + data->media_type + "' is not supported (supported: " +
+        return data;
+    }
+    // That tinygltf will recognise a base64 data URI as one (the others are served to it as files).
+    Status check_tinygltf_decodes(const std::string& uri, const DataUri& data, const JsonPointer& where) const {
+        if (!data.base64) return {};
+        if (!tinygltf_decodes_media_type(data.media_type) ||
+            uri.compare(0, 5 + data.media_type.size(), "data:" + data.media_type) != 0) {
+            return parse_error(where, "data URI media type '" + data.media_type + "' is not supported (supported: " +
                                           std::string(tinygltf_media_types()) + ")");
         }
-        return data;
+        return {};
     }
 
     // An embedded image's media type is image/png or image/jpeg, and its bytes are what the
@@ -660,8 +655,9 @@ private:
                              "the buffer's data is unavailable");
                 mark_unavailable(index);
             } else if (is_data_uri(**uri)) {
-                auto data = checked_data_uri(**uri, where / "uri");
+                auto data = decoded_data_uri(**uri, where / "uri");
                 if (!data) return data.take_error();
+                LOOM_TRY(check_tinygltf_decodes(**uri, *data, where / "uri"));
                 if (data->data.size() != declared) {
                     return parse_error(where / "uri", "data URI holds " + std::to_string(data->data.size()) +
                                                           " bytes, but the buffer's byteLength is " + std::to_string(declared));
@@ -895,22 +891,16 @@ private:
                 }
                 return cover_unavailable_image(**view, where);
             }
-            if (is_data_uri(**uri) && webp_images_allowed_) {
-                // tinygltf does not take WebP data URIs: the bytes are served as a file.
-                auto data = decode_data_uri(**uri);
-                if (!data) return parse_error(where / "uri", data.error().message);
-                if (data->media_type == "image/webp") {
-                    const std::string name = "__loom_webp_image_" + std::to_string(index) + ".webp";
-                    output_.files[store_key(name)] = std::move(data->data);
-                    output_.image_rewrites[index] = name;
-                    return {};
-                }
-            }
             if (is_data_uri(**uri)) {
-                auto data = checked_data_uri(**uri, where / "uri");
+                auto data = decoded_data_uri(**uri, where / "uri");
                 if (!data) return data.take_error();
-                check_image_media_type(*data, *mime, where / "uri");
-                if (!data->base64) {
+                // A WebP data URI (EXT_texture_webp) is not one tinygltf takes either: served as a file.
+                const bool webp = webp_images_allowed_ && data->media_type == "image/webp";
+                if (!webp) {
+                    LOOM_TRY(check_tinygltf_decodes(**uri, *data, where / "uri"));
+                    check_image_media_type(*data, *mime, where / "uri");
+                }
+                if (webp || !data->base64) {
                     const std::string name = "__loom_data_uri_image_" + std::to_string(index);
                     output_.files[store_key(name)] = std::move(data->data);
                     output_.image_rewrites[index] = name;
@@ -967,7 +957,8 @@ private:
     }
 
     // A textureInfo (or normal/occlusion textureInfo) object.
-    Status check_texture_info(const json& parent, const char* key, const JsonPointer& parent_where) const {
+    // Also records in material_uv_sets_[material] the UV sets the reference samples.
+    Status check_texture_info(const json& parent, const char* key, const JsonPointer& parent_where, std::size_t material) {
         auto texture_info = object_member(parent, key, parent_where, false);
         if (!texture_info) return texture_info.take_error();
         if (*texture_info == nullptr) return {};
@@ -998,13 +989,16 @@ private:
                 if (!rotation) return rotation.take_error();
                 auto coordinates = integer_member(**transform, "texCoord", transform_where, false, 0, kMaxInt);
                 if (!coordinates) return coordinates.take_error();
+                if (*coordinates) *tex_coord = *coordinates;  // replaces the reference's own
             }
         }
+        material_uv_sets_[material] = std::max(material_uv_sets_[material], tex_coord->value_or(0) + 1);
         return {};
     }
 
     Status check_materials() {
-        return for_each(Collection::Materials, [&](const json& material, const JsonPointer& where, std::size_t) -> Status {
+        material_uv_sets_.assign(count(Collection::Materials), 0);
+        return for_each(Collection::Materials, [&](const json& material, const JsonPointer& where, std::size_t index) -> Status {
             const Range unit{0.0, 1.0};
             auto pbr = object_member(material, "pbrMetallicRoughness", where, false);
             if (!pbr) return pbr.take_error();
@@ -1015,12 +1009,12 @@ private:
                 if (!metallic) return metallic.take_error();
                 auto roughness = number_member(**pbr, "roughnessFactor", pbr_where, false, unit);
                 if (!roughness) return roughness.take_error();
-                LOOM_TRY(check_texture_info(**pbr, "baseColorTexture", pbr_where));
-                LOOM_TRY(check_texture_info(**pbr, "metallicRoughnessTexture", pbr_where));
+                LOOM_TRY(check_texture_info(**pbr, "baseColorTexture", pbr_where, index));
+                LOOM_TRY(check_texture_info(**pbr, "metallicRoughnessTexture", pbr_where, index));
             }
-            LOOM_TRY(check_texture_info(material, "normalTexture", where));
-            LOOM_TRY(check_texture_info(material, "occlusionTexture", where));
-            LOOM_TRY(check_texture_info(material, "emissiveTexture", where));
+            LOOM_TRY(check_texture_info(material, "normalTexture", where, index));
+            LOOM_TRY(check_texture_info(material, "occlusionTexture", where, index));
+            LOOM_TRY(check_texture_info(material, "emissiveTexture", where, index));
             LOOM_TRY(number_array_member(material, "emissiveFactor", where, 3, unit));
             // KHR_materials_emissive_strength: a non-negative multiplier of emissiveFactor (HDR emission).
             auto extensions = object_member(material, "extensions", where, false);
@@ -1075,42 +1069,17 @@ private:
                (accessor.normalized ? " normalized" : "");
     }
 
-    // The UV sets a primitive's material samples exist on the primitive (a texture without its
-    // set reads (0, 0): a warning, as the importer draws it so).
+    // The UV sets a primitive's material samples (check_texture_info recorded them) exist on the
+    // primitive: a texture without its set reads (0, 0), a warning, as the importer draws it so.
     void check_material_uv_sets(const json& primitive, const JsonPointer& where) {
-        const json* material_index = find(primitive, "material");
-        const json* materials = find(root_, "materials");
-        if (material_index == nullptr || materials == nullptr || !material_index->is_number_integer()) return;
-        const json& material = (*materials)[material_index->get<std::size_t>()];
+        const std::optional<uint64_t> material = index_in(primitive, "material");
+        if (!material) return;
         uint64_t sets = 0;
         const json& attributes = primitive.at("attributes");
         while (attributes.contains("TEXCOORD_" + std::to_string(sets))) ++sets;
-        const auto uv_set_of = [](const json& info) -> uint64_t {
-            uint64_t set = info.contains("texCoord") && info["texCoord"].is_number_unsigned() ? info["texCoord"].get<uint64_t>() : 0;
-            const json* transform = info.contains("extensions") && info["extensions"].is_object() &&
-                                            info["extensions"].contains("KHR_texture_transform")
-                                        ? &info["extensions"]["KHR_texture_transform"]
-                                        : nullptr;
-            if (transform && transform->is_object() && transform->contains("texCoord") && (*transform)["texCoord"].is_number_unsigned()) {
-                set = (*transform)["texCoord"].get<uint64_t>();
-            }
-            return set;
-        };
-        std::vector<const json*> infos;
-        for (const char* key : {"normalTexture", "occlusionTexture", "emissiveTexture"}) {
-            if (const json* info = find(material, key); info && info->is_object()) infos.push_back(info);
-        }
-        if (const json* pbr = find(material, "pbrMetallicRoughness"); pbr && pbr->is_object()) {
-            for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"}) {
-                if (const json* info = find(*pbr, key); info && info->is_object()) infos.push_back(info);
-            }
-        }
-        for (const json* info : infos) {
-            if (const uint64_t set = uv_set_of(*info); set >= sets) {
-                warn(where / "material", "material " + std::to_string(material_index->get<uint64_t>()) + " samples TEXCOORD_" +
-                                             std::to_string(set) + ", which the primitive does not have (it reads (0, 0))");
-                return;
-            }
+        if (const uint64_t needed = material_uv_sets_[*material]; needed > sets) {
+            warn(where / "material", "material " + std::to_string(*material) + " samples TEXCOORD_" +
+                                         std::to_string(needed - 1) + ", which the primitive does not have (it reads (0, 0))");
         }
     }
 
@@ -1400,7 +1369,7 @@ private:
             if (const json* rotation = find(node, "rotation")) {
                 double squares = 0.0;
                 for (const json& value : *rotation) squares += value.get<double>() * value.get<double>();
-                if (std::abs(std::sqrt(squares) - 1.0) > kUnitLengthTolerance) {
+                if (std::abs(std::sqrt(squares) - 1.0) > kUnitQuaternionTolerance) {
                     return parse_error(where / "rotation", "must be a unit quaternion, its length is " +
                                                                format_number(std::sqrt(squares)));
                 }
@@ -1745,6 +1714,7 @@ private:
     std::vector<std::optional<uint64_t>> parents_;
     std::vector<std::size_t> mesh_targets_;  // per mesh: its morph targets
     std::vector<bool> mesh_has_joints_;      // per mesh: a primitive has JOINTS_0
+    std::vector<uint64_t> material_uv_sets_;  // per material: the UV sets its textures sample (highest + 1)
     std::map<uint64_t, uint64_t> view_usage_;                   // buffer view -> kArrayBuffer / kElementArrayBuffer
     std::map<uint64_t, std::set<uint64_t>> vertex_view_accessors_;  // buffer view -> vertex attribute accessors
 };
