@@ -199,7 +199,7 @@ Status CommandListState::set_index_buffer(BufferHandle buffer, IndexType type, u
     auto found = buffers_(buffer);
     if (!found.ok()) return Error{ErrorCode::InvalidHandle, "set_index_buffer: " + found.error().message};
     LOOM_TRY(validation::index_buffer(**found, type, offset));
-    index_buffer_ = {buffer, type, offset, (*found)->size};
+    index_buffer_ = {buffer, type, offset, IndexBuffer::capacity((*found)->size, type, offset)};
     return {};
 }
 

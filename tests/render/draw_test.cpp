@@ -92,6 +92,65 @@ TEST_P(DrawTest, IndexedDrawWithBaseVertexAndFirstIndex) {
     }
 }
 
+TEST_P(DrawTest, BuffersBoundBetweenDrawsTakeEffectAtTheNextDraw) {
+    // Vertex and index buffers rebound between draws with nothing else recorded between them
+    // (the path GL records as per-draw changes instead of a new vertex state): rebinding twice,
+    // a slot the pipeline does not read, an empty draw between, 16- and 32-bit indices at an
+    // offset, and a change made before a pipeline switch.
+    LOOM_ASSIGN_OR_FAIL(auto pipeline, make_solid_pipeline(device(), rhi::Format::RGBA8Unorm));
+    LOOM_ASSIGN_OR_FAIL(auto other_pipeline, make_solid_pipeline(device(), rhi::Format::RGBA8Unorm));
+    // Four quads, one per quadrant (4 vertices of 12 bytes each): 0 x,y in [-1,0]; 1 x in
+    // [0,1]; 2 y in [0,1]; 3 both.
+    std::vector<float> quads;
+    for (const auto& [x, y] : std::array<std::pair<float, float>, 4>{{{-1, -1}, {0, -1}, {-1, 0}, {0, 0}}}) {
+        for (const auto& [dx, dy] : std::array<std::pair<float, float>, 4>{{{0, 0}, {1, 0}, {0, 1}, {1, 1}}}) {
+            quads.insert(quads.end(), {x + dx, y + dy, 0});
+        }
+    }
+    constexpr uint64_t kQuadBytes = 4 * 12;
+    const std::vector<uint16_t> indices16 = {7, 7, 7, 0, 1, 2, 2, 1, 3};  // the quad from byte 6
+    const std::vector<uint32_t> indices32 = {0, 1, 2, 2, 1, 3};
+    const std::vector<float> unused = {0, 0, 0, 0};
+    LOOM_ASSIGN_OR_FAIL(auto vb, make_buffer_of(device(), "quads", rhi::BufferUsage::Vertex, quads));
+    LOOM_ASSIGN_OR_FAIL(auto unused_vb, make_buffer_of(device(), "unused", rhi::BufferUsage::Vertex, unused));
+    LOOM_ASSIGN_OR_FAIL(auto ib16, make_buffer_of(device(), "indices16", rhi::BufferUsage::Index, indices16));
+    LOOM_ASSIGN_OR_FAIL(auto ib32, make_buffer_of(device(), "indices32", rhi::BufferUsage::Index, indices32));
+    LOOM_ASSIGN_OR_FAIL(auto target, make_target(device(), "rebound", rhi::Format::RGBA8Unorm, kSize, kSize));
+    LOOM_ASSERT_OK(run_frame(device(), [&](rhi::CommandList& list) {
+        list.begin_render_pass(clear_pass("rebound", target, {0, 0, 0, 1}));
+        list.set_pipeline(pipeline);
+        list.set_vertex_buffer(0, vb, 0 * kQuadBytes);
+        list.set_index_buffer(ib16, rhi::IndexType::Uint16, 6);
+        list.push_constants_of(std::array<float, 4>{1, 0, 0, 1});
+        list.draw_indexed(6);  // quad 0, red
+        list.set_vertex_buffer(0, vb, 1 * kQuadBytes);
+        list.set_vertex_buffer(0, vb, 3 * kQuadBytes);  // the last binding counts
+        list.set_index_buffer(ib32, rhi::IndexType::Uint32);
+        list.push_constants_of(std::array<float, 4>{0, 1, 0, 1});
+        list.draw_indexed(6);  // quad 3, green
+        list.set_vertex_buffer(1, unused_vb);  // the pipeline reads slot 0 only
+        list.set_vertex_buffer(0, vb, 1 * kQuadBytes);
+        list.draw_indexed(0);  // draws nothing; the buffers stay bound for the next draw
+        list.set_index_buffer(ib16, rhi::IndexType::Uint16, 6);
+        list.push_constants_of(std::array<float, 4>{0, 0, 1, 1});
+        list.draw_indexed(6);  // quad 1, blue
+        list.set_vertex_buffer(0, vb, 2 * kQuadBytes);
+        list.set_pipeline(other_pipeline);
+        list.push_constants_of(std::array<float, 4>{1, 1, 1, 1});
+        list.draw_indexed(6);  // quad 2, white, with the other pipeline
+        list.end_render_pass();
+    }));
+    LOOM_ASSIGN_OR_FAIL(rhi::Image image, device().read_texture(target));
+    // Quad 0 covers NDC y in [-1, 0], the bottom half of the image (NDC y points up).
+    const std::array<std::array<int, 4>, 4> expected = {{{255, 0, 0, 255}, {0, 0, 255, 255}, {255, 255, 255, 255}, {0, 255, 0, 255}}};
+    for (uint32_t y = 1; y < kSize; y += 3) {
+        for (uint32_t x = 1; x < kSize; x += 3) {
+            const uint32_t quad = (x >= kSize / 2 ? 1 : 0) + (y < kSize / 2 ? 2 : 0);
+            ASSERT_EQ(rgba8_at(image, x, y), expected[quad]) << "pixel " << x << "," << y << " (quad " << quad << ")";
+        }
+    }
+}
+
 }  // namespace
 
 LOOM_INSTANTIATE_RENDER_TEST(DrawTest);

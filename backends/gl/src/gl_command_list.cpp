@@ -38,6 +38,15 @@ GLbitfield barrier_after_storage(ResourceState next) {
     return GL_ALL_BARRIER_BITS;
 }
 
+/// GL's type of indices of `type` (above every vertex buffer slot: see VertexChange).
+GLenum gl_index_type(rhi::IndexType type) {
+    // GL_UNSIGNED_SHORT + 2 is GL_UNSIGNED_INT: arithmetic instead of a branch (per bound buffer).
+    static_assert(static_cast<int>(rhi::IndexType::Uint16) == 0 && static_cast<int>(rhi::IndexType::Uint32) == 1 &&
+                  GL_UNSIGNED_SHORT + 2 == GL_UNSIGNED_INT);
+    return GL_UNSIGNED_SHORT + 2 * static_cast<GLenum>(type == rhi::IndexType::Uint32);
+}
+static_assert(GL_UNSIGNED_SHORT >= rhi::kMaxVertexBuffers && GL_UNSIGNED_INT >= rhi::kMaxVertexBuffers);
+
 /// The GL clear call for one colour attachment, with the clear value in the attachment's kind.
 void clear_color(GLuint fbo, GLint index, rhi::Format format, const std::array<double, 4>& value) {
     const rhi::ChannelKind kind = rhi::format_info(format).color_kind();
@@ -82,13 +91,17 @@ void GlCommandList::begin() {
     vertex_states_.clear();
     binding_states_.clear();
     offset_override_ = {};
-    binding_state_drawn_ = vertex_state_drawn_ = false;
+    draw_shared_valid_ = false;
+    binding_state_drawn_ = vertex_state_indexed_ = false;
     draw_pipeline_ = nullptr;
     blends_.clear();
     vertex_bindings_.clear();
+    vertex_changes_.clear();
+    first_pending_change_ = 0;
     bindings_.clear();
     invalidate_draw_state();
     replayed_pipeline_ = replayed_vertex_ = replayed_bindings_ = UINT32_MAX;
+    pipeline_draw_flags_ = 0;
 }
 
 std::vector<GlCommand>& GlCommandList::finish() {
@@ -102,8 +115,7 @@ std::vector<GlCommand>& GlCommandList::finish() {
 }
 
 LOOM_GL_HOT uint64_t GlCommandList::device_removals() const {
-    return device_->textures().removals() + device_->buffers().removals() + device_->samplers().removals() +
-           device_->pipelines().removals();
+    return device_->removals();
 }
 
 void GlCommandList::fail(ErrorCode code, std::string message) {
@@ -281,12 +293,13 @@ LOOM_GL_HOT void GlCommandList::next_binding_state() {
     }
     binding_states_.push_back(next);
     binding_state_drawn_ = false;
+    draw_shared_valid_ = false;
 }
 
 // Bind groups, push constants and vertex and index buffers are kept by the tracker and
 // resolved to GL names at each draw or dispatch.
 void GlCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
-    binding_state_valid_ = false;
+    binding_state_valid_ = draw_shared_valid_ = false;
     accepted(state_.set_bind_group(set, group));
 }
 
@@ -323,6 +336,7 @@ LOOM_GL_HOT bool GlCommandList::rebinds_offset(uint32_t set, uint32_t binding, c
         // Drawn with the old offset: the next draws carry the new one instead of a copy of
         // the whole binding state (one uniform range per draw is the common case).
         offset_override_ = {resolved, offset};
+        draw_shared_valid_ = false;
     } else {
         next_binding_state();  // a second range changes: copy the state (with the override)
         bindings_[binding_states_.back().first_binding + i].offset = offset;
@@ -336,7 +350,7 @@ void GlCommandList::set_buffer(uint32_t set, uint32_t binding, const rhi::Buffer
     // stays on the short path.
     if (!accepted(state_.set_buffer(set, binding, range)) ||
         !(draw_state_removals_ == device_removals() && rebinds_offset(set, binding, range, false))) {
-        binding_state_valid_ = false;
+        binding_state_valid_ = draw_shared_valid_ = false;
     }
 }
 
@@ -344,55 +358,52 @@ void GlCommandList::set_uniforms(uint32_t set, uint32_t binding, std::span<const
     if (!accepted(state_.check_recording("set_uniforms"))) return;
     const rhi::BufferBinding range = device_->allocate_transient(data);
     const bool replaced = state_.replace_buffer(set, binding, range) || accepted(state_.set_buffer(set, binding, range));
-    if (!replaced || !rebinds_offset(set, binding, range, true)) binding_state_valid_ = false;
+    if (!replaced || !rebinds_offset(set, binding, range, true)) binding_state_valid_ = draw_shared_valid_ = false;
 }
 
 void GlCommandList::push_constants(std::span<const std::byte> data, uint32_t offset) {
     if (accepted(state_.push_constants(data, offset))) push_dirty_ = true;
 }
 
-LOOM_GL_HOT void GlCommandList::next_vertex_state() {
-    VertexState next = vertex_states_.back();
-    const uint32_t first = next.first_vertex_binding;
-    next.first_vertex_binding = static_cast<uint32_t>(vertex_bindings_.size());
-    for (uint32_t i = 0; i < next.vertex_binding_count; ++i) vertex_bindings_.push_back(vertex_bindings_[first + i]);
-    vertex_states_.push_back(next);
-    vertex_state_drawn_ = false;
-}
-
-// A buffer found alive and fit when bound keeps the checked draw valid: while the vertex state
-// resolved for the draws before holds, the new buffer changes one binding of it.
+// A vertex or index buffer is recorded as a VertexChange that the next draw applies on top of
+// the vertex state it draws with: a state resolved after the change (a new pipeline, a refused
+// or non-draw command between) drops the changes pending, as it holds them already. Found alive
+// and fit when bound, the buffer keeps the checked draw valid. The common case is inline and
+// makes no call, so that it needs no stack frame; the rest is out of line.
 void GlCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, uint64_t offset) {
     const GlBuffer* found = device_->buffers().find(buffer);
-    if (!accepted(state_.set_vertex_buffer(slot, buffer, found ? &found->desc : nullptr, offset))) {
-        vertex_state_valid_ = false;
+    if (found && vertex_changes_.has_room() && state_.replace_vertex_buffer(slot, buffer, found->desc, offset)) [[likely]] {
+        vertex_changes_.push_back_in_room({slot, found->name, static_cast<GLintptr>(offset)});
         return;
     }
-    if (!vertex_state_valid_ || !pipeline_state_valid_) return;
-    if (slot >= vertex_states_.back().vertex_binding_count) return;  // the pipeline does not read it
-    if (vertex_state_drawn_) next_vertex_state();  // drawn with the old buffer
-    VertexBinding& b = vertex_bindings_[vertex_states_.back().first_vertex_binding + slot];
-    b.buffer = found ? found->name : 0;  // null only unchecked (validation off)
-    b.offset = static_cast<GLintptr>(offset);
+    set_vertex_buffer_slow(slot, buffer, found, offset);
+}
+
+void GlCommandList::set_vertex_buffer_slow(uint32_t slot, rhi::BufferHandle buffer, const GlBuffer* found,
+                                           uint64_t offset) {
+    if (!accepted(state_.set_vertex_buffer(slot, buffer, found ? &found->desc : nullptr, offset))) {
+        vertex_state_valid_ = draw_shared_valid_ = false;
+        return;
+    }
+    vertex_changes_.push_back({slot, found ? found->name : 0, static_cast<GLintptr>(offset)});  // null only unchecked
 }
 
 void GlCommandList::set_index_buffer(rhi::BufferHandle buffer, rhi::IndexType type, uint64_t offset) {
     const GlBuffer* found = device_->buffers().find(buffer);
+    if (found && vertex_changes_.has_room() && state_.replace_index_buffer(buffer, found->desc, type, offset)) [[likely]] {
+        vertex_changes_.push_back_in_room({gl_index_type(type), found->name, static_cast<GLintptr>(offset)});
+        return;
+    }
+    set_index_buffer_slow(buffer, found, type, offset);
+}
+
+void GlCommandList::set_index_buffer_slow(rhi::BufferHandle buffer, const GlBuffer* found, rhi::IndexType type,
+                                          uint64_t offset) {
     if (!accepted(state_.set_index_buffer(buffer, found ? &found->desc : nullptr, type, offset))) {
-        vertex_state_valid_ = false;
+        vertex_state_valid_ = draw_shared_valid_ = false;
         return;
     }
-    // A vertex state without an index buffer was checked for non-indexed draws only: the next
-    // indexed draw checks it (draw_state_current).
-    if (!vertex_state_valid_ || !pipeline_state_valid_ || vertex_states_.back().index_buffer == 0) {
-        vertex_state_valid_ = false;
-        return;
-    }
-    if (vertex_state_drawn_) next_vertex_state();
-    VertexState& v = vertex_states_.back();
-    v.index_buffer = found ? found->name : 0;
-    v.index_type = type == rhi::IndexType::Uint16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
-    v.index_offset = offset;
+    vertex_changes_.push_back({gl_index_type(type), found ? found->name : 0, static_cast<GLintptr>(offset)});
 }
 
 rhi::BufferBinding GlCommandList::transient_uniforms(std::span<const std::byte> data) {
@@ -518,16 +529,18 @@ bool GlCommandList::resolve_bindings(const GlPipeline& p, std::string_view comma
     return true;
 }
 
-LOOM_GL_HOT GlCommandList::PushRange GlCommandList::push_constant_range(const GlPipeline& p) {
+GlCommandList::PushRange GlCommandList::push_constant_range(const GlPipeline& p) {
     if (p.push_constant_size == 0) return {};
-    if (push_dirty_ || push_range_.object == 0 || push_range_.size < static_cast<GLsizeiptr>(p.push_constant_size)) {
-        const uint32_t size = std::max(p.push_constant_size, state_.push_constant_size());
-        const rhi::BufferBinding copy = device_->allocate_transient(state_.push_constant_data().first(size), &push_range_.object);
-        push_range_.offset = static_cast<GLintptr>(copy.offset);
-        push_range_.size = static_cast<GLsizeiptr>(copy.size);
-        push_dirty_ = false;
-    }
+    if (!push_constants_current(p)) copy_push_constants(p);
     return push_range_;
+}
+
+LOOM_GL_HOT void GlCommandList::copy_push_constants(const GlPipeline& p) {
+    const uint32_t size = std::max(p.push_constant_size, state_.push_constant_size());
+    const rhi::BufferBinding copy = device_->allocate_transient(state_.push_constant_data().first(size), &push_range_.object);
+    push_range_.offset = static_cast<GLintptr>(copy.offset);
+    push_range_.size = static_cast<GLsizeiptr>(copy.size);
+    push_dirty_ = false;
 }
 
 // ---- draws and dispatches --------------------------------------------------------------------
@@ -554,7 +567,7 @@ LOOM_GL_HOT bool GlCommandList::draw_state_current(bool indexed, bool indirect) 
     // checked and resolved for the first: a later draw costs its arguments only, or the part
     // that changed (a bind group, the vertex buffers).
     if (draw_state_removals_ != device_removals() || indirect ||
-        (indexed && vertex_state_valid_ && vertex_states_.back().index_buffer == 0)) {
+        (indexed && vertex_state_valid_ && !vertex_state_indexed_)) {
         invalidate_draw_state();  // objects may be gone, or checks that only these draws need
         return false;
     }
@@ -593,6 +606,8 @@ bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool i
         blends_.insert(blends_.end(), p->blend.begin(), p->blend.end());
         pipeline_states_.push_back(d);
         draw_pipeline_ = p;
+        pipeline_draw_flags_ = static_cast<uint8_t>((p->push_constant_size != 0 ? kDrawPush : 0) |
+                                                    (p->base_instance_location >= 0 ? kDrawBaseInstance : 0));
         // Vertex buffers go on the pipeline's vertex array; bindings follow its layout.
         vertex_state_valid_ = binding_state_valid_ = false;
     }
@@ -615,11 +630,12 @@ bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool i
         }
         if (indexed) {
             v.index_buffer = (*device_->buffers().get(bound_indices.buffer))->name;
-            v.index_type = bound_indices.type == rhi::IndexType::Uint16 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
+            v.index_type = gl_index_type(bound_indices.type);
             v.index_offset = bound_indices.offset;
         }
         vertex_states_.push_back(v);
-        vertex_state_drawn_ = false;
+        vertex_state_indexed_ = v.index_buffer != 0;
+        vertex_changes_.shrink_to(first_pending_change_);  // the tracker's buffers are in the new state
     }
     if (!binding_state_valid_ && reuse_bindings(p, reuse_allowed)) {
         binding_state_valid_ = true;
@@ -643,23 +659,26 @@ bool GlCommandList::prepare_draw_state(const char* command, bool indexed, bool i
     return true;
 }
 
-LOOM_GL_HOT void GlCommandList::replay_draw(GlStateCache& cache, const Draw& draw) {
-    const PipelineState& p = pipeline_states_[draw.pipeline_state];
-    const VertexState& v = vertex_states_[draw.vertex_state];
+void GlCommandList::replay_shared_states(GlStateCache& cache, const Draw& draw) {
     if (draw.pipeline_state != replayed_pipeline_) {
+        const PipelineState& p = pipeline_states_[draw.pipeline_state];
         cache.use_program(p.program);
         cache.raster(p.raster);
         for (uint32_t i = 0; i < p.blend_count; ++i) cache.blend(i, blends_[p.first_blend + i]);
         cache.enable(GL_SCISSOR_TEST, true);
+        replayed_topology_ = p.topology;
         replayed_pipeline_ = draw.pipeline_state;
     }
     if (draw.vertex_state != replayed_vertex_) {
+        const VertexState& v = vertex_states_[draw.vertex_state];
         cache.bind_vertex_array(v.vao);
         for (uint32_t i = v.first_vertex_binding; i < v.first_vertex_binding + v.vertex_binding_count; ++i) {
             const VertexBinding& b = vertex_bindings_[i];
             cache.vertex_buffer(v.vao, b.slot, b.buffer, b.offset, b.stride);
         }
         if (v.index_buffer != 0) cache.element_buffer(v.vao, v.index_buffer);
+        replayed_index_type_ = v.index_type;
+        replayed_index_offset_ = v.index_offset;
         replayed_vertex_ = draw.vertex_state;
     }
     if (draw.binding_state != replayed_bindings_) {
@@ -667,41 +686,87 @@ LOOM_GL_HOT void GlCommandList::replay_draw(GlStateCache& cache, const Draw& dra
         apply_bindings(cache, b.first_binding, b.binding_count);
         replayed_bindings_ = draw.binding_state;
     }
-    if (draw.override_binding != kNoOverride) {
-        const ResolvedBinding& b = bindings_[draw.override_binding];
-        cache.bind_uniform_buffer(b.point, b.object, draw.override_offset, b.size);
+}
+
+void GlCommandList::replay_run(GlStateCache& cache, DrawRun run) {
+    // Pointers held in registers: the GL calls between could change any memory, as far as the
+    // compiler knows, so fields of *this would be read again per draw.
+    const Draw* draw = &draws_[run.first];
+    for (const Draw* end = draw + run.count; draw != end; ++draw) replay_draw(cache, *draw);
+}
+
+LOOM_GL_HOT void GlCommandList::replay_vertex_changes(GlStateCache& cache, const Draw& draw) {
+    const VertexState& v = vertex_states_[draw.vertex_state];
+    GlStateCache::VaoState& vao = cache.vao_state(v.vao);
+    const VertexBinding* slots = &vertex_bindings_[v.first_vertex_binding];
+    const VertexChange* c = &vertex_changes_[draw.first_vertex_change];
+    for (const VertexChange* end = c + draw.vertex_change_count; c != end; ++c) {
+        if (c->slot < v.vertex_binding_count) {
+            cache.vertex_buffer(vao, v.vao, c->slot, c->buffer, c->offset, slots[c->slot].stride);
+        } else if (c->slot >= rhi::kMaxVertexBuffers) {  // else a slot the pipeline does not read
+            cache.element_buffer(vao, v.vao, c->buffer);
+            replayed_index_type_ = c->slot;
+            replayed_index_offset_ = static_cast<uint64_t>(c->offset);
+        }
     }
-    if (draw.push.object != 0) {
-        cache.bind_uniform_buffer(rhi::kGlPushConstantBinding, draw.push.object, draw.push.offset, draw.push.size);
+}
+
+LOOM_GL_HOT void GlCommandList::replay_draw(GlStateCache& cache, const Draw& draw) {
+    // The shared states change between runs of draws (out of line); per draw come the buffers
+    // bound since the last draw, per-draw uniform ranges, and the call.
+    if (draw.flags & kDrawNewState) [[unlikely]] replay_shared_states(cache, draw);
+    if (draw.vertex_change_count != 0) replay_vertex_changes(cache, draw);
+    if (draw.flags & (kDrawOverride | kDrawPush | kDrawBaseInstance)) {
+        if (draw.flags & kDrawOverride) {
+            const ResolvedBinding& b = bindings_[draw.override_binding];
+            cache.bind_uniform_buffer(b.point, b.object, draw.override_offset, b.size);
+        }
+        if (draw.flags & kDrawPush) {
+            cache.bind_uniform_buffer(rhi::kGlPushConstantBinding, draw.push.object, draw.push.offset, draw.push.size);
+        }
+        if (draw.flags & kDrawBaseInstance) {
+            const PipelineState& p = pipeline_states_[draw.pipeline_state];
+            cache.base_instance(p.program, p.base_instance_location, static_cast<GLint>(draw.first_instance));
+        }
     }
-    if (p.base_instance_location >= 0) cache.base_instance(p.program, p.base_instance_location, static_cast<GLint>(draw.first_instance));
-    if (draw.indirect != UINT32_MAX) {
-        const IndirectDraw& args = indirect_draws_[draw.indirect];
+    if (draw.flags & kDrawIndirect) [[unlikely]] {
+        const IndirectDraw& args = indirect_draws_[draw.first];
         // The argument buffer binding is not shadowed by the cache; it is bound for each
         // multi-draw (one call for many draws).
         glBindBuffer(GL_DRAW_INDIRECT_BUFFER, args.buffer);
-        glMultiDrawElementsIndirect(p.topology, v.index_type, reinterpret_cast<const void*>(args.offset), args.count, args.stride);
+        glMultiDrawElementsIndirect(replayed_topology_, replayed_index_type_, reinterpret_cast<const void*>(args.offset),
+                                    args.count, args.stride);
         cache.count_call(2);
         cache.count_draw();
         return;
     }
-    if (draw.indexed) {
+    // One instance from instance 0 (and vertex 0) is GL's plain call, which costs the driver
+    // less than the instanced forms.
+    const bool plain = ((draw.instance_count ^ 1u) | static_cast<uint32_t>(draw.base_vertex) | draw.first_instance) == 0;
+    if (draw.flags & kDrawIndexed) {
         // Inside the buffer (checked at record time).
-        const uint64_t index_bytes = v.index_type == GL_UNSIGNED_SHORT ? 2 : 4;
-        const auto offset = static_cast<uintptr_t>(v.index_offset + uint64_t{draw.first} * index_bytes);
-        glDrawElementsInstancedBaseVertexBaseInstance(p.topology, static_cast<GLsizei>(draw.count), v.index_type,
-                                                      reinterpret_cast<const void*>(offset),
-                                                      static_cast<GLsizei>(draw.instance_count), draw.base_vertex,
-                                                      draw.first_instance);
+        const uint64_t index_bytes = replayed_index_type_ == GL_UNSIGNED_SHORT ? 2 : 4;
+        const auto* offset = reinterpret_cast<const void*>(
+            static_cast<uintptr_t>(replayed_index_offset_ + uint64_t{draw.first} * index_bytes));
+        if (plain) {
+            glDrawElements(replayed_topology_, static_cast<GLsizei>(draw.count), replayed_index_type_, offset);
+        } else {
+            glDrawElementsInstancedBaseVertexBaseInstance(replayed_topology_, static_cast<GLsizei>(draw.count),
+                                                          replayed_index_type_, offset,
+                                                          static_cast<GLsizei>(draw.instance_count), draw.base_vertex,
+                                                          draw.first_instance);
+        }
+    } else if (plain) {
+        glDrawArrays(replayed_topology_, static_cast<GLint>(draw.first), static_cast<GLsizei>(draw.count));
     } else {
-        glDrawArraysInstancedBaseInstance(p.topology, static_cast<GLint>(draw.first), static_cast<GLsizei>(draw.count),
+        glDrawArraysInstancedBaseInstance(replayed_topology_, static_cast<GLint>(draw.first), static_cast<GLsizei>(draw.count),
                                           static_cast<GLsizei>(draw.instance_count), draw.first_instance);
     }
     cache.count_call();
     cache.count_draw();
 }
 
-LOOM_GL_HOT void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
+void GlCommandList::draw_common(bool indexed, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
                                 uint32_t first_instance, const std::optional<IndirectDraw>& indirect) {
     // Most draws find the state checked and resolved for the previous one still current.
     const char* command = indirect ? "draw_indexed_indirect" : indexed ? "draw_indexed" : "draw";
@@ -711,6 +776,9 @@ LOOM_GL_HOT void GlCommandList::draw_common(bool indexed, uint32_t count, uint32
         invalidate_draw_state();
         return;
     }
+    // Now, before any early return: the inline paths of the draws after this one take push_range_
+    // as the draw pipeline's block while the push constants are unchanged.
+    push_constant_range(*draw_pipeline_);
     // Indirect draws' index ranges are in GPU memory: the GPU checks them.
     if (indexed && !indirect && !accepted(state_.check_index_range(first, count))) return;
     // Checked like any other draw (as Vulkan records it), then nothing to draw.
@@ -720,41 +788,110 @@ LOOM_GL_HOT void GlCommandList::draw_common(bool indexed, uint32_t count, uint32
         indirect_index = static_cast<uint32_t>(indirect_draws_.size());
         indirect_draws_.push_back(*indirect);
     }
-    // Written once, in place (the pipeline was found alive for this state: nothing destroyed since).
-    draws_.push_back(Draw{.pipeline_state = static_cast<uint32_t>(pipeline_states_.size() - 1),
-                          .vertex_state = static_cast<uint32_t>(vertex_states_.size() - 1),
-                          .binding_state = static_cast<uint32_t>(binding_states_.size() - 1),
-                          .indirect = indirect_index,
-                          .indexed = indexed,
-                          .count = count,
-                          .instance_count = instance_count,
-                          .first = first,
-                          .base_vertex = base_vertex,
-                          .first_instance = first_instance,
-                          .push = push_constant_range(*draw_pipeline_),
-                          .override_binding = offset_override_.binding,
-                          .override_offset = offset_override_.offset});
-    binding_state_drawn_ = vertex_state_drawn_ = true;
+    draws_.make_room();
+    draw_shared_ = {.pipeline_state = static_cast<uint32_t>(pipeline_states_.size() - 1),
+                    .vertex_state = static_cast<uint32_t>(vertex_states_.size() - 1),
+                    .binding_state = static_cast<uint32_t>(binding_states_.size() - 1),
+                    .override_binding = offset_override_.binding,
+                    .flags = static_cast<uint8_t>(pipeline_draw_flags_ |
+                                                  (offset_override_.binding != kNoOverride ? kDrawOverride : 0))};
+    draw_shared_valid_ = true;
+    const auto flags = static_cast<uint8_t>(kDrawNewState | (indexed ? kDrawIndexed : 0) | (indirect ? kDrawIndirect : 0));
+    append_draw(flags, count, instance_count, indirect ? indirect_index : first, base_vertex, first_instance);
     if (draw_run_open_) {
         ++draw_runs_.back().count;
-        return;
+    } else {
+        open_draw_run();
     }
+}
+
+LOOM_GL_HOT void GlCommandList::append_draw(uint8_t flags, uint32_t count, uint32_t instance_count, uint32_t first,
+                                            int32_t base_vertex, uint32_t first_instance) {
+    const auto first_change = static_cast<uint32_t>(first_pending_change_);
+    first_pending_change_ = vertex_changes_.size();
+    // Written once, in place (the pipeline was found alive for this state: nothing destroyed since).
+    const DrawShared& shared = draw_shared_;
+    draws_.push_back_in_room(Draw{.pipeline_state = shared.pipeline_state,
+                                  .vertex_state = shared.vertex_state,
+                                  .binding_state = shared.binding_state,
+                                  .count = count,
+                                  .instance_count = instance_count,
+                                  .first = first,
+                                  .base_vertex = base_vertex,
+                                  .first_instance = first_instance,
+                                  .first_vertex_change = first_change,
+                                  .vertex_change_count = static_cast<uint32_t>(first_pending_change_ - first_change),
+                                  .override_binding = shared.override_binding,
+                                  .flags = static_cast<uint8_t>(shared.flags | flags),
+                                  .override_offset = offset_override_.offset,
+                                  .push = push_range_});
+    binding_state_drawn_ = true;
+}
+
+void GlCommandList::open_draw_run() {
     const auto run = static_cast<uint32_t>(draw_runs_.size());
     draw_runs_.push_back({static_cast<uint32_t>(draws_.size() - 1), 1});
     draw_run_open_ = true;
     // Small enough for std::function to hold without allocating.
-    commands_.push_back([this, run](GlStateCache& cache) {
-        const DrawRun& r = draw_runs_[run];
-        for (uint32_t i = r.first; i < r.first + r.count; ++i) replay_draw(cache, draws_[i]);
-    });
+    commands_.push_back([this, run](GlStateCache& cache) { replay_run(cache, draw_runs_[run]); });
 }
 
+// A draw whose state is current (draw_shared_valid_: nothing bound but per-draw data since the
+// draw before; nothing destroyed), inside an open run, with room for its record is appended
+// inline: the common case makes no call and needs no stack frame. Changed push constants are
+// copied first, out of line (a tail call); anything else takes draw_common. push_range_ holds
+// the draw pipeline's block unless push_dirty_: draw_common copied it when the state was made.
 void GlCommandList::draw(uint32_t vertex_count, uint32_t instance_count, uint32_t first_vertex, uint32_t first_instance) {
+    if (draw_shared_valid_ && draws_.has_room() && draw_state_removals_ == device_removals() && vertex_count != 0 &&
+        instance_count != 0) [[likely]] {
+        if (push_dirty_ && draw_pipeline_->push_constant_size != 0) [[unlikely]] {
+            draw_copying_push_constants(vertex_count, instance_count, first_vertex, first_instance);
+            return;
+        }
+        append_draw(0, vertex_count, instance_count, first_vertex, 0, first_instance);
+        ++draw_runs_.back().count;  // open: draw_shared_valid_ holds
+        return;
+    }
+    draw_slow(vertex_count, instance_count, first_vertex, first_instance);
+}
+
+void GlCommandList::draw_copying_push_constants(uint32_t vertex_count, uint32_t instance_count, uint32_t first_vertex,
+                                                uint32_t first_instance) {
+    copy_push_constants(*draw_pipeline_);
+    append_draw(0, vertex_count, instance_count, first_vertex, 0, first_instance);
+    ++draw_runs_.back().count;  // open: draw_shared_valid_ holds
+}
+
+void GlCommandList::draw_slow(uint32_t vertex_count, uint32_t instance_count, uint32_t first_vertex, uint32_t first_instance) {
     draw_common(false, vertex_count, instance_count, first_vertex, 0, first_instance);
 }
 
 void GlCommandList::draw_indexed(uint32_t index_count, uint32_t instance_count, uint32_t first_index, int32_t base_vertex,
                                  uint32_t first_instance) {
+    if (draw_shared_valid_ && vertex_state_indexed_ && draws_.has_room() &&
+        draw_state_removals_ == device_removals() && index_count != 0 &&
+        instance_count != 0 && state_.index_range_fits(first_index, index_count)) [[likely]] {
+        if (push_dirty_ && draw_pipeline_->push_constant_size != 0) [[unlikely]] {
+            draw_indexed_copying_push_constants(index_count, instance_count, first_index, base_vertex, first_instance);
+            return;
+        }
+        append_draw(kDrawIndexed, index_count, instance_count, first_index, base_vertex, first_instance);
+        ++draw_runs_.back().count;  // open: draw_shared_valid_ holds
+        return;
+    }
+    draw_indexed_slow(index_count, instance_count, first_index, base_vertex, first_instance);
+}
+
+void GlCommandList::draw_indexed_copying_push_constants(uint32_t index_count, uint32_t instance_count,
+                                                        uint32_t first_index, int32_t base_vertex,
+                                                        uint32_t first_instance) {
+    copy_push_constants(*draw_pipeline_);
+    append_draw(kDrawIndexed, index_count, instance_count, first_index, base_vertex, first_instance);
+    ++draw_runs_.back().count;  // open: draw_shared_valid_ holds
+}
+
+void GlCommandList::draw_indexed_slow(uint32_t index_count, uint32_t instance_count, uint32_t first_index,
+                                      int32_t base_vertex, uint32_t first_instance) {
     draw_common(true, index_count, instance_count, first_index, base_vertex, first_instance);
 }
 

@@ -156,11 +156,21 @@ private:
     /// with one offset changed (or unchanged: the pipeline does not read it), changing it when
     /// so. `transient`: the range is the device's own transient memory (nothing to look up).
     bool rebinds_offset(uint32_t set, uint32_t binding, const rhi::BufferBinding& range, bool transient);
-    /// A copy of the last vertex state, as next_binding_state.
-    void next_vertex_state();
+    /// set_vertex_buffer and set_index_buffer past their common case (which records a
+    /// VertexChange): the checks' messages, growth. `found`:
+    /// the buffer looked up by the caller (null when stale or foreign).
+    void set_vertex_buffer_slow(uint32_t slot, rhi::BufferHandle buffer, const GlBuffer* found, uint64_t offset);
+    void set_index_buffer_slow(rhi::BufferHandle buffer, const GlBuffer* found, rhi::IndexType type, uint64_t offset);
+    /// Whether `pipeline` has no push-constant block or push_range_ holds it as it is now.
+    [[nodiscard]] bool push_constants_current(const GlPipeline& pipeline) const {
+        return pipeline.push_constant_size == 0 ||
+               (!push_dirty_ && push_range_.object != 0 && push_range_.size >= static_cast<GLsizeiptr>(pipeline.push_constant_size));
+    }
     /// The push-constant block of `pipeline` as a uniform range: a copy per change, so that
     /// every draw sees the values current when it was recorded.
     PushRange push_constant_range(const GlPipeline& pipeline);
+    /// The copy itself: the block, at least `pipeline`'s size, into push_range_.
+    void copy_push_constants(const GlPipeline& pipeline);
     /// An indirect draw's arguments: glMultiDrawElementsIndirect from `buffer`.
     struct IndirectDraw {
         GLuint buffer = 0;
@@ -168,9 +178,26 @@ private:
         GLsizei count = 0;
         GLsizei stride = 0;
     };
+    /// A draw with every check and every state change it needs (draw and draw_indexed take it
+    /// past their inline common case, through draw_slow and draw_indexed_slow).
     void draw_common(bool indexed, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
                      uint32_t first_instance,
                      const std::optional<IndirectDraw>& indirect = std::nullopt);
+    void draw_slow(uint32_t vertex_count, uint32_t instance_count, uint32_t first_vertex, uint32_t first_instance);
+    /// A draw of the current state after a change of the push constants: copies them, appends it.
+    void draw_copying_push_constants(uint32_t vertex_count, uint32_t instance_count, uint32_t first_vertex,
+                                     uint32_t first_instance);
+    void draw_indexed_copying_push_constants(uint32_t index_count, uint32_t instance_count, uint32_t first_index,
+                                             int32_t base_vertex, uint32_t first_instance);
+    void draw_indexed_slow(uint32_t index_count, uint32_t instance_count, uint32_t first_index, int32_t base_vertex,
+                           uint32_t first_instance);
+    /// Appends the record of a checked draw of the current state (draws_ has room for it; push
+    /// constants copied; draw_shared_ current) and counts it into the open run, if any.
+    /// `flags`: kDrawIndexed, kDrawIndirect, kDrawNewState.
+    void append_draw(uint8_t flags, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
+                     uint32_t first_instance);
+    /// Starts a run of draws at the last one recorded: one command replays them all.
+    void open_draw_run();
     // What consecutive draws share, resolved at the first draw after it changed and replayed
     // only when it differs from the previous draw's: the pipeline's fixed state, the vertex and
     // index buffers (on the pipeline's vertex array), the bindings of the bound groups. Their
@@ -203,19 +230,55 @@ private:
         uint32_t pipeline_state = 0;
         uint32_t vertex_state = 0;
         uint32_t binding_state = 0;
-        uint32_t indirect = UINT32_MAX;  ///< index into indirect_draws_, or none
-        bool indexed = false;
         uint32_t count = 0;
         uint32_t instance_count = 0;
-        uint32_t first = 0;
+        uint32_t first = 0;  ///< with kDrawIndirect: the index of its arguments in indirect_draws_
         int32_t base_vertex = 0;
         uint32_t first_instance = 0;
-        PushRange push;
-        /// A uniform range of the binding state drawn at another offset (offset_override_), or none.
+        /// Vertex and index buffers bound since the draw before: the range [first_vertex_change,
+        /// + vertex_change_count) of vertex_changes_, applied before this draw (see VertexChange).
+        uint32_t first_vertex_change = 0;
+        uint32_t vertex_change_count = 0;
+        /// A uniform range of the binding state drawn at another offset (offset_override_), with
+        /// kDrawOverride.
         uint32_t override_binding = kNoOverride;
+        uint8_t flags = 0;  ///< kDraw* (what replay has to do besides the call)
         GLintptr override_offset = 0;
+        PushRange push;  ///< with kDrawPush
     };
     static constexpr uint32_t kNoOverride = UINT32_MAX;
+    // Draw::flags.
+    static constexpr uint8_t kDrawIndexed = 1;
+    static constexpr uint8_t kDrawIndirect = 2;
+    static constexpr uint8_t kDrawOverride = 4;      ///< override_binding is set
+    static constexpr uint8_t kDrawPush = 8;          ///< the pipeline has a push-constant block (push)
+    static constexpr uint8_t kDrawBaseInstance = 16;  ///< the pipeline reads gl_InstanceIndex (base instance uniform)
+    static constexpr uint8_t kDrawNewState = 32;  ///< states or override binding differ from the draw before
+    uint8_t pipeline_draw_flags_ = 0;  ///< kDrawPush and kDrawBaseInstance of draw_pipeline_
+    /// What consecutive draws share while nothing but per-draw data changes: the states' indices,
+    /// the override's binding, the flags of the pipeline and the override. draw_common fills it
+    /// (and marks its draw kDrawNewState); while draw_shared_valid_, the inline draw paths copy
+    /// it. Whatever changes one of its sources clears draw_shared_valid_, and so does whatever
+    /// clears pipeline_state_valid_, vertex_state_valid_ or binding_state_valid_ (it implies them).
+    struct DrawShared {
+        uint32_t pipeline_state = 0, vertex_state = 0, binding_state = 0;
+        uint32_t override_binding = kNoOverride;
+        uint8_t flags = 0;
+    };
+    DrawShared draw_shared_;
+    bool draw_shared_valid_ = false;
+    /// Per-draw vertex and index buffers without copying the vertex state: every buffer bound is
+    /// recorded as a change that the next draw applies on top of its vertex state and what the
+    /// draws before it bound (replay is in order). A new vertex state, resolved from the tracker,
+    /// drops the changes no draw took. `slot` is a vertex buffer slot (< rhi::kMaxVertexBuffers;
+    /// replay skips those the pipeline does not read), or else the index buffer, `slot` then
+    /// holding its GL index type.
+    struct VertexChange {
+        uint32_t slot = 0;
+        GLuint buffer = 0;
+        GLintptr offset = 0;
+    };
+
     /// Per-draw uniform data without copying the binding state: one uniform range of
     /// binding_states_.back() (an index into bindings_) rebound at `offset` by the draws recorded
     /// while it is set; a new binding state takes the offset over and clears it.
@@ -235,11 +298,17 @@ private:
     bool prepare_draw_state(const char* command, bool indexed, bool indirect);
     /// The GL calls of one draw (its shared state only when it differs from the last draw's).
     void replay_draw(GlStateCache& cache, const Draw& draw);
+    /// The vertex and index buffers bound before `draw` (its VertexChange records).
+    void replay_vertex_changes(GlStateCache& cache, const Draw& draw);
+    /// The pipeline, vertex and binding states of `draw` that differ from those replayed last.
+    void replay_shared_states(GlStateCache& cache, const Draw& draw);
     /// Consecutive draws with no other command between them: one entry of commands_ replays
     /// them all (a draw appends to the run instead of adding a command of its own).
     struct DrawRun {
         uint32_t first = 0, count = 0;  ///< a range of draws_
     };
+    /// The GL calls of a run of draws.
+    void replay_run(GlStateCache& cache, DrawRun run);
     void apply_bindings(GlStateCache& cache, uint32_t first, uint32_t count) const;
     /// Objects the device has destroyed so far (a draw state resolved before a destruction is
     /// checked again: its objects may be gone).
@@ -259,6 +328,8 @@ private:
     FrameArray<BindingState> binding_states_;
     std::vector<GlBlendState> blends_;
     FrameArray<VertexBinding> vertex_bindings_;
+    FrameArray<VertexChange> vertex_changes_;
+    std::size_t first_pending_change_ = 0;  ///< vertex_changes_ from here on: for the next draw
     FrameArray<ResolvedBinding> bindings_;
     /// The entries binding_states_.back() was resolved from, one per pipeline binding.
     std::vector<rhi::BindingEntry> resolved_entries_;
@@ -268,7 +339,7 @@ private:
     bool vertex_state_valid_ = false;
     bool binding_state_valid_ = false;
     bool binding_state_drawn_ = false;  ///< a draw was recorded with binding_states_.back()
-    bool vertex_state_drawn_ = false;   ///< a draw was recorded with vertex_states_.back()
+    bool vertex_state_indexed_ = false;  ///< vertex_states_.back() has an index buffer (was made for indexed draws)
     bool draw_checked_indexed_ = false;  ///< the last check_draw was of an indexed draw
     uint64_t draw_state_removals_ = 0;
     const GlPipeline* draw_pipeline_ = nullptr;  ///< the pipeline of pipeline_states_.back()
@@ -276,8 +347,15 @@ private:
     uint32_t replayed_pipeline_ = UINT32_MAX;
     uint32_t replayed_vertex_ = UINT32_MAX;
     uint32_t replayed_bindings_ = UINT32_MAX;
+    /// The index buffer's type and offset as replayed so far (the vertex state's, then changes).
+    GLenum replayed_topology_ = GL_TRIANGLES;
+    GLenum replayed_index_type_ = GL_UNSIGNED_INT;
+    uint64_t replayed_index_offset_ = 0;
     /// Forgets every state resolved for draws (the next draw checks and resolves all again).
-    void invalidate_draw_state() { pipeline_state_valid_ = vertex_state_valid_ = binding_state_valid_ = false; }
+    void invalidate_draw_state() {
+        pipeline_state_valid_ = vertex_state_valid_ = binding_state_valid_ = false;
+        draw_shared_valid_ = false;
+    }
     std::optional<Error> first_error_;
     // The GL side of the open render pass.
     GLuint pass_framebuffer_ = 0;
@@ -356,6 +434,9 @@ public:
     rhi::HandlePool<rhi::BufferTag, GlBuffer>& buffers() { return buffers_; }
     rhi::HandlePool<rhi::SamplerTag, GlSampler>& samplers() { return samplers_; }
     rhi::HandlePool<rhi::PipelineTag, GlPipeline>& pipelines() { return pipelines_; }
+    /// Objects removed so far from the device's pools (textures, buffers, samplers, shaders,
+    /// pipelines): unchanged, every object found alive before is still alive.
+    [[nodiscard]] uint64_t removals() const { return removals_; }
     /// The texture view of the (resolved) `range` of `texture` as a shader declares it (`kind`),
     /// made on first use and kept until the texture goes; Unsupported for an imported texture
     /// without immutable storage.
@@ -409,7 +490,9 @@ public:
     [[nodiscard]] const Limits& limits() const { return limits_; }
 
 private:
-    GlDevice() : textures_(id_), buffers_(id_), samplers_(id_), shaders_(id_), pipelines_(id_) {}
+    GlDevice()
+        : textures_(id_, &removals_), buffers_(id_, &removals_), samplers_(id_, &removals_), shaders_(id_, &removals_),
+          pipelines_(id_, &removals_) {}
     /// Sets up a device on `context_` (current): checks the version, loom's global state
     /// (owned contexts only), capabilities, the state cache and the command list.
     Status init(bool debug, bool validation);
@@ -462,6 +545,7 @@ private:
     uint64_t uniform_alignment_mask_ = 0;
     rhi::validation::ResourceLookup resource_lookup_;  ///< see resource_lookup()
     Limits limits_;
+    uint64_t removals_ = 0;  ///< objects removed from any of the pools below (removals())
     rhi::HandlePool<rhi::TextureTag, GlTexture> textures_;
     rhi::HandlePool<rhi::BufferTag, GlBuffer> buffers_;
     rhi::HandlePool<rhi::SamplerTag, GlSampler> samplers_;

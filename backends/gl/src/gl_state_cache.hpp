@@ -90,15 +90,38 @@ public:
     void bind_storage_buffer(uint32_t point, GLuint buffer, GLintptr offset, GLsizeiptr size);
     void bind_image(uint32_t unit, GLuint texture, GLint level, bool layered, GLint layer, GLenum access,
                     GLenum format);
+    /// What the cache knows of one vertex array's buffers.
+    struct VertexBinding {
+        GLuint buffer = 0;
+        GLintptr offset = -1;
+        GLsizei stride = -1;
+        friend bool operator==(const VertexBinding&, const VertexBinding&) = default;
+    };
+    struct VaoState {
+        std::array<VertexBinding, 16> buffers{};
+        GLuint element = ~0u;
+    };
+    /// The cache's entry of `vao` (stays valid until invalidate()): a caller changing several
+    /// of its buffers looks it up once.
+    VaoState& vao_state(GLuint vao) {
+        if (last_vao_state_ == nullptr || last_vao_ != vao) {
+            last_vao_state_ = &vaos_[vao];
+            last_vao_ = vao;
+        }
+        return *last_vao_state_;
+    }
     void vertex_buffer(GLuint vao, uint32_t slot, GLuint buffer, GLintptr offset, GLsizei stride) {
-        VaoState& state = vao_state(vao);
+        vertex_buffer(vao_state(vao), vao, slot, buffer, offset, stride);
+    }
+    /// As above, with `state` = vao_state(vao).
+    void vertex_buffer(VaoState& state, GLuint vao, uint32_t slot, GLuint buffer, GLintptr offset, GLsizei stride) {
         if (slot < state.buffers.size() && !changed(state.buffers[slot], VertexBinding{buffer, offset, stride})) return;
         glVertexArrayVertexBuffer(vao, slot, buffer, offset, stride);
         ++counters_->api_calls;
         ++counters_->buffer_binds;
     }
-    void element_buffer(GLuint vao, GLuint buffer) {
-        VaoState& state = vao_state(vao);
+    void element_buffer(GLuint vao, GLuint buffer) { element_buffer(vao_state(vao), vao, buffer); }
+    void element_buffer(VaoState& state, GLuint vao, GLuint buffer) {
         if (!changed(state.element, buffer)) return;
         glVertexArrayElementBuffer(vao, buffer);
         ++counters_->api_calls;
@@ -139,16 +162,6 @@ private:
         GLenum format = 0;
         friend bool operator==(const ImageBinding&, const ImageBinding&) = default;
     };
-    struct VertexBinding {
-        GLuint buffer = 0;
-        GLintptr offset = -1;
-        GLsizei stride = -1;
-        friend bool operator==(const VertexBinding&, const VertexBinding&) = default;
-    };
-    struct VaoState {
-        std::array<VertexBinding, 16> buffers{};
-        GLuint element = ~0u;
-    };
     static constexpr GLuint kUnknown = ~0u;
 
     GlCallCounters* counters_;
@@ -166,13 +179,6 @@ private:
     /// found without hashing. Nodes of an unordered_map stay put until erased (invalidate).
     GLuint last_vao_ = 0;
     VaoState* last_vao_state_ = nullptr;
-    VaoState& vao_state(GLuint vao) {
-        if (last_vao_state_ == nullptr || last_vao_ != vao) {
-            last_vao_state_ = &vaos_[vao];
-            last_vao_ = vao;
-        }
-        return *last_vao_state_;
-    }
     std::unordered_map<GLuint, GLint> base_instances_;  ///< per program
     std::array<float, 6> viewport_{};
     bool viewport_known_ = false;

@@ -67,7 +67,11 @@ public:
         BufferHandle buffer;
         IndexType type = IndexType::Uint32;
         uint64_t offset = 0;
-        uint64_t buffer_size = 0;  ///< the buffer's size when it was bound (check_index_range)
+        /// Indices from `offset` that fit in the buffer as it was when bound (check_index_range).
+        uint64_t index_capacity = 0;
+        static uint64_t capacity(uint64_t buffer_size, IndexType type, uint64_t offset) {
+            return offset <= buffer_size ? (buffer_size - offset) / validation::index_bytes(type) : 0;
+        }
     };
 
     /// Pipelines and buffers are looked up on the device whose commands are recorded.
@@ -170,12 +174,22 @@ public:
     /// null when the handle is stale or foreign), so that it is not looked up twice. Inline, the
     /// message built only when a check fails.
     Status set_vertex_buffer(uint32_t slot, BufferHandle buffer, const BufferDesc* found, uint64_t offset) {
-        if (slot < kMaxVertexBuffers && (!validating() || (found && validation::vertex_buffer_fits(*found, offset))))
-            [[likely]] {
+        if (found && replace_vertex_buffer(slot, buffer, *found, offset)) [[likely]] return {};
+        if (slot < kMaxVertexBuffers && !validating()) {
             vertex_buffers_[slot] = {buffer, offset};
             return {};
         }
         return set_vertex_buffer(slot, buffer, offset);
+    }
+    /// set_vertex_buffer's common case alone, without a Status: true when the slot is valid and
+    /// `found` (the live buffer's description) passes the checks, and the buffer is bound; false
+    /// (nothing changed) otherwise, when set_vertex_buffer must be called.
+    bool replace_vertex_buffer(uint32_t slot, BufferHandle buffer, const BufferDesc& found, uint64_t offset) {
+        if (slot < kMaxVertexBuffers && (!validating() || validation::vertex_buffer_fits(found, offset))) [[likely]] {
+            vertex_buffers_[slot] = {buffer, offset};
+            return true;
+        }
+        return false;
     }
     /// The buffer bound to vertex buffer slot `slot` (< kMaxVertexBuffers); a null handle when none.
     [[nodiscard]] const VertexBuffer& vertex_buffer(uint32_t slot) const { return vertex_buffers_[slot]; }
@@ -184,11 +198,20 @@ public:
     Status set_index_buffer(BufferHandle buffer, IndexType type, uint64_t offset);
     /// set_index_buffer of a buffer the backend has looked up itself (as set_vertex_buffer).
     Status set_index_buffer(BufferHandle buffer, const BufferDesc* found, IndexType type, uint64_t offset) {
-        if (!validating() || (found && validation::index_buffer_fits(*found, type, offset))) [[likely]] {
-            index_buffer_ = {buffer, type, offset, found ? found->size : 0};
+        if (found && replace_index_buffer(buffer, *found, type, offset)) [[likely]] return {};
+        if (!validating()) {
+            index_buffer_ = {buffer, type, offset, found ? IndexBuffer::capacity(found->size, type, offset) : 0};
             return {};
         }
         return set_index_buffer(buffer, type, offset);
+    }
+    /// set_index_buffer's common case alone, as replace_vertex_buffer.
+    bool replace_index_buffer(BufferHandle buffer, const BufferDesc& found, IndexType type, uint64_t offset) {
+        if (!validating() || validation::index_buffer_fits(found, type, offset)) [[likely]] {
+            index_buffer_ = {buffer, type, offset, IndexBuffer::capacity(found.size, type, offset)};
+            return true;
+        }
+        return false;
     }
     /// The bound index buffer; a null handle when none.
     [[nodiscard]] const IndexBuffer& index_buffer() const { return index_buffer_; }
@@ -206,12 +229,13 @@ public:
     /// range fits the size it had when bound: the caller has checked the draw with check_draw
     /// since anything was last destroyed, which found that buffer alive.
     [[nodiscard]] Status check_index_range(uint32_t first_index, uint32_t index_count) const {
-        const IndexBuffer& b = index_buffer_;
-        if (!validating() || validation::index_range_fits(b.buffer_size, b.type, b.offset, first_index, index_count))
-            [[likely]] {
-            return {};
-        }
+        if (index_range_fits(first_index, index_count)) [[likely]] return {};
         return check_index_range_slow(first_index, index_count);
+    }
+    /// check_index_range's answer alone, without a Status (false: call check_index_range).
+    [[nodiscard]] bool index_range_fits(uint32_t first_index, uint32_t index_count) const {
+        // validation::index_range_fits with the division done when the buffer was bound.
+        return !validating() || uint64_t{first_index} + index_count <= index_buffer_.index_capacity;
     }
     /// dispatch: outside render passes, with a live compute pipeline.
     [[nodiscard]] Status check_dispatch() const;

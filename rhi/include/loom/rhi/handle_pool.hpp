@@ -2,6 +2,8 @@
 // Storage for a backend's objects of one kind, addressed by typed handles. Shared by the
 // backends so that null, stale and foreign handles are reported the same way everywhere.
 
+#include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -24,6 +26,9 @@ public:
 
     /// An empty pool whose handles carry `device_id`.
     explicit HandlePool(uint16_t device_id) : device_id_(device_id) {}
+    /// As above; every removal also counts into `shared_removals` (which outlives the pool), so
+    /// that one comparison tells whether any of a device's pools lost an object.
+    HandlePool(uint16_t device_id, uint64_t* shared_removals) : device_id_(device_id), shared_removals_(shared_removals) {}
 
     /// Stores `value` and returns its handle (reusing a free slot with a new generation).
     HandleType insert(T value) {
@@ -34,6 +39,8 @@ public:
         } else {
             index = static_cast<uint32_t>(slots_.size());
             slots_.emplace_back();
+            slots_.back().key = key(slots_.back().generation, device_id_);
+            slot_count_ = slots_.size();
         }
         Slot& slot = slots_[index];
         slot.value.emplace(std::move(value));
@@ -49,9 +56,11 @@ public:
 
     /// Like get(), but nullptr instead of an error (for hot paths that already validated).
     T* find(HandleType handle) {
-        if (handle.is_null() || handle.device != device_id_ || handle.index >= slots_.size()) return nullptr;
+        if (handle.index >= slot_count_) return nullptr;
         Slot& slot = slots_[handle.index];
-        return slot.generation == handle.generation && slot.value ? &*slot.value : nullptr;
+        // The generation and the device in one comparison; a null handle's generation (0) is
+        // no slot's.
+        return slot.key == key(handle) && slot.value ? &*slot.value : nullptr;
     }
     /// Like find(), for const pools.
     const T* find(HandleType handle) const { return const_cast<HandlePool*>(this)->find(handle); }
@@ -64,9 +73,11 @@ public:
         slot.value.reset();
         // Generation 0 is reserved for null handles.
         slot.generation = static_cast<uint16_t>(slot.generation == 0xFFFF ? 1 : slot.generation + 1);
+        slot.key = key(slot.generation, device_id_);
         free_.push_back(handle.index);
         --live_;
         ++removals_;
+        if (shared_removals_) ++*shared_removals_;
         return value;
     }
 
@@ -98,7 +109,19 @@ private:
     struct Slot {
         std::optional<T> value;
         uint16_t generation = 1;
+        uint32_t key = 0;  ///< key(generation, device_id_)
     };
+    static uint32_t key(uint16_t generation, uint16_t device) { return uint32_t{generation} | uint32_t{device} << 16; }
+    /// key(handle.generation, handle.device): on little-endian machines the handle's upper word,
+    /// read whole (the handle arrives in one register).
+    static uint32_t key(HandleType handle) {
+        static_assert(sizeof(HandleType) == 8 && offsetof(HandleType, generation) == 4 && offsetof(HandleType, device) == 6);
+        if constexpr (std::endian::native == std::endian::little) {
+            return static_cast<uint32_t>(std::bit_cast<uint64_t>(handle) >> 32);
+        } else {
+            return key(handle.generation, handle.device);
+        }
+    }
 
     // The message is built only for a bad handle: lookups run on every draw.
     std::optional<Error> check(HandleType handle) const {
@@ -119,7 +142,9 @@ private:
     }
 
     uint16_t device_id_;
+    uint64_t* shared_removals_ = nullptr;
     std::vector<Slot> slots_;
+    std::size_t slot_count_ = 0;  ///< slots_.size(), kept so that find() needs no division
     std::vector<uint32_t> free_;
     std::size_t live_ = 0;
     uint64_t removals_ = 0;

@@ -296,8 +296,8 @@ inline Status index_buffer(const BufferDesc& buffer, IndexType type, uint64_t of
 /// with the size it kept when the buffer was bound.
 inline bool index_range_fits(uint64_t buffer_size, IndexType type, uint64_t offset, uint32_t first_index,
                              uint32_t index_count) {
-    const auto start = checked::add<uint64_t>(offset, uint64_t{first_index} * index_bytes(type));
-    return start && checked::range_fits(*start, uint64_t{index_count} * index_bytes(type), buffer_size);
+    // (first_index + index_count) * 4 < 2^35: exact in 64 bits, no overflow check needed.
+    return offset <= buffer_size && (uint64_t{first_index} + index_count) * index_bytes(type) <= buffer_size - offset;
 }
 /// CommandList::draw_indexed: `index_count` indices from `first_index` lie inside the index
 /// buffer bound at `offset`.
