@@ -21,15 +21,10 @@ namespace {
 
 constexpr uint32_t kNone = UINT32_MAX;
 
-void sort_unique(std::vector<uint32_t>& values) {
-    std::sort(values.begin(), values.end());
-    values.erase(std::unique(values.begin(), values.end()), values.end());
-}
-
 // Per pass: the resources it produces (and their bytes) and every resource it has a port on.
 struct PassResources {
-    std::vector<std::vector<uint32_t>> produced;
-    std::vector<std::vector<uint32_t>> touched;
+    IndexLists produced;
+    IndexLists touched;
     std::vector<uint64_t> produced_bytes;
     uint64_t user_count = 0;  // the sum of the resources' user counts: the size of the problem
 };
@@ -37,16 +32,17 @@ struct PassResources {
 PassResources index_resources(const OrderProblem& problem) {
     const uint32_t n = problem.pass_count();
     PassResources index;
-    index.produced.resize(n);
-    index.touched.resize(n);
     index.produced_bytes.assign(n, 0);
+    std::vector<std::pair<uint32_t, uint32_t>> produced, touched;
     for (uint32_t r = 0; r < problem.resources.size(); ++r) {
         const OrderProblem::Resource& resource = problem.resources[r];
-        index.produced[resource.producer].push_back(r);
+        produced.emplace_back(resource.producer, r);
         index.produced_bytes[resource.producer] += resource.bytes;
-        for (uint32_t user : resource.users) index.touched[user].push_back(r);
-        index.user_count += resource.users.size();
+        for (uint32_t user : problem.users[r]) touched.emplace_back(user, r);
+        index.user_count += problem.users[r].size();
     }
+    index.produced = IndexLists(n, produced);
+    index.touched = IndexLists(n, touched);
     return index;
 }
 
@@ -106,8 +102,8 @@ std::vector<uint32_t> greedy_forward(const OrderProblem& problem, const PassReso
     std::vector<uint64_t> frees(n, 0);  // bytes freed right after the pass, were it placed now
     for (uint32_t r = 0; r < problem.resources.size(); ++r) {
         const OrderProblem::Resource& resource = problem.resources[r];
-        unplaced_users[r] = static_cast<uint32_t>(resource.users.size());
-        if (!resource.graph_output && resource.users.size() == 1) frees[resource.users.front()] += resource.bytes;
+        unplaced_users[r] = static_cast<uint32_t>(problem.users[r].size());
+        if (!resource.graph_output && problem.users[r].size() == 1) frees[problem.users[r].front()] += resource.bytes;
     }
     std::vector<bool> placed(n, false);
     ReadyPasses ready(n);
@@ -138,7 +134,7 @@ std::vector<uint32_t> greedy_forward(const OrderProblem& problem, const PassReso
             const OrderProblem::Resource& resource = problem.resources[r];
             if (--unplaced_users[r] != 1 || resource.graph_output) continue;
             // One user is left: placing it will free the resource.
-            for (uint32_t user : resource.users) {
+            for (uint32_t user : problem.users[r]) {
                 if (!placed[user]) frees[user] += resource.bytes;
             }
         }
@@ -165,7 +161,7 @@ std::vector<uint32_t> greedy_backward(const OrderProblem& problem, const PassRes
             live += resource.bytes;
             continue;
         }
-        for (uint32_t user : resource.users) allocates[user] += resource.bytes;
+        for (uint32_t user : problem.users[r]) allocates[user] += resource.bytes;
     }
     // Ready passes latest-declared first: the mirror of the forward tie break.
     ReadyPasses ready(n);  // keyed n - 1 - pass
@@ -194,7 +190,7 @@ std::vector<uint32_t> greedy_backward(const OrderProblem& problem, const PassRes
         for (uint32_t r : index.touched[chosen]) {
             if (live_resource[r]) continue;
             live_resource[r] = true;
-            for (uint32_t user : problem.resources[r].users) allocates[user] -= problem.resources[r].bytes;
+            for (uint32_t user : problem.users[r]) allocates[user] -= problem.resources[r].bytes;
         }
         for (uint32_t previous : problem.predecessors[chosen]) {
             if (--waiting[previous] == 0) ready.insert(n - 1 - previous);
@@ -374,13 +370,14 @@ private:
     // The last user of resource r in the current order, and its ended bytes.
     void find_last_user(uint32_t r) {
         const OrderProblem::Resource& resource = problem_.resources[r];
-        uint32_t last = resource.users.front();
-        for (uint32_t user : resource.users) {
+        const std::span<const uint32_t> users = problem_.users[r];
+        uint32_t last = users.front();
+        for (uint32_t user : users) {
             if (position_[user] > position_[last]) last = user;
         }
         last_user_[r] = last;
         ended_bytes_[last] += resource.bytes;
-        work_ += resource.users.size();
+        work_ += users.size();
     }
 
     // Positions, last users, live bytes per position and the running figures the moves use.
@@ -467,12 +464,13 @@ private:
                 } else if (dragged_[last] && weighed_[r] != epoch_) {
                     weighed_[r] = epoch_;
                     changed_.push_back(r);
-                    uint32_t latest = resource.users.front();
-                    for (uint32_t user : resource.users) {
+                    const std::span<const uint32_t> users = problem_.users[r];
+                    uint32_t latest = users.front();
+                    for (uint32_t user : users) {
                         if (moved_position(user) > moved_position(latest)) latest = user;
                     }
                     new_last_user_[r] = latest;
-                    work_ += resource.users.size();
+                    work_ += users.size();
                 }
             }
             work_ += index_.touched[mover].size();
@@ -563,38 +561,39 @@ OrderProblem make_order_problem(const FrameGraph& graph, const Dependencies& dep
                                 const ResolvedResources& resolved) {
     const auto n = static_cast<uint32_t>(declared.order.size());
     OrderProblem problem;
-    problem.successors.resize(n);
-    problem.predecessors.resize(n);
+    // (list, value) pairs, made into the lists at the end.
+    std::vector<std::pair<uint32_t, uint32_t>> edges;
     uint32_t previous_pinned = kNone;
     for (uint32_t at = 0; at < n; ++at) {
         const uint32_t pass = declared.order[at];
         for (uint32_t next : dependencies.successors[pass]) {
             const uint32_t later = declared.position[next];
-            if (later != kNotScheduled) problem.successors[at].push_back(later);
+            if (later != kNotScheduled) edges.emplace_back(at, later);
         }
         const Pass& declared_pass = graph.pass(PassId{pass});
         if (declared_pass.side_effect() || declared_pass.keeps_declared_order()) {
-            if (previous_pinned != kNone) problem.successors[previous_pinned].push_back(at);
+            if (previous_pinned != kNone) edges.emplace_back(previous_pinned, at);
             previous_pinned = at;
         }
     }
-    for (uint32_t at = 0; at < n; ++at) {
-        sort_unique(problem.successors[at]);
-        for (uint32_t later : problem.successors[at]) problem.predecessors[later].push_back(at);
-    }
-    problem.resources.resize(resolved.resources.size());
-    for (uint32_t r = 0; r < resolved.resources.size(); ++r) {
+    problem.successors = IndexLists(n, edges);
+    for (auto& [earlier, later] : edges) std::swap(earlier, later);
+    problem.predecessors = IndexLists(n, edges);
+    const auto resource_count = static_cast<uint32_t>(resolved.resources.size());
+    problem.resources.resize(resource_count);
+    for (uint32_t r = 0; r < resource_count; ++r) {
         const PlanResource& resource = resolved.resources[r];
         problem.resources[r].producer = resource.lifetime.first;
         problem.resources[r].bytes = resource.bytes;
         problem.resources[r].graph_output = resource.graph_output;
     }
+    std::vector<std::pair<uint32_t, uint32_t>> uses;
     for (uint32_t at = 0; at < n; ++at) {
         for (uint32_t r : resolved.resource_of_port[declared.order[at]]) {
-            if (r != kNoResource) problem.resources[r].users.push_back(at);
+            if (r != kNoResource) uses.emplace_back(r, at);
         }
     }
-    for (OrderProblem::Resource& resource : problem.resources) sort_unique(resource.users);
+    problem.users = IndexLists(resource_count, uses);
     return problem;
 }
 
@@ -627,11 +626,12 @@ OrderCost order_cost(const OrderProblem& problem, const std::vector<uint32_t>& o
     for (uint32_t k = 0; k < n; ++k) position[order[k]] = k;
     std::vector<uint64_t> starting(n, 0);
     std::vector<uint64_t> ending(n, 0);
-    for (const OrderProblem::Resource& resource : problem.resources) {
+    for (uint32_t r = 0; r < problem.resources.size(); ++r) {
+        const OrderProblem::Resource& resource = problem.resources[r];
         uint32_t last = n - 1;
         if (!resource.graph_output) {
             last = 0;
-            for (uint32_t user : resource.users) last = std::max(last, position[user]);
+            for (uint32_t user : problem.users[r]) last = std::max(last, position[user]);
         }
         starting[position[resource.producer]] += resource.bytes;
         ending[last] += resource.bytes;

@@ -27,18 +27,20 @@ namespace loom::fg::detail {
 struct OrderProblem {
     struct Resource {
         uint32_t producer = 0;        ///< the pass that starts it
-        std::vector<uint32_t> users;  ///< every pass with a port on it, the producer too (sorted, unique)
         uint64_t bytes = 0;
         bool graph_output = false;    ///< live until the last position
     };
     /// Per pass, the passes that must run after it (sorted, unique): its dependencies (analyze)
     /// and, between consecutive pinned passes (side effects, Pass::keep_declared_order), their
-    /// declared relative order.
-    std::vector<std::vector<uint32_t>> successors;
-    std::vector<std::vector<uint32_t>> predecessors;  ///< the same edges, the other way
+    /// declared relative order. (IndexLists, graph_analysis.hpp: all lists in one array, which
+    /// on 10,000 passes made an OrderProblem several times faster than a vector per list.)
+    IndexLists successors;
+    IndexLists predecessors;  ///< the same edges, the other way
     std::vector<Resource> resources;
+    /// Per resource, every pass with a port on it, the producer too (sorted, unique).
+    IndexLists users;
 
-    [[nodiscard]] uint32_t pass_count() const { return static_cast<uint32_t>(successors.size()); }
+    [[nodiscard]] uint32_t pass_count() const { return successors.size(); }
 };
 
 /// The problem of the passes `declared` schedules: pass i is declared.order[i]; the resources

@@ -42,7 +42,7 @@ std::optional<ExactOrder> exact_memory_order(const OrderProblem& problem, uint64
     for (uint32_t r = 0; r < problem.resources.size(); ++r) {
         const OrderProblem::Resource& resource = problem.resources[r];
         produced_bytes[resource.producer] += resource.bytes;
-        for (uint32_t user : resource.users) {
+        for (uint32_t user : problem.users[r]) {
             users[r] |= bit(user);
             touched[user].push_back(r);
         }
