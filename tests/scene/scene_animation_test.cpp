@@ -1,0 +1,99 @@
+// Keyframe sampling as glTF 2.0 defines it: step, linear (slerp for rotations, along the
+// shorter arc) and cubic-spline interpolation, and times outside the keyframes.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "loom/scene/animation.hpp"
+
+namespace loom::scene {
+namespace {
+
+std::array<float, 4> sampled(const AnimationSampler& sampler, float time, bool rotation = false) {
+    std::array<float, 4> out{};
+    sample(sampler, time, rotation, std::span<float>(out).first(sampler.components));
+    return out;
+}
+
+AnimationSampler translations(Interpolation interpolation) {
+    // Keyframes at 1 s and 3 s: (0, 0, 0) then (2, 4, -6).
+    return {{1.0f, 3.0f}, {0, 0, 0, 2, 4, -6}, interpolation, 3};
+}
+
+TEST(AnimationSampling, LinearIsProportionalToTheTimeBetweenKeyframes) {
+    const AnimationSampler s = translations(Interpolation::Linear);
+    EXPECT_EQ(sampled(s, 2.0f), (std::array<float, 4>{1, 2, -3, 0}));
+    EXPECT_EQ(sampled(s, 1.5f), (std::array<float, 4>{0.5f, 1, -1.5f, 0}));
+}
+
+TEST(AnimationSampling, StepHoldsTheLastKeyframeReached) {
+    const AnimationSampler s = translations(Interpolation::Step);
+    EXPECT_EQ(sampled(s, 2.9f), (std::array<float, 4>{0, 0, 0, 0}));
+    EXPECT_EQ(sampled(s, 3.0f), (std::array<float, 4>{2, 4, -6, 0}));
+}
+
+TEST(AnimationSampling, TimesOutsideTheKeyframesTakeTheNearestValue) {
+    for (Interpolation i : {Interpolation::Step, Interpolation::Linear}) {
+        const AnimationSampler s = translations(i);
+        EXPECT_EQ(sampled(s, 0.0f), (std::array<float, 4>{0, 0, 0, 0}));
+        EXPECT_EQ(sampled(s, 10.0f), (std::array<float, 4>{2, 4, -6, 0}));
+    }
+    const AnimationSampler single{{0.5f}, {7, 8, 9}, Interpolation::Linear, 3};
+    EXPECT_EQ(sampled(single, 2.0f), (std::array<float, 4>{7, 8, 9, 0}));
+}
+
+TEST(AnimationSampling, LinearRotationsTurnAtConstantSpeedAlongTheShorterArc) {
+    // Identity, then 90 degrees about z: halfway is 45 degrees about z, not the normalised
+    // average of the two at a quarter of the time (22.5 degrees, where the average gives 21.6).
+    const float h = std::sin(std::numbers::pi_v<float> / 4);
+    AnimationSampler s{{0.0f, 1.0f}, {0, 0, 0, 1, 0, 0, h, h}, Interpolation::Linear, 4};
+    const std::array<float, 4> quarter = sampled(s, 0.25f, true);
+    const float angle = 2 * std::atan2(quarter[2], quarter[3]);
+    EXPECT_NEAR(angle, std::numbers::pi_v<float> / 8, 1e-6f);
+    // The same end rotation written as -q: the turn is still 90 degrees, not 270.
+    s.values = {0, 0, 0, 1, 0, 0, -h, -h};
+    const std::array<float, 4> half = sampled(s, 0.5f, true);
+    EXPECT_NEAR(2 * std::atan2(std::abs(half[2]), std::abs(half[3])), std::numbers::pi_v<float> / 4, 1e-6f);
+    EXPECT_NEAR(half[0] * half[0] + half[1] * half[1] + half[2] * half[2] + half[3] * half[3], 1.0f, 1e-6f);
+}
+
+TEST(AnimationSampling, CubicSplineFollowsTheHermiteCurveOfItsTangents) {
+    // One component, keyframes at 0 s and 2 s with values 0 and 1; the out-tangent of the first
+    // is 1 per second, the in-tangent of the second is 0. With t = time / 2 and the tangents
+    // scaled by 2 s: p(t) = (t^3 - 2t^2 + t) * 2 + (-2t^3 + 3t^2).
+    const AnimationSampler s{{0.0f, 2.0f}, {/*in*/ 5, /*value*/ 0, /*out*/ 1, /*in*/ 0, /*value*/ 1, /*out*/ -5},
+                             Interpolation::CubicSpline, 1};
+    for (float time : {0.5f, 1.0f, 1.5f}) {
+        const float t = time / 2;
+        const float expected = (t * t * t - 2 * t * t + t) * 2 + (-2 * t * t * t + 3 * t * t);
+        EXPECT_NEAR(sampled(s, time)[0], expected, 1e-6f) << "at " << time << " s";
+    }
+    EXPECT_EQ(sampled(s, 0.0f)[0], 0.0f);
+    EXPECT_EQ(sampled(s, 2.0f)[0], 1.0f);
+    EXPECT_EQ(sampled(s, 3.0f)[0], 1.0f);
+}
+
+TEST(AnimationSampling, CubicSplineRotationsAreNormalised) {
+    // Zero tangents between identity and 90 degrees about z: the curve's midpoint is the
+    // average of the two, normalised.
+    const float h = std::sin(std::numbers::pi_v<float> / 4);
+    const AnimationSampler s{{0.0f, 1.0f},
+                             {0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, h, h, 0, 0, 0, 0},
+                             Interpolation::CubicSpline,
+                             4};
+    const std::array<float, 4> q = sampled(s, 0.5f, true);
+    EXPECT_NEAR(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3], 1.0f, 1e-6f);
+    EXPECT_NEAR(2 * std::atan2(q[2], q[3]), std::numbers::pi_v<float> / 4, 1e-5f);
+}
+
+TEST(AnimationSampling, DurationIsTheLastKeyframeOfAllSamplers) {
+    Animation a;
+    EXPECT_EQ(a.duration(), 0.0f);
+    a.samplers = {translations(Interpolation::Linear), AnimationSampler{{0.0f, 4.5f}, {0, 1}, Interpolation::Step, 1}};
+    EXPECT_EQ(a.duration(), 4.5f);
+}
+
+}  // namespace
+}  // namespace loom::scene
