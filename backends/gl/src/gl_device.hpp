@@ -192,7 +192,7 @@ private:
     void draw_indexed_slow(uint32_t index_count, uint32_t instance_count, uint32_t first_index, int32_t base_vertex,
                            uint32_t first_instance);
     /// Appends the record of a checked draw of the current state (draws_ has room for it; push
-    /// constants copied; draw_shared_ current) and counts it into the open run, if any.
+    /// constants copied; draw_shared_ current); the caller counts it into its run.
     /// `flags`: kDrawIndexed, kDrawIndirect, kDrawNewState.
     void append_draw(uint8_t flags, uint32_t count, uint32_t instance_count, uint32_t first, int32_t base_vertex,
                      uint32_t first_instance);
