@@ -38,14 +38,13 @@ public:
             free_.pop_back();
         } else {
             index = static_cast<uint32_t>(slots_.size());
-            slots_.emplace_back();
-            slots_.back().key = key(slots_.back().generation, device_id_);
+            slots_.push_back(Slot{std::nullopt, key(1, device_id_)});  // generation 0 is the null handle's
             slot_count_ = slots_.size();
         }
         Slot& slot = slots_[index];
         slot.value.emplace(std::move(value));
         ++live_;
-        return HandleType{index, slot.generation, device_id_};
+        return HandleType{index, slot.generation(), device_id_};
     }
 
     /// The object behind `handle`, or an InvalidHandle error that says why there is none.
@@ -72,8 +71,8 @@ public:
         T value = std::move(*slot.value);
         slot.value.reset();
         // Generation 0 is reserved for null handles.
-        slot.generation = static_cast<uint16_t>(slot.generation == 0xFFFF ? 1 : slot.generation + 1);
-        slot.key = key(slot.generation, device_id_);
+        const uint16_t generation = slot.generation();
+        slot.key = key(static_cast<uint16_t>(generation == 0xFFFF ? 1 : generation + 1), device_id_);
         free_.push_back(handle.index);
         --live_;
         ++removals_;
@@ -92,7 +91,7 @@ public:
     template <class F>
     void for_each(F&& f) {
         for (uint32_t i = 0; i < slots_.size(); ++i) {
-            if (slots_[i].value) f(HandleType{i, slots_[i].generation, device_id_}, *slots_[i].value);
+            if (slots_[i].value) f(HandleType{i, slots_[i].generation(), device_id_}, *slots_[i].value);
         }
     }
 
@@ -101,15 +100,15 @@ public:
     void clear(F&& f) {
         for_each(f);
         for (uint32_t i = 0; i < slots_.size(); ++i) {
-            if (slots_[i].value) (void)remove(HandleType{i, slots_[i].generation, device_id_});
+            if (slots_[i].value) (void)remove(HandleType{i, slots_[i].generation(), device_id_});
         }
     }
 
 private:
     struct Slot {
         std::optional<T> value;
-        uint16_t generation = 1;
-        uint32_t key = 0;  ///< key(generation, device_id_)
+        uint32_t key = 0;  ///< key(generation, device_id_) of the handles that reach it now
+        [[nodiscard]] uint16_t generation() const { return static_cast<uint16_t>(key); }
     };
     static uint32_t key(uint16_t generation, uint16_t device) { return uint32_t{generation} | uint32_t{device} << 16; }
     /// key(handle.generation, handle.device): on little-endian machines the handle's upper word,
@@ -125,10 +124,7 @@ private:
 
     // The message is built only for a bad handle: lookups run on every draw.
     std::optional<Error> check(HandleType handle) const {
-        if (!handle.is_null() && handle.device == device_id_ && handle.index < slots_.size() &&
-            slots_[handle.index].generation == handle.generation && slots_[handle.index].value) {
-            return std::nullopt;
-        }
+        if (find(handle) != nullptr) return std::nullopt;
         const std::string kind = Tag::kName;
         if (handle.is_null()) return Error{ErrorCode::InvalidHandle, kind + " handle is null"};
         if (handle.device != device_id_) {
