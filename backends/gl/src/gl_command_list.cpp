@@ -299,7 +299,7 @@ LOOM_GL_HOT void GlCommandList::next_binding_state() {
 // Bind groups, push constants and vertex and index buffers are kept by the tracker and
 // resolved to GL names at each draw or dispatch.
 void GlCommandList::set_bind_group(uint32_t set, const rhi::BindGroup& group) {
-    binding_state_valid_ = draw_shared_valid_ = false;
+    invalidate_binding_state();
     accepted(state_.set_bind_group(set, group));
 }
 
@@ -350,7 +350,7 @@ void GlCommandList::set_buffer(uint32_t set, uint32_t binding, const rhi::Buffer
     // stays on the short path.
     if (!accepted(state_.set_buffer(set, binding, range)) ||
         !(draw_state_removals_ == device_removals() && rebinds_offset(set, binding, range, false))) {
-        binding_state_valid_ = draw_shared_valid_ = false;
+        invalidate_binding_state();
     }
 }
 
@@ -358,7 +358,7 @@ void GlCommandList::set_uniforms(uint32_t set, uint32_t binding, std::span<const
     if (!accepted(state_.check_recording("set_uniforms"))) return;
     const rhi::BufferBinding range = device_->allocate_transient(data);
     const bool replaced = state_.replace_buffer(set, binding, range) || accepted(state_.set_buffer(set, binding, range));
-    if (!replaced || !rebinds_offset(set, binding, range, true)) binding_state_valid_ = draw_shared_valid_ = false;
+    if (!replaced || !rebinds_offset(set, binding, range, true)) invalidate_binding_state();
 }
 
 void GlCommandList::push_constants(std::span<const std::byte> data, uint32_t offset) {
@@ -382,7 +382,7 @@ void GlCommandList::set_vertex_buffer(uint32_t slot, rhi::BufferHandle buffer, u
 void GlCommandList::set_vertex_buffer_slow(uint32_t slot, rhi::BufferHandle buffer, const GlBuffer* found,
                                            uint64_t offset) {
     if (!accepted(state_.set_vertex_buffer(slot, buffer, found ? &found->desc : nullptr, offset))) {
-        vertex_state_valid_ = draw_shared_valid_ = false;
+        invalidate_vertex_state();
         return;
     }
     vertex_changes_.push_back({slot, found ? found->name : 0, static_cast<GLintptr>(offset)});  // null only unchecked
@@ -400,7 +400,7 @@ void GlCommandList::set_index_buffer(rhi::BufferHandle buffer, rhi::IndexType ty
 void GlCommandList::set_index_buffer_slow(rhi::BufferHandle buffer, const GlBuffer* found, rhi::IndexType type,
                                           uint64_t offset) {
     if (!accepted(state_.set_index_buffer(buffer, found ? &found->desc : nullptr, type, offset))) {
-        vertex_state_valid_ = draw_shared_valid_ = false;
+        invalidate_vertex_state();
         return;
     }
     vertex_changes_.push_back({gl_index_type(type), found ? found->name : 0, static_cast<GLintptr>(offset)});

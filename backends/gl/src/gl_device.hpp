@@ -356,6 +356,10 @@ private:
         pipeline_state_valid_ = vertex_state_valid_ = binding_state_valid_ = false;
         draw_shared_valid_ = false;
     }
+    /// Forgets the vertex state or the binding state (and so what draws share: draw_shared_valid_
+    /// implies both).
+    void invalidate_vertex_state() { vertex_state_valid_ = draw_shared_valid_ = false; }
+    void invalidate_binding_state() { binding_state_valid_ = draw_shared_valid_ = false; }
     std::optional<Error> first_error_;
     // The GL side of the open render pass.
     GLuint pass_framebuffer_ = 0;
