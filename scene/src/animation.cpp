@@ -45,10 +45,10 @@ void sample(const AnimationSampler& sampler, float time, bool rotation, std::spa
     const std::size_t n = sampler.components;
     const std::vector<float>& times = sampler.times;
     const bool spline = sampler.interpolation == Interpolation::CubicSpline;
-    // The value of keyframe k (the middle group of a spline keyframe).
-    const auto value = [&](std::size_t k) {
-        return std::span<const float>(sampler.values).subspan(spline ? (3 * k + 1) * n : k * n, n);
-    };
+    const std::span<const float> values = sampler.values;
+    // Group g of spline keyframe k: 0 its in-tangent, 1 its value, 2 its out-tangent.
+    const auto spline_group = [&](std::size_t k, std::size_t g) { return values.subspan((3 * k + g) * n, n); };
+    const auto value = [&](std::size_t k) { return spline ? spline_group(k, 1) : values.subspan(k * n, n); };
     const auto copy = [&](std::span<const float> v) { std::copy(v.begin(), v.end(), out.begin()); };
     if (times.size() == 1 || time <= times.front()) return copy(value(0));
     if (time >= times.back()) return copy(value(times.size() - 1));
@@ -68,8 +68,7 @@ void sample(const AnimationSampler& sampler, float time, bool rotation, std::spa
     const float t2 = t * t, t3 = t2 * t;
     const float h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
     const std::span<const float> v0 = value(k), v1 = value(k + 1);
-    const std::span<const float> out_tangent = std::span<const float>(sampler.values).subspan((3 * k + 2) * n, n);
-    const std::span<const float> in_tangent = std::span<const float>(sampler.values).subspan((3 * (k + 1)) * n, n);
+    const std::span<const float> out_tangent = spline_group(k, 2), in_tangent = spline_group(k + 1, 0);
     for (std::size_t i = 0; i < n; ++i) {
         out[i] = h00 * v0[i] + h10 * span * out_tangent[i] + h01 * v1[i] + h11 * span * in_tangent[i];
     }
