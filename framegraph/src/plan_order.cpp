@@ -665,11 +665,14 @@ bool respects_constraints(const OrderProblem& problem, const std::vector<uint32_
     return true;
 }
 
-std::vector<uint32_t> memory_order(const OrderProblem& problem) {
+std::vector<uint32_t> memory_order(const OrderProblem& problem, OrderCost* declared_cost) {
     const uint32_t n = problem.pass_count();
     std::vector<uint32_t> declared(n);
     std::iota(declared.begin(), declared.end(), 0u);
-    if (n < 2) return declared;
+    if (n < 2) {
+        if (declared_cost) *declared_cost = order_cost(problem, declared);
+        return declared;
+    }
     const PassResources index = index_resources(problem);
     const uint64_t budget = kBaseWork + kWorkPerPass * (uint64_t{n} + index.user_count);
     const uint32_t radius = std::min(n, kRadius);
@@ -679,6 +682,7 @@ std::vector<uint32_t> memory_order(const OrderProblem& problem) {
     std::vector<std::vector<uint32_t>> starts{declared, greedy_forward(problem, index), greedy_backward(problem, index)};
     std::vector<OrderCost> costs;
     for (const std::vector<uint32_t>& start : starts) costs.push_back(order_cost(problem, start));
+    if (declared_cost) *declared_cost = costs[0];
     std::vector<uint32_t> by_cost{0, 1, 2};
     std::stable_sort(by_cost.begin(), by_cost.end(), [&](uint32_t a, uint32_t b) { return costs[a] < costs[b]; });
     if (n > kEveryStartPasses) by_cost.resize(1);

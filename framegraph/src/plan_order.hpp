@@ -74,7 +74,8 @@ bool respects_constraints(const OrderProblem& problem, const std::vector<uint32_
 
 /// The heuristic: an order that respects the constraints, at most as costly as the declared
 /// order 0, 1, ..., n-1 (which it returns when it finds nothing better). Deterministic.
-std::vector<uint32_t> memory_order(const OrderProblem& problem);
+/// `declared_cost`, when given, receives the declared order's cost (which the search weighs).
+std::vector<uint32_t> memory_order(const OrderProblem& problem, OrderCost* declared_cost = nullptr);
 
 /// An order of the lowest peak, and how many sets of placed passes the search kept.
 struct ExactOrder {

@@ -1,8 +1,8 @@
 #include "loom/framegraph/planner.hpp"
 
 #include <algorithm>
-#include <numeric>
 #include <optional>
+#include <ranges>
 
 #include "graph_analysis.hpp"
 #include "loom/framegraph/allocator.hpp"
@@ -36,13 +36,12 @@ std::optional<OrderCandidate> memory_order_candidate(const FrameGraph& graph, co
                                                      const detail::ResolvedResources& resolved,
                                                      uint64_t& declared_peak) {
     const detail::OrderProblem problem = detail::make_order_problem(graph, dependencies, schedule, resolved);
-    std::vector<uint32_t> identity(problem.pass_count());
-    std::iota(identity.begin(), identity.end(), 0u);
+    detail::OrderCost declared_cost;
+    const std::vector<uint32_t> order = detail::memory_order(problem, &declared_cost);
     // Without async passes this is the declared plan's lower bound; with them, occupancies only
     // widen lifetimes, so it is at most that bound.
-    declared_peak = detail::order_cost(problem, identity).peak;
-    const std::vector<uint32_t> order = detail::memory_order(problem);
-    if (order == identity) return std::nullopt;
+    declared_peak = declared_cost.peak;
+    if (std::ranges::equal(order, std::views::iota(0u, problem.pass_count()))) return std::nullopt;  // declared
     OrderCandidate candidate{detail::reorder_schedule(schedule, order), {}};
     candidate.resolved = detail::reorder_resources(resolved, candidate.schedule);
     const bool any_async = std::any_of(schedule.order.begin(), schedule.order.end(), [&](uint32_t pass) {
