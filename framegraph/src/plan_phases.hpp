@@ -140,6 +140,16 @@ struct ResolvedResources {
     std::vector<uint32_t> graph_output_resources;
     /// Per resource, the port that starts it.
     std::vector<PortAddress> starts;
+    /// Per resource, its ports whose passes run, the starting port first (group order):
+    /// resource r's are running_ports[first_running_port[r], first_running_port[r + 1]).
+    /// PlanResource::ports is left empty until the plan names them (name_resource_ports): a
+    /// reordered copy then moves no strings.
+    std::vector<PortAddress> running_ports;
+    std::vector<uint32_t> first_running_port{0};
+
+    [[nodiscard]] std::span<const PortAddress> running_ports_of(uint32_t r) const {
+        return {running_ports.data() + first_running_port[r], running_ports.data() + first_running_port[r + 1]};
+    }
 };
 
 /// Resolve: a resource for each group whose producer runs, except an optional output no running
@@ -155,6 +165,9 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::
 /// resolved as it is collected, so that no group's ports or join are kept (what build_plan runs).
 Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const Schedule& schedule, Extent2D frame,
                                             MemoryModel& memory);
+
+/// Fills in every resource's PlanResource::ports: the names of its running ports.
+void name_resource_ports(const FrameGraph& graph, ResolvedResources& resolved);
 
 /// The same resources for another order of the same passes: lifetimes (and occupancies) from
 /// `schedule`, renumbered in order of their producers' positions, then by port, as

@@ -219,8 +219,6 @@ Status resolve_pending_buffer(const FrameGraph& graph, const BufferSpec& joined,
             return error;
         }
     }
-    r.ports.reserve(item.kept_ports.size());
-    for (const PortAddress& address : item.kept_ports) r.ports.push_back(graph.port_name(address));
     r.buffer_spec = *resolved;
     auto requirements = memory.buffer_requirements(to_buffer_desc(r.buffer_spec, r.name));
     if (!requirements) return requirements.take_error();
@@ -261,8 +259,6 @@ Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Exten
         }
     }
 
-    r.ports.reserve(item.kept_ports.size());
-    for (const PortAddress& address : item.kept_ports) r.ports.push_back(graph.port_name(address));
     r.requested_format = joined.format;
     r.spec = *resolved;
     auto requirements = memory.requirements(to_texture_desc(r.spec, r.name));
@@ -332,18 +328,26 @@ public:
         if (in_order) {
             resolved.resources = std::move(resources_);
             resolved.starts = std::move(starts_);
+            resolved.running_ports = std::move(kept_);
+            resolved.first_running_port = std::move(first_kept_);
         } else {
             resolved.resources.reserve(count);
             resolved.starts.reserve(count);
-            for (uint32_t i : by_start) {
+            resolved.running_ports.resize(kept_.size());
+            resolved.first_running_port.resize(count + 1);
+            for (uint32_t r = 0; r < count; ++r) {
+                const uint32_t i = by_start[r];
                 resolved.resources.push_back(std::move(resources_[i]));
                 resolved.starts.push_back(starts_[i]);
+                const uint32_t first = resolved.first_running_port[r];
+                std::copy(kept_.begin() + first_kept_[i], kept_.begin() + first_kept_[i + 1],
+                          resolved.running_ports.begin() + first);
+                resolved.first_running_port[r + 1] = first + first_kept_[i + 1] - first_kept_[i];
             }
         }
         for (uint32_t r = 0; r < count; ++r) {
-            const uint32_t i = by_start[r];
-            for (uint32_t k = first_kept_[i]; k < first_kept_[i + 1]; ++k) {
-                resolved.resource_of_port[kept_[k].pass][kept_[k].port] = r;
+            for (const PortAddress& address : resolved.running_ports_of(r)) {
+                resolved.resource_of_port[address.pass][address.port] = r;
             }
         }
         std::vector<bool> listed(count, false);
@@ -513,9 +517,19 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const Sched
     return builder.finish();
 }
 
+void name_resource_ports(const FrameGraph& graph, ResolvedResources& resolved) {
+    for (uint32_t r = 0; r < resolved.resources.size(); ++r) {
+        std::vector<std::string>& ports = resolved.resources[r].ports;
+        ports.clear();
+        ports.reserve(resolved.running_ports_of(r).size());
+        for (const PortAddress& address : resolved.running_ports_of(r)) ports.push_back(graph.port_name(address));
+    }
+}
+
 ResolvedResources reorder_resources(const ResolvedResources& resolved, const Schedule& schedule) {
     const std::vector<uint32_t>& position = schedule.position;
     const auto resource_count = static_cast<uint32_t>(resolved.resources.size());
+    const auto position_count = static_cast<uint32_t>(schedule.order.size());
     std::vector<uint32_t> last(resource_count, 0);
     for (uint32_t pass = 0; pass < resolved.resource_of_port.size(); ++pass) {
         if (position[pass] == kNotScheduled) continue;
@@ -523,24 +537,33 @@ ResolvedResources reorder_resources(const ResolvedResources& resolved, const Sch
             if (r != kNoResource) last[r] = std::max(last[r], position[pass]);
         }
     }
-    std::vector<uint32_t> by_start(resource_count);
-    for (uint32_t r = 0; r < resource_count; ++r) by_start[r] = r;
-    std::stable_sort(by_start.begin(), by_start.end(), [&](uint32_t a, uint32_t b) {
-        const PortAddress& x = resolved.starts[a];
-        const PortAddress& y = resolved.starts[b];
-        return std::pair(position[x.pass], x.port) < std::pair(position[y.pass], y.port);
-    });
-    const auto last_position = static_cast<uint32_t>(schedule.order.size() - 1);
+    // By their producers' new positions (a counting sort): a pass's resources keep their order,
+    // which is by port already.
+    std::vector<uint32_t> first_at(position_count + 1, 0);
+    for (const PortAddress& start : resolved.starts) ++first_at[position[start.pass] + 1];
+    for (uint32_t k = 0; k < position_count; ++k) first_at[k + 1] += first_at[k];
     std::vector<uint32_t> renumbered(resource_count);
+    for (uint32_t r = 0; r < resource_count; ++r) renumbered[r] = first_at[position[resolved.starts[r].pass]]++;
+    std::vector<uint32_t> by_start(resource_count);
+    for (uint32_t r = 0; r < resource_count; ++r) by_start[renumbered[r]] = r;
+
+    const uint32_t last_position = position_count - 1;
     ResolvedResources out;
     out.resources.reserve(resource_count);
-    for (uint32_t r : by_start) {
-        renumbered[r] = static_cast<uint32_t>(out.resources.size());
-        PlanResource resource = resolved.resources[r];
+    out.starts.reserve(resource_count);
+    out.running_ports.resize(resolved.running_ports.size());
+    out.first_running_port.resize(resource_count + 1);
+    for (uint32_t k = 0; k < resource_count; ++k) {
+        const uint32_t r = by_start[k];
+        // PlanResource::ports is not named yet (name_resource_ports), so no string but the
+        // resource's name is copied.
+        PlanResource& resource = out.resources.emplace_back(resolved.resources[r]);
         resource.lifetime = {position[resolved.starts[r].pass], resource.graph_output ? last_position : last[r]};
         resource.occupancy = resource.lifetime;
-        out.resources.push_back(std::move(resource));
         out.starts.push_back(resolved.starts[r]);
+        const std::span<const PortAddress> ports = resolved.running_ports_of(r);
+        std::copy(ports.begin(), ports.end(), out.running_ports.begin() + out.first_running_port[k]);
+        out.first_running_port[k + 1] = out.first_running_port[k] + static_cast<uint32_t>(ports.size());
     }
     out.resource_of_port = resolved.resource_of_port;
     for (uint32_t& r : out.resource_of_port.values()) {

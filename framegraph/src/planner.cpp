@@ -104,6 +104,7 @@ Result<Plan> plan_in_order(const FrameGraph& graph, const PlanOptions& options, 
     plan.culled = detail::culled_pass_names(graph, kept);
     plan.edges = detail::plan_edges(graph, schedule, resolved.resource_of_port);
     for (const PortAddress& out : graph.outputs()) plan.graph_outputs.push_back(graph.port_name(out));
+    detail::name_resource_ports(graph, resolved);
     plan.resources = std::move(resolved.resources);
     for (uint32_t r = 0; r < plan.resources.size(); ++r) plan.resources[r].spec_class = classes.class_of_resource[r];
     plan.spec_classes = std::move(classes.classes);
