@@ -133,6 +133,20 @@ IndexLists::IndexLists(uint32_t count, const std::vector<std::pair<uint32_t, uin
     values_.erase(values_.begin() + kept, values_.end());
 }
 
+IndexLists IndexLists::transposed(uint32_t count) const {
+    IndexLists out;
+    out.first_.assign(count + 1, 0);
+    for (uint32_t value : values_) ++out.first_[value + 1];
+    for (uint32_t j = 1; j <= count; ++j) out.first_[j] += out.first_[j - 1];
+    out.values_.assign(values_.size(), 0u);
+    std::vector<uint32_t> cursor(out.first_.begin(), out.first_.end() - 1);
+    // Lists visited in ascending index: each transposed list comes out sorted.
+    for (uint32_t i = 0; i < size(); ++i) {
+        for (uint32_t value : (*this)[i]) out.values_[cursor[value]++] = i;
+    }
+    return out;
+}
+
 IndexLists::IndexLists(std::initializer_list<std::vector<uint32_t>> lists) {
     first_.reserve(lists.size() + 1);
     first_.push_back(0);

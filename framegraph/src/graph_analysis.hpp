@@ -24,6 +24,10 @@ public:
     /// The lists as given, one per index (tests write dependencies this way).
     IndexLists(std::initializer_list<std::vector<uint32_t>> lists);
 
+    /// The same pairs the other way: `count` lists, list j holding every i whose list holds j
+    /// (sorted and unique as they come, without the sort the pairs constructor needs).
+    [[nodiscard]] IndexLists transposed(uint32_t count) const;
+
     [[nodiscard]] std::span<const uint32_t> operator[](uint32_t index) const {
         return {values_.data() + first_[index], values_.data() + first_[index + 1]};
     }

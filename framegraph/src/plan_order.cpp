@@ -21,9 +21,8 @@ namespace {
 
 constexpr uint32_t kNone = UINT32_MAX;
 
-// Per pass: the resources it produces (and their bytes) and every resource it has a port on.
+// Per pass: the bytes of the resources it produces and every resource it has a port on.
 struct PassResources {
-    IndexLists produced;
     IndexLists touched;
     std::vector<uint64_t> produced_bytes;
     uint64_t user_count = 0;  // the sum of the resources' user counts: the size of the problem
@@ -33,16 +32,12 @@ PassResources index_resources(const OrderProblem& problem) {
     const uint32_t n = problem.pass_count();
     PassResources index;
     index.produced_bytes.assign(n, 0);
-    std::vector<std::pair<uint32_t, uint32_t>> produced, touched;
     for (uint32_t r = 0; r < problem.resources.size(); ++r) {
         const OrderProblem::Resource& resource = problem.resources[r];
-        produced.emplace_back(resource.producer, r);
         index.produced_bytes[resource.producer] += resource.bytes;
-        for (uint32_t user : problem.users[r]) touched.emplace_back(user, r);
         index.user_count += problem.users[r].size();
     }
-    index.produced = IndexLists(n, produced);
-    index.touched = IndexLists(n, touched);
+    index.touched = problem.users.transposed(n);
     return index;
 }
 
@@ -66,9 +61,11 @@ public:
         --count_;
     }
     [[nodiscard]] bool empty() const { return count_ == 0; }
-    // Calls visit(key) for the first `limit` keys in ascending order.
+    // Calls visit(key) for the first `limit` keys in ascending order. (Bounded by the count
+    // too: the words past the last key are never read.)
     template <typename Visit>
     void first(std::size_t limit, Visit&& visit) {
+        limit = std::min(limit, count_);
         while (low_ < words_.size() && words_[low_] == 0) ++low_;
         for (auto w = static_cast<std::size_t>(low_); w < words_.size() && limit > 0; ++w) {
             for (uint64_t bits = words_[w]; bits != 0 && limit > 0; bits &= bits - 1, --limit) {
@@ -577,8 +574,7 @@ OrderProblem make_order_problem(const FrameGraph& graph, const Dependencies& dep
         }
     }
     problem.successors = IndexLists(n, edges);
-    for (auto& [earlier, later] : edges) std::swap(earlier, later);
-    problem.predecessors = IndexLists(n, edges);
+    problem.predecessors = problem.successors.transposed(n);
     const auto resource_count = static_cast<uint32_t>(resolved.resources.size());
     problem.resources.resize(resource_count);
     for (uint32_t r = 0; r < resource_count; ++r) {
@@ -588,6 +584,7 @@ OrderProblem make_order_problem(const FrameGraph& graph, const Dependencies& dep
         problem.resources[r].graph_output = resource.graph_output;
     }
     std::vector<std::pair<uint32_t, uint32_t>> uses;
+    uses.reserve(resolved.running_ports.size());
     for (uint32_t at = 0; at < n; ++at) {
         for (uint32_t r : resolved.resource_of_port[declared.order[at]]) {
             if (r != kNoResource) uses.emplace_back(r, at);

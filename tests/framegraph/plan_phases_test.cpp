@@ -1,6 +1,8 @@
 // The phases of build_plan one by one (framegraph/src/plan_phases.hpp), each given plain data
 // and checked value by value: cull, schedule, join, resolve, spec classes, the allocation
 // problem, allocate (with a fake allocator for the answers no real allocator gives) and summary.
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "loom/framegraph/framegraph.hpp"
@@ -224,6 +226,9 @@ TEST(PlanPhases, ResolveMakesTheResourcesOfRunningPassesWithUsagesLifetimesAndBy
         resource.alignment = 256;
         resource.occupancy = resource.lifetime;  // no async passes: held exactly while alive
     }
+    // The ports are kept as addresses and named only when the plan is put together.
+    for (const PlanResource& resource : resolved->resources) EXPECT_TRUE(resource.ports.empty()) << resource.name;
+    name_resource_ports(graph, *resolved);
     EXPECT_EQ(resolved->resources, expected);
 
     EXPECT_EQ(resolved->resource_of_port, (std::vector<std::vector<uint32_t>>{
@@ -554,6 +559,8 @@ TEST(PlanPhases, ResolvingWhileJoiningGivesWhatJoiningFirstGives) {
         EXPECT_EQ(joined_first->resource_of_port, while_joining->resource_of_port) << what;
         EXPECT_EQ(joined_first->graph_output_resources, while_joining->graph_output_resources) << what;
         EXPECT_EQ(joined_first->starts, while_joining->starts) << what;
+        EXPECT_EQ(joined_first->running_ports, while_joining->running_ports) << what;
+        EXPECT_EQ(joined_first->first_running_port, while_joining->first_running_port) << what;
     };
     same(deferred_graph(), "deferred");
     for (uint64_t seed = 1; seed <= 60; ++seed) {
@@ -596,6 +603,24 @@ TEST(PlanPhases, IndexListsSortAndDeduplicateEachPassesValues) {
     const IndexLists empty(3, none);
     EXPECT_EQ(empty.size(), 3u);
     EXPECT_TRUE(empty[2].empty());
+}
+
+// Transposed lists hold the same pairs the other way, each list sorted, as the pairs
+// constructor would make them; values past the lists' own count are indices too.
+TEST(PlanPhases, IndexListsTransposedHoldTheSamePairsTheOtherWay) {
+    std::vector<std::pair<uint32_t, uint32_t>> pairs{{3, 7}, {0, 5}, {3, 1}, {0, 2}, {3, 4}, {4, 5}, {1, 7}};
+    const IndexLists lists(5, pairs);
+    const IndexLists transposed = lists.transposed(8);
+    for (auto& [index, value] : pairs) std::swap(index, value);
+    const IndexLists expected(8, pairs);
+    ASSERT_EQ(transposed.size(), 8u);
+    for (uint32_t j = 0; j < 8; ++j) {
+        EXPECT_TRUE(std::ranges::equal(transposed[j], expected[j])) << j;
+    }
+    EXPECT_TRUE(std::ranges::equal(transposed[5], std::vector<uint32_t>{0, 4}));
+    EXPECT_TRUE(std::ranges::equal(transposed[7], std::vector<uint32_t>{1, 3}));
+    EXPECT_TRUE(transposed[6].empty());
+    EXPECT_EQ(IndexLists(2, std::vector<std::pair<uint32_t, uint32_t>>{}).transposed(0).size(), 0u);
 }
 
 }  // namespace
