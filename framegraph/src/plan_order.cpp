@@ -11,6 +11,7 @@
 // them, and so the bytes live there, do not change.
 #include <algorithm>
 #include <bit>
+#include <cassert>
 #include <numeric>
 #include <tuple>
 
@@ -90,8 +91,25 @@ struct GreedyKey {
     friend auto operator<=>(const GreedyKey&, const GreedyKey&) = default;
 };
 
+// Counts the live bytes of one more position into an order's cost.
+void add_position(OrderCost& cost, uint64_t live) {
+    cost.area += live;
+    if (live > cost.peak) {
+        cost.peak = live;
+        cost.at_peak = 1;
+    } else if (live == cost.peak) {
+        ++cost.at_peak;
+    }
+}
+
+// A start of the local search: an order and its cost (order_cost's, counted as it is built).
+struct Start {
+    std::vector<uint32_t> order;
+    OrderCost cost;
+};
+
 // Forwards: a pass allocates what it produces and frees what it is the last user of.
-std::vector<uint32_t> greedy_forward(const OrderProblem& problem, const PassResources& index) {
+Start greedy_forward(const OrderProblem& problem, const PassResources& index) {
     const uint32_t n = problem.pass_count();
     std::vector<uint32_t> waiting(n);
     for (uint32_t v = 0; v < n; ++v) waiting[v] = static_cast<uint32_t>(problem.predecessors[v].size());
@@ -107,7 +125,8 @@ std::vector<uint32_t> greedy_forward(const OrderProblem& problem, const PassReso
     for (uint32_t v = 0; v < n; ++v) {
         if (waiting[v] == 0) ready.insert(v);
     }
-    std::vector<uint32_t> order;
+    Start start;
+    std::vector<uint32_t>& order = start.order;
     order.reserve(n);
     uint64_t live = 0;
     uint64_t peak = 0;
@@ -125,6 +144,7 @@ std::vector<uint32_t> greedy_forward(const OrderProblem& problem, const PassReso
         ready.erase(chosen);
         placed[chosen] = true;
         order.push_back(chosen);
+        add_position(start.cost, live + index.produced_bytes[chosen]);
         peak = best.peak;
         live = best.after;
         for (uint32_t r : index.touched[chosen]) {
@@ -139,12 +159,13 @@ std::vector<uint32_t> greedy_forward(const OrderProblem& problem, const PassReso
             if (--waiting[next] == 0) ready.insert(next);
         }
     }
-    return order;
+    return start;
 }
 
 // Backwards, from the last position: a pass makes live what it uses that no later pass uses
 // (graph outputs are live from the end), and what it produces dies before it.
-std::vector<uint32_t> greedy_backward(const OrderProblem& problem, const PassResources& index) {
+// The live bytes at a pass are the same as forwards, so its cost is counted in reverse.
+Start greedy_backward(const OrderProblem& problem, const PassResources& index) {
     const uint32_t n = problem.pass_count();
     std::vector<uint32_t> waiting(n);
     for (uint32_t v = 0; v < n; ++v) waiting[v] = static_cast<uint32_t>(problem.successors[v].size());
@@ -165,7 +186,8 @@ std::vector<uint32_t> greedy_backward(const OrderProblem& problem, const PassRes
     for (uint32_t v = 0; v < n; ++v) {
         if (waiting[v] == 0) ready.insert(n - 1 - v);
     }
-    std::vector<uint32_t> reversed;
+    Start start;
+    std::vector<uint32_t>& reversed = start.order;
     reversed.reserve(n);
     uint64_t peak = live;
     while (!ready.empty()) {
@@ -182,6 +204,7 @@ std::vector<uint32_t> greedy_backward(const OrderProblem& problem, const PassRes
         });
         ready.erase(n - 1 - chosen);
         reversed.push_back(chosen);
+        add_position(start.cost, live + allocates[chosen]);
         peak = best.peak;
         live = best.after;
         for (uint32_t r : index.touched[chosen]) {
@@ -194,7 +217,7 @@ std::vector<uint32_t> greedy_backward(const OrderProblem& problem, const PassRes
         }
     }
     std::reverse(reversed.begin(), reversed.end());
-    return reversed;
+    return start;
 }
 
 // Moves of one pass at a time, each to the position that lowers the cost most, until no move
@@ -233,24 +256,41 @@ public:
         const uint32_t n = problem_.pass_count();
         if (n < 2) return;
         std::vector<uint32_t> distance(n);
+        std::vector<uint32_t> peaks;
         std::vector<uint32_t> candidates;
         bool improved = true;
         while (improved && work_ < budget) {
             improved = false;
-            // Distance of each position to the nearest position at the peak.
-            uint32_t since = UINT32_MAX;
-            for (uint32_t k = 0; k < n; ++k) {
-                since = live_[k] == cost_.peak ? 0 : (since == UINT32_MAX ? since : since + 1);
-                distance[k] = since;
-            }
-            since = UINT32_MAX;
-            for (uint32_t k = n; k-- > 0;) {
-                since = live_[k] == cost_.peak ? 0 : (since == UINT32_MAX ? since : since + 1);
-                distance[k] = std::min(distance[k], since);
+            // The positions at the peak (where the count of them up to a position steps up),
+            // then the passes within `radius` of one, in order of position, with their distance
+            // to the nearest; only the positions near a peak are visited.
+            peaks.clear();
+            for (uint32_t j = 1, k = 0; j <= cost_.at_peak; ++j) {
+                k = static_cast<uint32_t>(std::lower_bound(prefix_at_peak_.begin() + k, prefix_at_peak_.end(), j) -
+                                          prefix_at_peak_.begin());
+                peaks.push_back(k);
             }
             candidates.clear();
-            for (uint32_t k = 0; k < n; ++k) {
-                if (distance[k] <= radius) candidates.push_back(order_[k]);
+            auto add = [&](uint32_t k, uint32_t d) {
+                distance[k] = d;
+                candidates.push_back(order_[k]);
+            };
+            for (uint32_t k = peaks.front() - std::min(peaks.front(), radius); k < peaks.front(); ++k) {
+                add(k, peaks.front() - k);
+            }
+            for (uint32_t i = 0; i < peaks.size(); ++i) {
+                const uint32_t peak = peaks[i];
+                add(peak, 0);
+                // Up to the next peak (or the end): near this one, then near the next.
+                const uint32_t next = i + 1 < peaks.size() ? peaks[i + 1] : UINT32_MAX;
+                const uint32_t end = std::min(next, n);
+                for (uint32_t k = peak + 1; k < end && k - peak <= radius; ++k) {
+                    add(k, next == UINT32_MAX ? k - peak : std::min(k - peak, next - k));
+                }
+                if (next == UINT32_MAX) continue;
+                for (uint32_t k = std::max(peak + radius + 1, next - std::min(next, radius)); k < next; ++k) {
+                    add(k, next - k);
+                }
             }
             std::stable_sort(candidates.begin(), candidates.end(),
                              [&](uint32_t a, uint32_t b) { return distance[position_[a]] < distance[position_[b]]; });
@@ -335,13 +375,13 @@ private:
         if (best_sequence_.empty() || !(std::tie(best.peak, best.at_peak) < std::tie(cost_.peak, cost_.at_peak))) {
             return false;
         }
-        apply(best_first);
+        apply(best_first, best.peak);
         return true;
     }
 
     // Makes the move best_sequence_ (from position `first` on, best_movers_ moved): positions
     // and live bytes change there only, last users only for the moved passes' resources.
-    void apply(uint32_t first) {
+    void apply(uint32_t first, uint64_t best_peak) {
         std::copy(best_sequence_.begin(), best_sequence_.end(), order_.begin() + first);
         for (uint32_t k = 0; k < best_sequence_.size(); ++k) position_[best_sequence_[k]] = first + k;
         ++epoch_;
@@ -361,7 +401,7 @@ private:
             carry = carry_[k];
         }
         work_ += best_sequence_.size();
-        summarize();
+        summarize(best_peak, first, static_cast<uint32_t>(first + best_sequence_.size() - 1));
     }
 
     // The last user of resource r in the current order, and its ended bytes.
@@ -392,39 +432,35 @@ private:
             carry_[k] = live_[k] - ended_bytes_[pass];
             carry = carry_[k];
         }
-        summarize();
+        summarize(*std::max_element(live_.begin(), live_.end()), 0, n - 1);
     }
 
-    // The cost and the running figures over positions, from the live bytes.
-    void summarize() {
+    // The cost and the running figures over positions, from the live bytes, which changed at
+    // positions `first` to `last` only and now peak at `peak` (evaluate() computed it). The
+    // prefix figures before `first` and the suffix maxima after `last` still hold, unless the
+    // peak moved: positions at the peak are counted anew then.
+    void summarize(uint64_t peak, uint32_t first, uint32_t last) {
         const uint32_t n = problem_.pass_count();
-        cost_ = OrderCost{};
-        for (uint32_t k = 0; k < n; ++k) {
-            cost_.area += live_[k];
-            if (live_[k] > cost_.peak) {
-                cost_.peak = live_[k];
-                cost_.at_peak = 1;
-            } else if (live_[k] == cost_.peak) {
-                ++cost_.at_peak;
-            }
-        }
-        uint64_t running_max = 0;
-        uint64_t running_area = 0;
-        uint32_t running_at_peak = 0;
-        for (uint32_t k = 0; k < n; ++k) {
+        if (peak != cost_.peak) first = 0;
+        uint64_t running_max = first > 0 ? prefix_max_[first - 1] : 0;
+        uint64_t running_area = first > 0 ? prefix_area_[first - 1] : 0;
+        uint32_t running_at_peak = first > 0 ? prefix_at_peak_[first - 1] : 0;
+        for (uint32_t k = first; k < n; ++k) {
             running_max = std::max(running_max, live_[k]);
             running_area += live_[k];
-            running_at_peak += live_[k] == cost_.peak ? 1 : 0;
+            running_at_peak += live_[k] == peak ? 1 : 0;
             prefix_max_[k] = running_max;
             prefix_area_[k] = running_area;
             prefix_at_peak_[k] = running_at_peak;
         }
-        running_max = 0;
-        for (uint32_t k = n; k-- > 0;) {
+        assert(running_max == peak);
+        running_max = last + 1 < n ? suffix_max_[last + 1] : 0;
+        for (uint32_t k = last + 1; k-- > 0;) {
             running_max = std::max(running_max, live_[k]);
             suffix_max_[k] = running_max;
         }
-        work_ += 3 * uint64_t{n};
+        cost_ = OrderCost{peak, running_at_peak, running_area};
+        work_ += 3 * uint64_t{n};  // as when every figure was swept again: the same budget
     }
 
     // The cost with the positions from `first` on holding `sequence_` instead (the same passes
@@ -603,13 +639,7 @@ OrderCost sweep_cost(const std::vector<uint64_t>& starting, const std::vector<ui
     uint64_t live = 0;
     for (std::size_t k = 0; k < starting.size(); ++k) {
         live += starting[k];
-        cost.area += live;
-        if (live > cost.peak) {
-            cost.peak = live;
-            cost.at_peak = 1;
-        } else if (live == cost.peak) {
-            ++cost.at_peak;
-        }
+        add_position(cost, live);
         live -= ending[k];
     }
     return cost;
@@ -676,17 +706,18 @@ std::vector<uint32_t> memory_order(const OrderProblem& problem, OrderCost* decla
 
     // The starts by cost, the declared order first among equals, so that an order changes only
     // for a lower cost; the best is improved (every one in small graphs).
-    std::vector<std::vector<uint32_t>> starts{declared, greedy_forward(problem, index), greedy_backward(problem, index)};
-    std::vector<OrderCost> costs;
-    for (const std::vector<uint32_t>& start : starts) costs.push_back(order_cost(problem, start));
-    if (declared_cost) *declared_cost = costs[0];
+    const OrderCost declared_order_cost = order_cost(problem, declared);
+    std::vector<Start> starts{{declared, declared_order_cost}, greedy_forward(problem, index),
+                              greedy_backward(problem, index)};
+    if (declared_cost) *declared_cost = declared_order_cost;
     std::vector<uint32_t> by_cost{0, 1, 2};
-    std::stable_sort(by_cost.begin(), by_cost.end(), [&](uint32_t a, uint32_t b) { return costs[a] < costs[b]; });
+    std::stable_sort(by_cost.begin(), by_cost.end(),
+                     [&](uint32_t a, uint32_t b) { return starts[a].cost < starts[b].cost; });
     if (n > kEveryStartPasses) by_cost.resize(1);
     std::vector<uint32_t> best = declared;
-    OrderCost best_cost = costs[0];
+    OrderCost best_cost = declared_order_cost;
     for (uint32_t s : by_cost) {
-        LocalSearch search(problem, index, std::move(starts[s]));
+        LocalSearch search(problem, index, std::move(starts[s].order));
         search.run(budget / by_cost.size(), radius);
         if (search.cost() < best_cost) {
             best_cost = search.cost();
