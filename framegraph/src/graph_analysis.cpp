@@ -118,6 +118,17 @@ IndexLists::IndexLists(uint32_t count, const std::vector<std::pair<uint32_t, uin
         std::vector<uint32_t> cursor(first_.begin(), first_.end() - 1);
         for (const auto& [index, value] : pairs) values_[cursor[index]++] = value;
     }
+    sort_and_deduplicate();
+}
+
+IndexLists::IndexLists(std::vector<uint32_t> first, std::vector<uint32_t> values)
+    : first_(std::move(first)), values_(std::move(values)) {
+    sort_and_deduplicate();
+}
+
+void IndexLists::sort_and_deduplicate() {
+    if (first_.empty()) return;
+    const uint32_t count = size();
     uint32_t kept = 0;
     for (uint32_t i = 0; i < count; ++i) {
         const auto begin = values_.begin() + first_[i];

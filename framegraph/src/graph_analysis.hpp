@@ -24,6 +24,10 @@ public:
     /// The lists as given, one per index (tests write dependencies this way).
     IndexLists(std::initializer_list<std::vector<uint32_t>> lists);
 
+    /// The lists already laid out one after another (list i is values[first[i], first[i + 1]),
+    /// `first` one longer than the count): each sorted, duplicates dropped.
+    IndexLists(std::vector<uint32_t> first, std::vector<uint32_t> values);
+
     /// The same pairs the other way: `count` lists, list j holding every i whose list holds j
     /// (sorted and unique as they come, without the sort the pairs constructor needs).
     [[nodiscard]] IndexLists transposed(uint32_t count) const;
@@ -35,6 +39,8 @@ public:
     [[nodiscard]] uint32_t size() const { return first_.empty() ? 0 : static_cast<uint32_t>(first_.size() - 1); }
 
 private:
+    void sort_and_deduplicate();
+
     std::vector<uint32_t> first_;   // per index, where its list starts in values_; one more at the end
     std::vector<uint32_t> values_;
 };

@@ -619,14 +619,12 @@ OrderProblem make_order_problem(const FrameGraph& graph, const Dependencies& dep
         problem.resources[r].bytes = resource.bytes;
         problem.resources[r].graph_output = resource.graph_output;
     }
-    std::vector<std::pair<uint32_t, uint32_t>> uses;
-    uses.reserve(resolved.running_ports.size());
-    for (uint32_t at = 0; at < n; ++at) {
-        for (uint32_t r : resolved.resource_of_port[declared.order[at]]) {
-            if (r != kNoResource) uses.emplace_back(r, at);
-        }
+    // A resource's users: the positions of its running ports' passes, laid out as its ports are.
+    std::vector<uint32_t> user_positions(resolved.running_ports.size());
+    for (std::size_t k = 0; k < user_positions.size(); ++k) {
+        user_positions[k] = declared.position[resolved.running_ports[k].pass];
     }
-    problem.users = IndexLists(resource_count, uses);
+    problem.users = IndexLists(resolved.first_running_port, std::move(user_positions));
     return problem;
 }
 
