@@ -605,6 +605,18 @@ TEST(PlanPhases, IndexListsSortAndDeduplicateEachPassesValues) {
     EXPECT_TRUE(empty[2].empty());
 }
 
+// Lists given as rows (each list's values one after another) come out as the pairs constructor
+// makes them: each sorted, duplicates dropped, empty rows kept.
+TEST(PlanPhases, IndexListsFromRowsSortAndDeduplicateEachRow) {
+    const IndexLists lists(std::vector<uint32_t>{0, 3, 3, 7, 8}, std::vector<uint32_t>{5, 2, 5, 9, 1, 9, 4, 0});
+    ASSERT_EQ(lists.size(), 4u);
+    EXPECT_TRUE(std::ranges::equal(lists[0], std::vector<uint32_t>{2, 5}));
+    EXPECT_TRUE(lists[1].empty());
+    EXPECT_TRUE(std::ranges::equal(lists[2], std::vector<uint32_t>{1, 4, 9}));
+    EXPECT_TRUE(std::ranges::equal(lists[3], std::vector<uint32_t>{0}));
+    EXPECT_EQ(IndexLists(std::vector<uint32_t>{0}, std::vector<uint32_t>{}).size(), 0u);
+}
+
 // Transposed lists hold the same pairs the other way, each list sorted, as the pairs
 // constructor would make them; values past the lists' own count are indices too.
 TEST(PlanPhases, IndexListsTransposedHoldTheSamePairsTheOtherWay) {
