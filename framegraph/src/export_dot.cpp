@@ -69,7 +69,7 @@ void write_plan_dot(std::ostream& out, const Plan& plan) {
     detail::append(title, format_bytes(s.bytes), " (naive ", s.naive_textures);
     if (s.naive_buffers > 0) detail::append(title, " + ", s.naive_buffers, " buffers");
     detail::append(title, ", ", format_bytes(s.naive_bytes), ")");
-    if (plan.pass_order != PassOrder::Declared) detail::append(title, ", ", pass_order_name(plan.pass_order), " order");
+    detail::append(title, ", ", pass_order_name(plan.pass_order), " order");
     out << "  label=" << quoted(title) << ";\n";
 
     for (uint32_t at = 0; at < plan.order.size(); ++at) {

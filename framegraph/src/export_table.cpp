@@ -114,10 +114,7 @@ std::string format_bytes(uint64_t bytes) {
 
 void write_plan_table(std::ostream& out, const Plan& plan) {
     out << "plan: allocator " << plan.allocator << ", frame " << plan.frame.width << "x" << plan.frame.height
-        << ", sharing " << spec_sharing_name(plan.sharing);
-    // The default order is left unsaid, so that tables of declared-order plans read as before.
-    if (plan.pass_order != PassOrder::Declared) out << ", order " << pass_order_name(plan.pass_order);
-    out << "\n\n";
+        << ", sharing " << spec_sharing_name(plan.sharing) << ", order " << pass_order_name(plan.pass_order) << "\n\n";
 
     out << numbered("order (", plan.order.size()) + " passes";
     if (!plan.culled.empty()) {

@@ -143,8 +143,8 @@ uint64_t plan_hash(const Plan& plan) {
     h.add(plan.frame.width);
     h.add(plan.frame.height);
     h.add(plan.sharing);
-    // Only a non-default order mode is hashed, so that declared-order plans keep the hashes
-    // they had before the mode existed (logs and documents quote them).
+    // Only the memory order's mode is hashed, so that declared-order plans keep the hashes they
+    // had before the mode existed (logs and documents quote them).
     if (plan.pass_order != PassOrder::Declared) h.add(plan.pass_order);
     h.add(plan.order.size());
     for (const PlanPass& pass : plan.order) {

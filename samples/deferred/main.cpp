@@ -46,7 +46,7 @@ struct Options {
     uint64_t frames = 1;
     /// --allocator; none: the one that needs the fewest bytes on the device (choose_allocator).
     std::optional<loom::fg::AllocatorKind> allocator;
-    loom::fg::PassOrder order = loom::fg::PassOrder::Declared;
+    loom::fg::PassOrder order = loom::fg::kDefaultPassOrder;
     bool forward = false;
     /// A glTF file; empty: the built-in scene.
     std::filesystem::path scene;
@@ -77,8 +77,8 @@ std::string extra_help() {
            "                        resources and it needs fewer bytes, as on Vulkan; interval otherwise, as on GL)\n"
            "  --scene FILE|builtin  a glTF 2.0 file (.gltf, .glb), or the built-in procedural scene (the default)\n"
            "  --camera N            the file's camera N (default: its first camera, or one framing the scene)\n"
-           "  --order NAME          pass order: declared (the default) or memory (the lowest peak of live\n"
-           "                        bytes; the same pictures)\n"
+           "  --order NAME          pass order: memory (the default: the lowest peak of live bytes) or\n"
+           "                        declared; the same pictures\n"
            "  --pipeline NAME       deferred (Figure 2, the default) or forward (one forward pass with the\n"
            "                        same shadow-render and high-pass-render parts)\n"
            "  --soak N              soak run of N frames (headless): resize every --resize-every frames\n"
@@ -292,7 +292,7 @@ std::string summary(const loom::renderer::DeferredPipeline& pipeline, loom::fg::
     out << kName << ": " << loom::rhi::backend_name(device.backend()) << ", " << caps.device_name << ", "
         << plan->frame.width << "x" << plan->frame.height << ", allocator " << plan->allocator
         << (options.allocator ? "" : " (auto)")
-        << (plan->pass_order == loom::fg::PassOrder::Memory ? ", memory order" : "") << ", " << options.frames
+        << ", " << loom::fg::pass_order_name(plan->pass_order) << " order, " << options.frames
         << " frame(s)\n";
     out << scene_line << "\n";
     char hash[32];

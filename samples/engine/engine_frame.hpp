@@ -46,8 +46,8 @@ struct FrameSettings {
     /// paper (which refuses async passes: use it with async_compute off).
     fg::AllocatorKind allocator = fg::AllocatorKind::Heap;
     /// The pass order the frame is planned in (fg::PlanOptions::order); the picture is the
-    /// same in both.
-    fg::PassOrder order = fg::PassOrder::Declared;
+    /// same in both (default: memory, fg::kDefaultPassOrder).
+    fg::PassOrder order = fg::kDefaultPassOrder;
     /// SSAO and its blur on the async compute queue (run in order on devices with one queue).
     bool async_compute = true;
     /// Side of each shadow cascade, texels.

@@ -59,7 +59,7 @@ std::string extra_help() {
            "  --frames N            frames to render (default 1; with --window 0 runs until closed)\n"
            "  --allocator NAME      heap (default: aliasing in bytes), interval (whole textures), or paper\n"
            "                        (needs --async off)\n"
-           "  --order NAME          pass order: declared (the default) or memory (the lowest peak of live bytes)\n"
+           "  --order NAME          pass order: memory (the default: the lowest peak of live bytes) or declared\n"
            "  --async on|off        SSAO on the async compute queue (default on; serial on one-queue devices)\n"
            "  --shadow-size N       texels per side of each shadow cascade (default 1024)\n"
            "  --inspect FILE        also write the inspector input of the last frame (plan, barriers, timings,\n"
@@ -212,7 +212,7 @@ std::string summary(loom::engine::EngineFrame& frame, loom::rhi::Device& device,
     const auto& caps = device.capabilities();
     out << kName << ": " << loom::rhi::backend_name(device.backend()) << ", " << caps.device_name << ", " << size.width << "x"
         << size.height << ", allocator " << loom::fg::allocator_name(frame.settings().allocator)
-        << (frame.settings().order == loom::fg::PassOrder::Memory ? ", memory order" : "") << ", async compute "
+        << ", " << loom::fg::pass_order_name(frame.settings().order) << " order, async compute "
         << (frame.settings().async_compute ? (caps.async_compute ? "on (two queues)" : "on (one queue: run in order)") : "off") << ", "
         << options.frames << " frame(s)\n";
     out << "scene: " << frame.scene().description << "; textures with mipmaps: " << format_bytes(frame.gpu_scene().texture_bytes()) << "\n";

@@ -85,9 +85,8 @@ int compare(const loom::fg::GraphFile& file, loom::fg::PlanOptions options, bool
         return std::cout.good() ? 0 : 1;
     }
     std::cout << "memory at " << options.frame.width << "x" << options.frame.height << ", sharing "
-              << loom::fg::spec_sharing_name(options.sharing);
-    if (options.order != loom::fg::PassOrder::Declared) std::cout << ", order " << loom::fg::pass_order_name(options.order);
-    std::cout << "\n";
+              << loom::fg::spec_sharing_name(options.sharing) << ", order " << loom::fg::pass_order_name(options.order)
+              << "\n";
     std::vector<std::vector<std::string>> table{{"", "textures", "buffers", "bytes", "", "bytes / lower bound"}};
     auto figures = [&](std::string name, uint32_t textures, uint32_t buffers, uint64_t bytes) {
         table.push_back({std::move(name), std::to_string(textures), std::to_string(buffers), std::to_string(bytes),

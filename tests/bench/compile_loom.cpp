@@ -24,6 +24,9 @@ PlanOptions plan_options(LoomAllocatorUnderTest allocator) {
     PlanOptions options;
     options.frame = {1920, 1080};
     options.allocator = allocator == LoomAllocatorUnderTest::Heap ? AllocatorKind::Heap : AllocatorKind::Interval;
+    // The declared order, as the peers keep theirs: the memory order (the default) adds its
+    // search, which BM_PlanOrder measures (docs/BENCHMARKS.md, "Pass order").
+    options.order = PassOrder::Declared;
     return options;
 }
 

@@ -40,10 +40,12 @@ FrameGraph figure2() {
     return graph;
 }
 
+// In declared order: the tests name passes by their positions.
 Plan plan_of(FrameGraph& graph, AllocatorKind allocator = AllocatorKind::Interval) {
     PlanOptions options;
     options.frame = {16, 8};
     options.allocator = allocator;
+    options.order = PassOrder::Declared;
     auto plan = build_plan(graph, options);
     EXPECT_TRUE(plan.ok()) << plan.error().to_string();
     return plan.ok() ? std::move(*plan) : Plan{};

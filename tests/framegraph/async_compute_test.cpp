@@ -20,10 +20,13 @@ using rhi::Format;
 constexpr Queue G = Queue::Graphics;
 constexpr Queue A = Queue::AsyncCompute;
 
+// In declared order: the tests pin positions, semaphores and occupancies of the order the
+// passes are declared in (the memory order is checked against it at the end).
 PlanOptions options_with(AllocatorKind allocator) {
     PlanOptions options;
     options.frame = {1920, 1080};
     options.allocator = allocator;
+    options.order = PassOrder::Declared;
     return options;
 }
 

@@ -13,13 +13,20 @@ using rhi::Format;
 using rhi::ResourceState;
 using rhi::TextureUsage;
 
-Plan must_plan(const FrameGraph& graph, PlanOptions options = {}) {
+// The tests pin positions of the order the passes are declared in.
+PlanOptions declared_options() {
+    PlanOptions options;
+    options.order = PassOrder::Declared;
+    return options;
+}
+
+Plan must_plan(const FrameGraph& graph, PlanOptions options = declared_options()) {
     auto plan = build_plan(graph, options);
     EXPECT_TRUE(plan.ok()) << plan.error().to_string();
     return plan.ok() ? std::move(*plan) : Plan{};
 }
 
-Error must_fail(const FrameGraph& graph, PlanOptions options = {}) {
+Error must_fail(const FrameGraph& graph, PlanOptions options = declared_options()) {
     auto plan = build_plan(graph, options);
     EXPECT_FALSE(plan.ok());
     return plan.ok() ? Error{} : plan.error();
@@ -149,7 +156,7 @@ FrameGraph light_list_graph() {
 }
 
 TEST(BufferPlans, LightListResolvesSizesUsagesAndLifetimes) {
-    PlanOptions options;
+    PlanOptions options = declared_options();
     options.frame = {64, 48};
     const Plan plan = must_plan(light_list_graph(), options);
     ASSERT_EQ(plan.order.size(), 5u);
@@ -225,7 +232,7 @@ TEST(BufferPlans, BuffersOfOneSizeWhoseLifetimesDoNotOverlapShareOneBuffer) {
 }
 
 TEST(BufferPlans, HeapsPlaceBuffersBesideTexturesAndTheBoundCountsThem) {
-    PlanOptions options;
+    PlanOptions options = declared_options();
     options.frame = {64, 48};
     options.allocator = AllocatorKind::Heap;
     const Plan plan = must_plan(light_list_graph(), options);
@@ -517,7 +524,7 @@ TEST(Subresources, DisjointByteRangesOfOneBufferInOnePass) {
 // ---- imports -----------------------------------------------------------------------------------
 
 TEST(BufferImports, ImportsReplaceThePlanBufferAndReachTheirFinalState) {
-    PlanOptions options;
+    PlanOptions options = declared_options();
     options.frame = {64, 48};
     const Plan plan = must_plan(light_list_graph(), options);
     const std::vector<ImportBinding> buffers{{port("cull", "lights"), ResourceState::ShaderRead}};

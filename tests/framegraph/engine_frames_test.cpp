@@ -30,6 +30,9 @@ Result<Plan> try_plan(const GraphFile& file, AllocatorKind allocator) {
     PlanOptions options;
     options.frame = file.frame;
     options.allocator = allocator;
+    // In declared order, as the engines run them (the memory order's figures are pinned in
+    // pass_order_test.cpp).
+    options.order = PassOrder::Declared;
     return build_plan(file.graph, options);
 }
 

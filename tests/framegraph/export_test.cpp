@@ -24,6 +24,7 @@ Plan small_plan(AllocatorKind allocator) {
     EXPECT_TRUE(graph.connect(port("scene", "color"), port("unused", "color")).ok());
     EXPECT_TRUE(graph.mark_output(port("tint", "final")).ok());
     PlanOptions options;
+    options.order = PassOrder::Declared;
     options.frame = {64, 32};
     options.allocator = allocator;
     auto plan = build_plan(graph, options);
@@ -52,6 +53,7 @@ Plan buffer_plan(AllocatorKind allocator) {
     EXPECT_TRUE(graph.connect(port("cull", "lights"), port("shade", "lights")).ok());
     EXPECT_TRUE(graph.mark_output(port("shade", "color")).ok());
     PlanOptions options;
+    options.order = PassOrder::Declared;
     options.frame = {64, 48};
     options.allocator = allocator;
     auto plan = build_plan(graph, options);
@@ -147,13 +149,14 @@ TEST(Export, StreamedDotAndTableAreTheReturnedText) {
 
 TEST(Export, TextureOnlyPlansPrintWhatTheyPrintedBeforeBuffers) {
     // Pinned whole: buffers, kinds and ranges add nothing to a texture-only plan's DOT and table
-    // (the same text loom-plan printed for the sample graphs before they existed).
+    // (the same text loom-plan printed for the sample graphs before they existed, and since the
+    // memory order became the default, the order the plan was made in).
     EXPECT_EQ(plan_to_dot(small_plan(AllocatorKind::Interval)),
               "digraph plan {\n"
               "  rankdir=LR;\n"
               "  node [shape=record, fontname=\"Helvetica\", fontsize=10];\n"
               "  edge [fontname=\"Helvetica\", fontsize=9];\n"
-              "  label=\"interval allocator: 3 textures, 192.0 KiB (naive 3, 192.0 KiB)\";\n"
+              "  label=\"interval allocator: 3 textures, 192.0 KiB (naive 3, 192.0 KiB), declared order\";\n"
               "  p0 [label=\"{0: scene|{<f0> color (t0)|<f1> depth (t1)}}\"];\n"
               "  p1 [label=\"{{<f0> color (t0)|<f1> depth (t1)}|1: post|{<f2> final (t2)}}\"];\n"
               "  p2 [label=\"{2: tint|{<f0> final (t2)}}\"];\n"
@@ -165,7 +168,7 @@ TEST(Export, TextureOnlyPlansPrintWhatTheyPrintedBeforeBuffers) {
               "  p2:f0:e -> output [color=\"#2ca02c\", label=\"t2\"];\n"
               "}\n");
     EXPECT_EQ(plan_to_table(small_plan(AllocatorKind::Paper)),
-              "plan: allocator paper, frame 64x32, sharing equal\n"
+              "plan: allocator paper, frame 64x32, sharing equal, order declared\n"
               "\n"
               "order (3 passes; culled: unused)\n"
               "  #  pass   ports\n"
@@ -194,7 +197,7 @@ TEST(Export, TextureOnlyPlansPrintWhatTheyPrintedBeforeBuffers) {
 
 TEST(Export, TableShowsPassKindsRangesBufferResourcesBuffersAndTheirFigures) {
     EXPECT_EQ(plan_to_table(buffer_plan(AllocatorKind::Heap)),
-              "plan: allocator heap, frame 64x48, sharing equal\n"
+              "plan: allocator heap, frame 64x48, sharing equal, order declared\n"
               "\n"
               "order (4 passes)\n"
               "  #  pass            ports\n"
@@ -236,7 +239,7 @@ TEST(Export, DotDrawsBufferEdgesDashedAndLabelsPartialRanges) {
               "  rankdir=LR;\n"
               "  node [shape=record, fontname=\"Helvetica\", fontsize=10];\n"
               "  edge [fontname=\"Helvetica\", fontsize=9];\n"
-              "  label=\"interval allocator: 2 textures, 1 buffers, 129.0 KiB (naive 2 + 1 buffers, 129.0 KiB)\";\n"
+              "  label=\"interval allocator: 2 textures, 1 buffers, 129.0 KiB (naive 2 + 1 buffers, 129.0 KiB), declared order\";\n"
               "  p0 [label=\"{0: base|{<f0> pyramid (t0 mip 0)}}\"];\n"
               "  p1 [label=\"{{<f0> src (t0 mip 0)}|1: down [compute]|{<f1> pyramid (t0 mip 1)}}\"];\n"
               "  p2 [label=\"{{<f0> pyramid (t0)}|2: cull [compute]|{<f1> lights (b0)}}\"];\n"

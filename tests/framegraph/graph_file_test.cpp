@@ -391,7 +391,7 @@ TEST(GraphFile, ThePassOrderItsPinsAndItsRequirements) {
     EXPECT_EQ(declared->order, PassOrder::Declared);
     auto unsaid = parse_graph_json(R"({"passes": []})");
     ASSERT_TRUE(unsaid.ok());
-    EXPECT_EQ(unsaid->order, PassOrder::Declared);
+    EXPECT_EQ(unsaid->order, PassOrder::Memory);  // kDefaultPassOrder
 
     // A requirement naming an unknown pass is a graph error at its pointer.
     const Error unknown = parse_error(R"({"passes": [{"name": "a"}], "order_constraints": [["a", "z"]]})");

@@ -92,9 +92,10 @@ TEST(PlanTool, OtherSampleGraphsPlan) {
     EXPECT_EQ(json.at("frame").at("width"), 640);
 }
 
-// The summary of `graph` planned by `allocator`, as loom-plan --json prints it.
+// The summary of `graph` planned by `allocator` in declared order (the figures the guides
+// quote), as loom-plan --json prints it.
 nlohmann::json summary_of(std::string_view graph_file, const char* allocator) {
-    const ToolRun run = run_tool(graph(graph_file) + " --json --allocator " + allocator);
+    const ToolRun run = run_tool(graph(graph_file) + " --order declared --json --allocator " + allocator);
     EXPECT_EQ(run.status, 0) << run.err;
     return run.status == 0 ? nlohmann::json::parse(run.out).at("summary") : nlohmann::json{};
 }
@@ -155,7 +156,7 @@ TEST(PlanTool, LightListIsAComputeBuiltBufferReadByTheLightingPass) {
         EXPECT_EQ(summary.at("bytes"), 8323072 + 16646144 + 8355840 + 256) << allocator;
         EXPECT_EQ(summary.at("lower_bound_bytes"), summary.at("bytes")) << allocator;
     }
-    const ToolRun run = run_tool(graph("light_list.json") + " --json");
+    const ToolRun run = run_tool(graph("light_list.json") + " --order declared --json");
     ASSERT_EQ(run.status, 0) << run.err;
     const auto json = nlohmann::json::parse(run.out);
     EXPECT_EQ(json.at("buffers")[0].at("size"), 8355840);
@@ -165,7 +166,7 @@ TEST(PlanTool, LightListIsAComputeBuiltBufferReadByTheLightingPass) {
     EXPECT_EQ(json.at("passes")[1].at("kind"), "compute");
     EXPECT_EQ(json.at("passes")[4].at("ports")[0].at("usage"), nlohmann::json({"indirect"}));
 
-    const ToolRun table = run_tool(graph("light_list.json"));
+    const ToolRun table = run_tool(graph("light_list.json") + " --order declared");
     ASSERT_EQ(table.status, 0) << table.err;
     EXPECT_NE(table.out.find("               textures  buffers  bytes     bytes / lower bound\n"
                              "  plan         2         2        31.8 MiB  1.000\n"
@@ -178,7 +179,7 @@ TEST(PlanTool, LightListIsAComputeBuiltBufferReadByTheLightingPass) {
 
 TEST(PlanTool, AsyncSsaoPrintsSyncsTransfersAndHeldLifetimes) {
     // docs/framegraph.md, Async compute, quotes these lines.
-    const ToolRun run = run_tool(graph("async_ssao.json"));
+    const ToolRun run = run_tool(graph("async_ssao.json") + " --order declared");
     ASSERT_EQ(run.status, 0) << run.err;
     EXPECT_NE(run.out.find("  2  ssao_blur [compute, async]  <raw=t1  >ao=t2\n"), std::string::npos) << run.out;
     EXPECT_NE(run.out.find("queue syncs\n"
@@ -204,10 +205,10 @@ TEST(PlanTool, AsyncSsaoPrintsSyncsTransfersAndHeldLifetimes) {
 
 TEST(PlanTool, CompareShowsEveryAllocatorBesideTheNaiveFiguresAndTheBound) {
     // The engine frames' figures, pinned one by one in engine_frames_test.cpp, side by side.
-    const ToolRun gta = run_tool(graph("gta5_frame.json") + " --compare");
+    const ToolRun gta = run_tool(graph("gta5_frame.json") + " --order declared --compare");
     ASSERT_EQ(gta.status, 0) << gta.err;
     EXPECT_EQ(gta.out,
-              "memory at 1920x1080, sharing equal\n"
+              "memory at 1920x1080, sharing equal, order declared\n"
               "               textures  buffers  bytes                 bytes / lower bound\n"
               "  naive        28        2        198115584  188.9 MiB  2.290\n"
               "  paper        20        2        118489344  113.0 MiB  1.370\n"
@@ -215,14 +216,14 @@ TEST(PlanTool, CompareShowsEveryAllocatorBesideTheNaiveFiguresAndTheBound) {
               "  heap         28        2        86507520   82.5 MiB   1.000\n"
               "  lower bound  20        2        86507520   82.5 MiB   1.000\n");
     // paper refuses a frame with async compute passes, on its own row.
-    const ToolRun doom = run_tool(graph("doom2016_frame.json") + " --compare --json");
+    const ToolRun doom = run_tool(graph("doom2016_frame.json") + " --order declared --compare --json");
     ASSERT_EQ(doom.status, 0) << doom.err;
     const auto json = nlohmann::json::parse(doom.out);
     EXPECT_EQ(json.at("allocators").at("paper"), nullptr);
     EXPECT_EQ(json.at("allocators").at("heap").at("bytes"), json.at("lower_bound_bytes"));
     EXPECT_EQ(json.at("lower_bound_bytes"), 349462784);
     EXPECT_EQ(json.at("allocators").at("interval").at("bytes"), 379412992);
-    const ToolRun table = run_tool(graph("doom2016_frame.json") + " --compare");
+    const ToolRun table = run_tool(graph("doom2016_frame.json") + " --order declared --compare");
     EXPECT_NE(table.out.find("  paper        refuses: allocator 'paper' colours ports pass by pass"), std::string::npos)
         << table.out;
 }
@@ -245,6 +246,11 @@ TEST(PlanTool, MemoryOrderLowersTheEngineFramesPeaks) {
     EXPECT_EQ(unreal.at("allocators").at("heap").at("bytes"), 119537664);
     const ToolRun table = run_tool(graph("gta5_frame.json") + " --order memory --compare");
     EXPECT_EQ(table.out.rfind("memory at 1920x1080, sharing equal, order memory\n", 0), 0u) << table.out;
+    // The memory order is the default: without --order (and without "order" in the file).
+    const ToolRun by_default = run_tool(graph("gta5_frame.json") + " --json --allocator heap");
+    ASSERT_EQ(by_default.status, 0) << by_default.err;
+    EXPECT_EQ(nlohmann::json::parse(by_default.out).at("pass_order"), "memory");
+    EXPECT_EQ(nlohmann::json::parse(by_default.out).at("summary").at("lower_bound_bytes"), 73662464);
     const ToolRun bad = run_tool(graph("gta5_frame.json") + " --order fastest");
     EXPECT_EQ(bad.status, 2);
     EXPECT_EQ(bad.err, "loom-plan: --order must be declared or memory, not 'fastest'\n");
@@ -261,7 +267,7 @@ TEST(PlanTool, WritesDot) {
 
     const std::filesystem::path buffers = loom::test::output_dir() / "loom_plan" / "light_list.dot";
     std::filesystem::remove(buffers);
-    const ToolRun light_list = run_tool(graph("light_list.json") + " --dot \"" + buffers.string() + "\"");
+    const ToolRun light_list = run_tool(graph("light_list.json") + " --order declared --dot \"" + buffers.string() + "\"");
     ASSERT_EQ(light_list.status, 0) << light_list.err;
     EXPECT_NE(read_file(buffers).find("p1:f1:e -> p2:f0:w [color=\"#637939\", fontcolor=\"#637939\", style=dashed, "
                                       "label=\"b0\"];"),

@@ -187,17 +187,27 @@ TEST_F(RandomGraphs, NoTwoLiveResourcesOverlapInHeapBytes) {
 }
 
 TEST_F(RandomGraphs, IntervalMeetsTheLowerBoundAndNeverLosesToPaper) {
+    // In the memory order (the default) each allocator keeps the order it places in fewer
+    // bytes, so the two are compared where both run the same order: most graphs.
+    auto same_order = [](const Plan& a, const Plan& b) {
+        return std::ranges::equal(a.order, b.order, [](const PlanPass& x, const PlanPass& y) { return x.name == y.name; });
+    };
     for (SpecSharing sharing : {SpecSharing::Equal, SpecSharing::Joinable}) {
         const Plans& interval = plans(AllocatorKind::Interval, sharing);
         const Plans& paper = plans(AllocatorKind::Paper, sharing);
+        std::size_t compared = 0;
         for (std::size_t i = 0; i < interval.size(); ++i) {
             EXPECT_EQ(interval[i].summary.textures, interval[i].summary.lower_bound_textures) << "seed " << seed_of(i);
-            EXPECT_LE(interval[i].summary.textures, paper[i].summary.textures) << "seed " << seed_of(i);
+            if (same_order(interval[i], paper[i])) {
+                ++compared;
+                EXPECT_LE(interval[i].summary.textures, paper[i].summary.textures) << "seed " << seed_of(i);
+            }
             // The paper's reverse walk colours intervals by decreasing end and frees a colour
             // at the interval's start: the mirror image of the interval sweep, so it is optimal
             // too.
             EXPECT_EQ(paper[i].summary.textures, paper[i].summary.lower_bound_textures) << "seed " << seed_of(i);
         }
+        EXPECT_GT(compared, interval.size() * 3 / 4) << spec_sharing_name(sharing);
     }
 }
 

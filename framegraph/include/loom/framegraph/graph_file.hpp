@@ -66,8 +66,8 @@ inline constexpr std::size_t kMaxGraphFileDepth = 64;
 struct GraphFile {
     FrameGraph graph;
     Extent2D frame{1920, 1080};
-    /// The pass order the file asks for ("order"; default declared).
-    PassOrder order = PassOrder::Declared;
+    /// The pass order the file asks for ("order"; default memory, kDefaultPassOrder).
+    PassOrder order = kDefaultPassOrder;
     /// What the text was called in parse_graph_json (the file name for load_graph_file).
     std::string source;
     /// Where each pass ("pass") and port ("pass.port") is declared in the text, as a JSON

@@ -41,6 +41,12 @@ enum class PassOrder : uint8_t {
     Memory,
 };
 
+/// The order planning uses unless told otherwise (PlanOptions::order, a graph file's "order",
+/// the renderer's and samples' settings): Memory, which never needs more memory than Declared
+/// and costs at most half as much planning time again at 10,000 passes (docs/BENCHMARKS.md,
+/// "Pass order").
+inline constexpr PassOrder kDefaultPassOrder = PassOrder::Memory;
+
 /// "declared" or "memory".
 std::string_view pass_order_name(PassOrder order);
 /// The order called `name` ("declared", "memory"), or nullopt.
@@ -238,7 +244,7 @@ struct Plan {
     /// How `order` was chosen (PlanOptions::order). Under PassOrder::Memory the order may still
     /// be the declared one: when no other lowers the peak, or when the declared order's
     /// allocation needs fewer bytes.
-    PassOrder pass_order = PassOrder::Declared;
+    PassOrder pass_order = kDefaultPassOrder;
     std::vector<PlanPass> order;      ///< passes that run, in execution order
     std::vector<std::string> culled;  ///< passes that do not run, in declaration order
     std::vector<PlanEdge> edges;      ///< connections between passes that run, in connection order

@@ -27,8 +27,8 @@ struct PlanOptions {
     /// Sizes and alignments; null means DefaultMemoryModel. Compared by identity.
     std::shared_ptr<MemoryModel> memory_model;
     uint64_t max_heap_bytes = 0;     ///< "heap" allocator: 0 means a single heap of any size
-    /// How to order the passes: declared (the default) or for the lowest peak of live bytes.
-    PassOrder order = PassOrder::Declared;
+    /// How to order the passes: for the lowest peak of live bytes (the default) or declared.
+    PassOrder order = kDefaultPassOrder;
 
     friend bool operator==(const PlanOptions&, const PlanOptions&) = default;
 };

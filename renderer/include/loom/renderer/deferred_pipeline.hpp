@@ -49,8 +49,8 @@ namespace loom::renderer {
 struct PipelineSettings {
     fg::AllocatorKind allocator = fg::AllocatorKind::Interval;
     /// The pass order the frame is planned in (fg::PlanOptions::order): declared, or the one
-    /// with the lowest peak of live bytes. The pictures are the same in both.
-    fg::PassOrder order = fg::PassOrder::Declared;
+    /// with the lowest peak of live bytes (the default). The pictures are the same in both.
+    fg::PassOrder order = fg::kDefaultPassOrder;
     /// Light the objects as they are drawn (the forward pass, composed of the same
     /// "shadow-render" and "high-pass-render" parts) instead of the G-buffer and deferred passes.
     bool forward = false;
