@@ -45,45 +45,28 @@ glm::vec3 to_vec3(const std::vector<double>& values, const glm::vec3& fallback) 
     return glm::vec3(static_cast<float>(values[0]), static_cast<float>(values[1]), static_cast<float>(values[2]));
 }
 
-glm::mat4 local_matrix(const tinygltf::Node& node) {
-    if (node.matrix.size() == 16) {
-        glm::mat4 matrix(1.0f);
+// The node's transform: its matrix, or its translation, rotation and scale (the rotation
+// normalised) and their product.
+void set_transform(const tinygltf::Node& source, Node& node) {
+    node.has_matrix = source.matrix.size() == 16;
+    if (node.has_matrix) {
         for (int column = 0; column < 4; ++column) {
             for (int row = 0; row < 4; ++row) {
-                matrix[column][row] = static_cast<float>(node.matrix[static_cast<std::size_t>(column * 4 + row)]);
+                node.local[column][row] = static_cast<float>(source.matrix[static_cast<std::size_t>(column * 4 + row)]);
             }
         }
-        return matrix;
+        return;
     }
-    const glm::vec3 translation = to_vec3(node.translation, glm::vec3(0.0f));
-    const glm::vec3 scale = to_vec3(node.scale, glm::vec3(1.0f));
-    glm::quat rotation(1.0f, 0.0f, 0.0f, 0.0f);
-    if (node.rotation.size() == 4) {
+    node.translation = to_vec3(source.translation, glm::vec3(0.0f));
+    node.scale = to_vec3(source.scale, glm::vec3(1.0f));
+    if (source.rotation.size() == 4) {
         // glTF stores (x, y, z, w); glm::quat's constructor takes (w, x, y, z).
-        rotation = glm::quat(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
-                             static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2]));
+        const glm::quat rotation(static_cast<float>(source.rotation[3]), static_cast<float>(source.rotation[0]),
+                                 static_cast<float>(source.rotation[1]), static_cast<float>(source.rotation[2]));
         const float length = glm::length(rotation);
-        rotation = length > 0.0f ? rotation / length : glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+        node.rotation = length > 0.0f ? rotation / length : glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
     }
-    glm::mat4 matrix = glm::mat4_cast(rotation);
-    matrix[0] *= scale.x;
-    matrix[1] *= scale.y;
-    matrix[2] *= scale.z;
-    matrix[3] = glm::vec4(translation, 1.0f);
-    return matrix;
-}
-
-// The cofactor matrix of m's upper 3x3, times the sign of its determinant: proportional (by a
-// positive factor) to the inverse transpose, and defined for singular matrices too.
-glm::mat3 normal_matrix(const glm::mat4& m, bool& flips_winding) {
-    const glm::vec3 c0(m[0]);
-    const glm::vec3 c1(m[1]);
-    const glm::vec3 c2(m[2]);
-    glm::mat3 cofactor(glm::cross(c1, c2), glm::cross(c2, c0), glm::cross(c0, c1));
-    const float determinant = glm::dot(c0, glm::cross(c1, c2));
-    flips_winding = determinant < 0.0f;
-    if (flips_winding) cofactor = -cofactor;
-    return cofactor;
+    node.local = trs_matrix(node.translation, node.rotation, node.scale);
 }
 
 rhi::Filter filter_of(int gltf_filter) {
@@ -118,7 +101,7 @@ public:
         LOOM_TRY(flatten_scene());
         check_unused_images();
         check_accessor_bounds();
-        check_animation_data();
+        convert_animations();
         check_skin_data();
         check_skinning_attributes();
         return std::move(scene_);
@@ -134,9 +117,10 @@ private:
 
     // ---- data the importer does not use ------------------------------------------------------
     //
-    // Animations and skins are not imported: what the specification forbids in their values is
-    // a warning naming the accessor's user (the validator checked their formats and counts and
-    // warned about those; only accessors of the right format are read here).
+    // Skins are not imported (and animations only in part, below): what the specification
+    // forbids in their values is a warning naming the accessor's user (the validator checked
+    // their formats and counts and warned about those; only accessors of the right format are
+    // read here).
 
     // Accessor `index` as floats when it has `components` per element, else nullopt; a read
     // error (missing data) is a warning at `where`.
@@ -229,50 +213,125 @@ private:
         return out.str();
     }
 
-    void check_animation_data() {
+    // ---- animations ------------------------------------------------------------------------
+    //
+    // Each animation with its channels that drive a node's translation, rotation or scale, and
+    // the samplers they use. A channel is left out when the validator warned about it (its
+    // output's format or count, a node with a matrix, a second channel on the same target) or
+    // when its sampler's data breaks the specification (times negative or not increasing,
+    // rotations not unit quaternions: a warning here names them); channels of morph target
+    // weights are left out too (morph targets are not imported), and channels without a node,
+    // as the specification says.
+    void convert_animations() {
         for (std::size_t a = 0; a < model_.animations.size(); ++a) {
-            const tinygltf::Animation& animation = model_.animations[a];
+            const tinygltf::Animation& source = model_.animations[a];
             const JsonPointer where = JsonPointer{} / "animations" / as_index(a);
-            for (std::size_t s = 0; s < animation.samplers.size(); ++s) {
-                const JsonPointer input_where = where / "samplers" / as_index(s) / "input";
-                const auto times = read_unused(animation.samplers[s].input, 1, input_where);
-                if (!times) continue;
-                for (std::size_t k = 0; k < times->size(); ++k) {
-                    if ((*times)[k] < 0.0f) {
-                        warn(input_where, "keyframe " + std::to_string(k) + " has a negative time");
-                        break;
-                    }
-                    if (k > 0 && !((*times)[k] > (*times)[k - 1])) {
-                        warn(input_where, "keyframe times must increase, keyframe " + std::to_string(k) +
-                                              " is not after keyframe " + std::to_string(k - 1));
-                        break;
-                    }
-                }
-            }
-            for (std::size_t c = 0; c < animation.channels.size(); ++c) {
-                const tinygltf::AnimationChannel& channel = animation.channels[c];
-                if (channel.target_path != "rotation" || channel.sampler < 0 ||
-                    static_cast<std::size_t>(channel.sampler) >= animation.samplers.size()) {
+            Animation animation;
+            animation.name = source.name.empty() ? "animation " + std::to_string(a) : source.name;
+            // Per source sampler, the converted one (or none: it breaks the specification).
+            std::map<std::size_t, std::optional<uint32_t>> converted;
+            std::set<std::pair<int, AnimatedProperty>> targets;
+            for (std::size_t c = 0; c < source.channels.size(); ++c) {
+                const tinygltf::AnimationChannel& channel = source.channels[c];
+                const std::optional<AnimatedProperty> property = animated_property(channel.target_path);
+                if (!property || *property == AnimatedProperty::Weights || channel.target_node < 0 ||
+                    static_cast<std::size_t>(channel.target_node) >= scene_.nodes.size() || channel.sampler < 0 ||
+                    static_cast<std::size_t>(channel.sampler) >= source.samplers.size() ||
+                    scene_.nodes[static_cast<std::size_t>(channel.target_node)].has_matrix ||
+                    !targets.insert({channel.target_node, *property}).second) {
                     continue;
                 }
-                const tinygltf::AnimationSampler& sampler = animation.samplers[static_cast<std::size_t>(channel.sampler)];
-                const JsonPointer sampler_where = where / "channels" / as_index(c) / "sampler";
-                const auto quaternions = read_unused(sampler.output, 4, sampler_where);
-                if (!quaternions) continue;
-                // A cubic spline's elements are in-tangent, value, out-tangent: only values are rotations.
-                const bool cubic = sampler.interpolation == "CUBICSPLINE";
-                for (std::size_t e = cubic ? 1 : 0; e * 4 + 3 < quaternions->size(); e += cubic ? 3 : 1) {
-                    const float* q = quaternions->data() + e * 4;
-                    const double length = std::sqrt(double{q[0]} * q[0] + double{q[1]} * q[1] + double{q[2]} * q[2] +
-                                                    double{q[3]} * q[3]);
-                    if (std::abs(length - 1.0) > kUnitQuaternionTolerance) {
-                        warn(sampler_where, "output element " + std::to_string(e) + " is not a unit quaternion (length " +
-                                                std::to_string(length) + ")");
-                        break;
-                    }
+                const auto s = static_cast<std::size_t>(channel.sampler);
+                const auto [it, inserted] = converted.try_emplace(s);
+                if (inserted) {
+                    it->second = convert_sampler(source.samplers[s], *property, animation, where / "samplers" / as_index(s),
+                                                 where / "channels" / as_index(c) / "sampler");
                 }
+                if (!it->second) continue;
+                if (animation.samplers[*it->second].components != (*property == AnimatedProperty::Rotation ? 4u : 3u)) continue;
+                animation.channels.push_back(
+                    AnimationChannel{static_cast<uint32_t>(channel.target_node), *it->second, *property});
+            }
+            // Samplers no channel plays: their times are still checked.
+            for (std::size_t s = 0; s < source.samplers.size(); ++s) {
+                if (converted.count(s) == 0) read_times(source.samplers[s].input, where / "samplers" / as_index(s) / "input");
+            }
+            scene_.animations.push_back(std::move(animation));
+        }
+    }
+
+    static std::optional<AnimatedProperty> animated_property(const std::string& path) {
+        if (path == "translation") return AnimatedProperty::Translation;
+        if (path == "rotation") return AnimatedProperty::Rotation;
+        if (path == "scale") return AnimatedProperty::Scale;
+        if (path == "weights") return AnimatedProperty::Weights;
+        return std::nullopt;
+    }
+
+    // Keyframe times of input accessor `index`: non-negative and increasing, else a warning at
+    // `where` and nullopt.
+    std::optional<std::vector<float>> read_times(int index, const JsonPointer& where) {
+        auto times = read_unused(index, 1, where);
+        if (!times) return std::nullopt;
+        if (times->empty()) {
+            warn(where, "has no keyframes");
+            return std::nullopt;
+        }
+        for (std::size_t k = 0; k < times->size(); ++k) {
+            if ((*times)[k] < 0.0f) {
+                warn(where, "keyframe " + std::to_string(k) + " has a negative time");
+                return std::nullopt;
+            }
+            if (k > 0 && !((*times)[k] > (*times)[k - 1])) {
+                warn(where, "keyframe times must increase, keyframe " + std::to_string(k) + " is not after keyframe " +
+                                std::to_string(k - 1));
+                return std::nullopt;
             }
         }
+        return times;
+    }
+
+    // Whether rotation keyframes are unit quaternions (a cubic spline's elements are in-tangent,
+    // value, out-tangent: only values are rotations); else a warning at `where`.
+    bool unit_rotations(const std::vector<float>& values, bool cubic, const JsonPointer& where) {
+        for (std::size_t e = cubic ? 1 : 0; e * 4 + 3 < values.size(); e += cubic ? 3 : 1) {
+            const float* q = values.data() + e * 4;
+            const double length =
+                std::sqrt(double{q[0]} * q[0] + double{q[1]} * q[1] + double{q[2]} * q[2] + double{q[3]} * q[3]);
+            if (std::abs(length - 1.0) > kUnitQuaternionTolerance) {
+                warn(where, "output element " + std::to_string(e) + " is not a unit quaternion (length " +
+                                std::to_string(length) + ")");
+                return false;
+            }
+        }
+        return true;
+    }
+
+    // `source` as the sampler of a channel on `property`, appended to `animation`: its index,
+    // or nullopt when its data breaks the specification (a warning at `where`, or for
+    // rotations at the channel's `channel_where`) or does not fit the property.
+    std::optional<uint32_t> convert_sampler(const tinygltf::AnimationSampler& source, AnimatedProperty property,
+                                            Animation& animation, const JsonPointer& where,
+                                            const JsonPointer& channel_where) {
+        AnimationSampler sampler;
+        sampler.interpolation = source.interpolation == "STEP"          ? Interpolation::Step
+                                : source.interpolation == "CUBICSPLINE" ? Interpolation::CubicSpline
+                                                                        : Interpolation::Linear;
+        sampler.components = property == AnimatedProperty::Rotation ? 4 : 3;
+        const bool cubic = sampler.interpolation == Interpolation::CubicSpline;
+        // Times and values are checked each on its own, so that every rule they break is named.
+        auto times = read_times(source.input, where / "input");
+        auto values = read_unused(source.output, sampler.components, channel_where);  // nullopt: a format the validator warned about
+        if (values && property == AnimatedProperty::Rotation && !unit_rotations(*values, cubic, channel_where)) {
+            return std::nullopt;
+        }
+        if (!times || !values) return std::nullopt;
+        const std::size_t expected = times->size() * sampler.components * (cubic ? 3 : 1);
+        if (values->size() != expected || (cubic && times->size() < 2)) return std::nullopt;  // the validator warned
+        sampler.times = std::move(*times);
+        sampler.values = std::move(*values);
+        animation.samplers.push_back(std::move(sampler));
+        return static_cast<uint32_t>(animation.samplers.size() - 1);
     }
 
     // JOINTS_n / WEIGHTS_n of every primitive (skins are not imported): weights non-negative and
@@ -750,7 +809,7 @@ private:
             const tinygltf::Node& source = model_.nodes[n];
             Node& node = scene_.nodes[n];
             node.name = source.name.empty() ? "node " + std::to_string(n) : source.name;
-            node.local = local_matrix(source);
+            set_transform(source, node);
             if (source.mesh >= 0) node.mesh = static_cast<uint32_t>(source.mesh);
             if (source.camera >= 0) node.camera = static_cast<uint32_t>(source.camera);
             for (const int child : source.children) {
@@ -860,11 +919,7 @@ private:
                     item.mesh = *node.mesh;
                     item.primitive = static_cast<uint32_t>(p);
                     item.material = primitive.material;
-                    item.world = node.world;
-                    item.normal_matrix = normal_matrix(node.world, item.flips_winding);
-                    for (const Vertex& vertex : primitive.vertices) {
-                        item.world_bounds.extend(glm::vec3(node.world * glm::vec4(vertex.position, 1.0f)));
-                    }
+                    place_draw_item(item, node, primitive);
                     scene_.bounds.extend(item.world_bounds);
                     scene_.draw_items.push_back(std::move(item));
                 }

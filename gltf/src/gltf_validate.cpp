@@ -1474,9 +1474,6 @@ private:
         }); !status) {
             return status;
         }
-        if (count(Collection::Animations) != 0) {
-            warn(JsonPointer{} / "animations", "animations are not imported (the static pose is used)");
-        }
         return {};
     }
 

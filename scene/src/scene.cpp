@@ -1,5 +1,8 @@
 #include "loom/scene/scene.hpp"
 
+#include <array>
+#include <span>
+
 namespace loom::scene {
 
 uint64_t Scene::vertex_count() const {
@@ -16,6 +19,89 @@ uint64_t Scene::index_count() const {
         for (const Primitive& primitive : mesh.primitives) count += primitive.indices.size();
     }
     return count;
+}
+
+}  // namespace loom::scene
+
+namespace loom::scene {
+
+glm::mat4 trs_matrix(const glm::vec3& translation, const glm::quat& rotation, const glm::vec3& scale) {
+    glm::mat4 matrix = glm::mat4_cast(rotation);
+    matrix[0] *= scale.x;
+    matrix[1] *= scale.y;
+    matrix[2] *= scale.z;
+    matrix[3] = glm::vec4(translation, 1.0f);
+    return matrix;
+}
+
+glm::mat3 normal_matrix(const glm::mat4& world, bool& flips_winding) {
+    const glm::vec3 c0(world[0]);
+    const glm::vec3 c1(world[1]);
+    const glm::vec3 c2(world[2]);
+    glm::mat3 cofactor(glm::cross(c1, c2), glm::cross(c2, c0), glm::cross(c0, c1));
+    const float determinant = glm::dot(c0, glm::cross(c1, c2));
+    flips_winding = determinant < 0.0f;
+    if (flips_winding) cofactor = -cofactor;
+    return cofactor;
+}
+
+void place_draw_item(DrawItem& item, const Node& node, const Primitive& primitive) {
+    item.world = node.world;
+    item.normal_matrix = normal_matrix(node.world, item.flips_winding);
+    item.world_bounds = Bounds{};
+    for (const Vertex& vertex : primitive.vertices) {
+        item.world_bounds.extend(glm::vec3(node.world * glm::vec4(vertex.position, 1.0f)));
+    }
+}
+
+std::vector<uint32_t> pose(Scene& scene, const Animation& animation, float time) {
+    std::vector<bool> moved(scene.nodes.size(), false);
+    std::array<float, 4> value{};
+    for (const AnimationChannel& channel : animation.channels) {
+        const AnimationSampler& sampler = animation.samplers[channel.sampler];
+        // Morph target weights change no node (and loom draws no morph targets).
+        if (channel.property == AnimatedProperty::Weights || sampler.components > value.size()) continue;
+        const bool rotation = channel.property == AnimatedProperty::Rotation;
+        sample(sampler, time, rotation, std::span<float>(value.data(), sampler.components));
+        Node& node = scene.nodes[channel.node];
+        if (channel.property == AnimatedProperty::Translation) {
+            node.translation = glm::vec3(value[0], value[1], value[2]);
+        } else if (rotation) {
+            node.rotation = glm::quat(value[3], value[0], value[1], value[2]);  // glTF's (x, y, z, w)
+        } else {
+            node.scale = glm::vec3(value[0], value[1], value[2]);
+        }
+        moved[channel.node] = true;
+    }
+    for (uint32_t n = 0; n < scene.nodes.size(); ++n) {
+        Node& node = scene.nodes[n];
+        if (moved[n] && !node.has_matrix) node.local = trs_matrix(node.translation, node.rotation, node.scale);
+    }
+    // World matrices top-down from the roots: a node moves when it or an ancestor does.
+    std::vector<uint32_t> stack;
+    for (uint32_t n = 0; n < scene.nodes.size(); ++n) {
+        if (!scene.nodes[n].parent) stack.push_back(n);
+    }
+    while (!stack.empty()) {
+        const uint32_t n = stack.back();
+        stack.pop_back();
+        Node& node = scene.nodes[n];
+        if (node.parent && moved[*node.parent]) moved[n] = true;
+        if (moved[n]) node.world = node.parent ? scene.nodes[*node.parent].world * node.local : node.local;
+        for (const uint32_t child : node.children) stack.push_back(child);
+    }
+    std::vector<uint32_t> moved_items;
+    for (uint32_t i = 0; i < scene.draw_items.size(); ++i) {
+        DrawItem& item = scene.draw_items[i];
+        if (!moved[item.node]) continue;
+        place_draw_item(item, scene.nodes[item.node], scene.meshes[item.mesh].primitives[item.primitive]);
+        moved_items.push_back(i);
+    }
+    if (!moved_items.empty()) {
+        scene.bounds = Bounds{};
+        for (const DrawItem& item : scene.draw_items) scene.bounds.extend(item.world_bounds);
+    }
+    return moved_items;
 }
 
 }  // namespace loom::scene

@@ -1,5 +1,6 @@
 // Keyframe sampling as glTF 2.0 defines it: step, linear (slerp for rotations, along the
-// shorter arc) and cubic-spline interpolation, and times outside the keyframes.
+// shorter arc) and cubic-spline interpolation, and times outside the keyframes; and pose(),
+// which plays an animation on a scene's nodes and draw items.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -7,6 +8,7 @@
 #include <numbers>
 
 #include "loom/scene/animation.hpp"
+#include "loom/scene/scene.hpp"
 
 namespace loom::scene {
 namespace {
@@ -93,6 +95,75 @@ TEST(AnimationSampling, DurationIsTheLastKeyframeOfAllSamplers) {
     EXPECT_EQ(a.duration(), 0.0f);
     a.samplers = {translations(Interpolation::Linear), AnimationSampler{{0.0f, 4.5f}, {0, 1}, Interpolation::Step, 1}};
     EXPECT_EQ(a.duration(), 4.5f);
+}
+
+// A parent (mesh: a unit triangle) with a child (the same mesh) and a third, unrelated node.
+Scene two_level_scene() {
+    Scene scene;
+    Mesh mesh;
+    Primitive triangle;
+    for (const glm::vec3& p : {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}) triangle.vertices.push_back(Vertex{p});
+    triangle.indices = {0, 1, 2};
+    mesh.primitives.push_back(triangle);
+    scene.meshes.push_back(mesh);
+    scene.nodes.resize(3);
+    scene.nodes[0].children = {1};
+    scene.nodes[1].parent = 0;
+    scene.nodes[1].translation = glm::vec3(0, 0, 5);
+    for (uint32_t n = 0; n < 3; ++n) {
+        Node& node = scene.nodes[n];
+        node.mesh = 0;
+        node.local = trs_matrix(node.translation, node.rotation, node.scale);
+        node.world = node.parent ? scene.nodes[*node.parent].world * node.local : node.local;
+        DrawItem item;
+        item.node = n;
+        place_draw_item(item, node, scene.meshes[0].primitives[0]);
+        scene.bounds.extend(item.world_bounds);
+        scene.draw_items.push_back(item);
+    }
+    return scene;
+}
+
+TEST(AnimationPose, MovesTheAnimatedNodesTheirDescendantsAndTheirDrawItemsOnly) {
+    Scene scene = two_level_scene();
+    Animation animation;
+    animation.samplers = {translations(Interpolation::Linear),
+                          AnimationSampler{{0.0f, 2.5f}, {1, 1, 1, 3, 1, 1}, Interpolation::Step, 3}};
+    animation.channels = {{0, 0, AnimatedProperty::Translation}, {0, 1, AnimatedProperty::Scale}};
+    const Scene before = scene;
+
+    // At 2 s: translation halfway to (2, 4, -6), scale still the first keyframe's (step).
+    EXPECT_EQ(pose(scene, animation, 2.0f), (std::vector<uint32_t>{0, 1}));
+    EXPECT_EQ(scene.nodes[0].translation, glm::vec3(1, 2, -3));
+    EXPECT_EQ(scene.nodes[0].scale, glm::vec3(1, 1, 1));
+    EXPECT_EQ(scene.draw_items[0].world[3], glm::vec4(1, 2, -3, 1));
+    // The child follows its parent: its own translation (0, 0, 5) on top.
+    EXPECT_EQ(scene.draw_items[1].world[3], glm::vec4(1, 2, 2, 1));
+    EXPECT_EQ(scene.draw_items[1].world_bounds.min, glm::vec3(1, 2, 2));
+    EXPECT_EQ(scene.draw_items[1].world_bounds.max, glm::vec3(2, 3, 2));
+    // The unrelated node and its item keep their matrices.
+    EXPECT_EQ(scene.nodes[2].world, before.nodes[2].world);
+    EXPECT_EQ(scene.draw_items[2].world, before.draw_items[2].world);
+    EXPECT_EQ(scene.bounds.min, glm::vec3(0, 0, -3));
+    EXPECT_EQ(scene.bounds.max, glm::vec3(2, 3, 2));
+
+    // At 3 s the step scale (3, 1, 1) applies, after the rotation and before the translation:
+    // the parent's triangle is three times as wide, the child sits at x = 2 + 3 * 0.
+    pose(scene, animation, 3.0f);
+    EXPECT_EQ(scene.draw_items[0].world_bounds.max, glm::vec3(5, 5, -6));
+    EXPECT_EQ(scene.draw_items[1].world[3], glm::vec4(2, 4, -1, 1));
+    EXPECT_FALSE(scene.draw_items[1].flips_winding);
+
+    // A rotation channel: a quarter turn about z takes the triangle's x axis to y.
+    Animation turn;
+    turn.samplers = {AnimationSampler{{0.0f}, {0, 0, std::sqrt(0.5f), std::sqrt(0.5f)}, Interpolation::Linear, 4}};
+    turn.channels = {{2, 0, AnimatedProperty::Rotation}};
+    EXPECT_EQ(pose(scene, turn, 0.0f), (std::vector<uint32_t>{2}));
+    const glm::vec4 x_axis = scene.draw_items[2].world * glm::vec4(1, 0, 0, 0);
+    EXPECT_NEAR(x_axis.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(x_axis.y, 1.0f, 1e-6f);
+    // An animation without channels moves nothing.
+    EXPECT_TRUE(pose(scene, Animation{}, 1.0f).empty());
 }
 
 }  // namespace

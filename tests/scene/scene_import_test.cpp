@@ -1,10 +1,13 @@
 // Import features on synthetic files with known content: index types, topologies, normalised
 // and quantised attributes, interleaved views, sparse accessors without a buffer view,
 // hierarchies, samplers, materials, cameras, skipped primitives and buffer layouts.
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -561,6 +564,81 @@ TEST(SceneImport, LayoutsGiveIdenticalScenes) {
     expect_same_scene(external, embedded);
     expect_same_scene(external, binary);
     expect_same_scene(external, percent);
+}
+
+// Animations: the channels on a node's translation, rotation and scale are imported with their
+// samplers; a channel the file may not have (on a node with a matrix, a second one on the same
+// target, a sampler whose times decrease or whose rotations are not unit quaternions) is left
+// out with a warning naming it, one without a node is ignored, as the specification says.
+TEST(SceneImport, AnimationsKeepTheChannelsThatMayDriveANodeAndPoseTheScene) {
+    const std::filesystem::path dir = synthetic_dir(current_test());
+    GltfBuilder builder;
+    const int positions = builder.add_floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int mesh = builder.add_mesh(nlohmann::json::array({{{"attributes", {{"POSITION", positions}}}}}));
+    const int moving = builder.add_node({{"mesh", mesh}});
+    const int fixed = builder.add_node({{"mesh", mesh}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 7, 1}}});
+    const int turning = builder.add_node({{"mesh", mesh}, {"translation", {0, 3, 0}}});
+    builder.set_scene({moving, fixed, turning});
+    const int times = builder.add_floats({0, 1}, "SCALAR");
+    const int decreasing = builder.add_floats({1, 0.5f}, "SCALAR");
+    const int slide = builder.add_floats({0, 0, 0, 4, 0, 0}, "VEC3");
+    const int half_turn = builder.add_floats({0, 0, 0, 1, 0, 0, 1, 0}, "VEC4");
+    const int not_unit = builder.add_floats({0, 0, 0, 2, 0, 0, 0, 1}, "VEC4");
+    auto channel = [](int sampler, std::optional<int> node, const char* path) {
+        nlohmann::json target = {{"path", path}};
+        if (node) target["node"] = *node;
+        return nlohmann::json{{"sampler", sampler}, {"target", target}};
+    };
+    builder.json()["animations"] = nlohmann::json::array({{
+        {"name", "move"},
+        {"samplers",
+         {{{"input", times}, {"output", slide}},
+          {{"input", times}, {"output", half_turn}, {"interpolation", "STEP"}},
+          {{"input", decreasing}, {"output", slide}},
+          {{"input", times}, {"output", not_unit}}}},
+        {"channels",
+         {channel(0, moving, "translation"), channel(1, turning, "rotation"), channel(0, fixed, "translation"),
+          channel(2, turning, "translation"), channel(0, moving, "translation"), channel(3, moving, "rotation"),
+          channel(0, std::nullopt, "translation")}},
+    }});
+    Scene scene = load_ok(builder.write(dir, "animated", Layout::Embedded));
+
+    ASSERT_EQ(scene.animations.size(), 1u);
+    const scene::Animation& animation = scene.animations[0];
+    EXPECT_EQ(animation.name, "move");
+    ASSERT_EQ(animation.channels.size(), 2u);
+    EXPECT_EQ(animation.channels[0].node, static_cast<uint32_t>(moving));
+    EXPECT_EQ(animation.channels[0].property, scene::AnimatedProperty::Translation);
+    EXPECT_EQ(animation.channels[1].node, static_cast<uint32_t>(turning));
+    EXPECT_EQ(animation.channels[1].property, scene::AnimatedProperty::Rotation);
+    ASSERT_EQ(animation.samplers.size(), 2u);
+    EXPECT_EQ(animation.samplers[animation.channels[0].sampler].values, (std::vector<float>{0, 0, 0, 4, 0, 0}));
+    EXPECT_EQ(animation.samplers[animation.channels[1].sampler].interpolation, scene::Interpolation::Step);
+    EXPECT_EQ(animation.duration(), 1.0f);
+    EXPECT_TRUE(scene.nodes[static_cast<std::size_t>(fixed)].has_matrix);
+    EXPECT_EQ(scene.nodes[static_cast<std::size_t>(turning)].translation, glm::vec3(0, 3, 0));
+    auto warned = [&](const std::string& pointer) {
+        return std::any_of(scene.warnings.begin(), scene.warnings.end(),
+                           [&](const std::string& w) { return w.find(": " + pointer + ":") != std::string::npos; });
+    };
+    EXPECT_TRUE(warned("/animations/0/channels/2/target")) << ::testing::PrintToString(scene.warnings);
+    EXPECT_TRUE(warned("/animations/0/samplers/2/input")) << ::testing::PrintToString(scene.warnings);
+    EXPECT_TRUE(warned("/animations/0/channels/0/target")) << ::testing::PrintToString(scene.warnings);  // channel 4's twin
+    EXPECT_TRUE(warned("/animations/0/channels/5/sampler")) << ::testing::PrintToString(scene.warnings);
+
+    // Halfway: the slide is at x = 2; the step rotation still at its first keyframe.
+    const std::vector<uint32_t> moved = scene::pose(scene, animation, 0.5f);
+    ASSERT_EQ(scene.draw_items.size(), 3u);
+    EXPECT_EQ(moved, (std::vector<uint32_t>{0, 2}));
+    EXPECT_EQ(scene.draw_items[0].world[3], glm::vec4(2, 0, 0, 1));
+    EXPECT_EQ(scene.draw_items[1].world[3], glm::vec4(0, 0, 7, 1));
+    EXPECT_EQ(scene.draw_items[2].world, glm::translate(glm::mat4(1.0f), glm::vec3(0, 3, 0)));
+    // At the end the half turn about z: the turning node's x axis points along -x.
+    scene::pose(scene, animation, 1.0f);
+    const glm::vec4 x_axis = scene.draw_items[2].world * glm::vec4(1, 0, 0, 0);
+    EXPECT_NEAR(x_axis.x, -1.0f, 1e-6f);
+    EXPECT_NEAR(x_axis.y, 0.0f, 1e-6f);
+    EXPECT_EQ(scene.draw_items[2].world[3], glm::vec4(0, 3, 0, 1));
 }
 
 }  // namespace

@@ -373,10 +373,33 @@ TEST(SceneModels, CesiumMilkTruckHierarchyAndSharedImage) {
     ASSERT_EQ(scene->textures.size(), 2u);
     EXPECT_EQ(scene->textures[0].image, 0u);
     EXPECT_EQ(scene->textures[1].image, 0u);
-    // The animation is reported, not imported.
-    bool warned = false;
-    for (const std::string& warning : scene->warnings) warned |= warning.find("/animations") != std::string::npos;
-    EXPECT_TRUE(warned);
+    // The wheels' animation: each wheel turns about its axle (z), 31 linear keyframes over 1.25 s.
+    for (const std::string& warning : scene->warnings) EXPECT_EQ(warning.find("/animations"), std::string::npos) << warning;
+    ASSERT_EQ(scene->animations.size(), 1u);
+    const scene::Animation& wheels = scene->animations[0];
+    ASSERT_EQ(wheels.channels.size(), 2u);
+    EXPECT_EQ(wheels.channels[0].node, 4u);
+    EXPECT_EQ(wheels.channels[1].node, 2u);
+    for (const scene::AnimationChannel& channel : wheels.channels) {
+        EXPECT_EQ(channel.property, scene::AnimatedProperty::Rotation);
+        const scene::AnimationSampler& sampler = wheels.samplers.at(channel.sampler);
+        EXPECT_EQ(sampler.times.size(), 31u);
+        EXPECT_EQ(sampler.values.size(), 31u * 4u);
+        EXPECT_EQ(sampler.interpolation, scene::Interpolation::Linear);
+    }
+    EXPECT_EQ(wheels.duration(), 1.25f);
+    // Posed halfway, the wheels (draw items 3 and 4) turn in place; the body does not move.
+    Scene posed = *scene;
+    EXPECT_EQ(scene::pose(posed, wheels, 0.625f), (std::vector<uint32_t>{3, 4}));
+    for (std::size_t i = 0; i < 5; ++i) {
+        EXPECT_EQ(posed.draw_items[i].world[3], scene->draw_items[i].world[3]) << i;
+        if (i < 3) {
+            EXPECT_EQ(posed.draw_items[i].world, scene->draw_items[i].world) << i;
+        }
+    }
+    // Half of the keyframes' turn: far from the file's static pose, about z only.
+    EXPECT_GT(glm::length(posed.draw_items[3].world[0] - scene->draw_items[3].world[0]), 0.5f);
+    EXPECT_EQ(posed.draw_items[3].world[2], scene->draw_items[3].world[2]);
 }
 
 TEST(SceneModels, PackedGeometryReproducesEveryDrawItem) {

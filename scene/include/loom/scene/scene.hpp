@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "loom/scene/animation.hpp"
 #include "loom/scene/bounds.hpp"
 #include "loom/scene/camera.hpp"
 #include "loom/scene/glm.hpp"
@@ -23,6 +24,13 @@ struct Node {
     std::vector<uint32_t> children;
     glm::mat4 local{1.0f};  ///< from `matrix` or translation * rotation * scale
     glm::mat4 world{1.0f};  ///< product of the ancestors' local matrices and this one
+    /// The node's transform as glTF gives it, which animations drive: `local` is
+    /// trs_matrix(translation, rotation, scale) unless the file gives a matrix (`has_matrix`;
+    /// such a node is not animated).
+    glm::vec3 translation{0.0f};
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+    glm::vec3 scale{1.0f};
+    bool has_matrix = false;
     std::optional<uint32_t> mesh;    ///< index into Scene::meshes
     std::optional<uint32_t> camera;  ///< index of the glTF camera (not of Scene::cameras)
 };
@@ -55,6 +63,10 @@ struct Scene {
     std::vector<DrawItem> draw_items;  ///< the displayed glTF scene, flattened, in traversal order
     std::vector<Camera> cameras;       ///< camera instances of the displayed scene (node order)
     Bounds bounds;                       ///< world bounds of all draw items
+    /// The file's animations, in file order, with the channels that drive a node's translation,
+    /// rotation or scale (pose() plays them); channels the importer cannot play are left out
+    /// with a warning.
+    std::vector<Animation> animations;
     /// Non-fatal problems found while importing (also logged through loom::log at Warning).
     std::vector<std::string> warnings;
 
@@ -62,5 +74,24 @@ struct Scene {
     [[nodiscard]] uint64_t vertex_count() const;
     [[nodiscard]] uint64_t index_count() const;
 };
+
+/// translation * rotation * scale, as glTF composes a node's local matrix.
+glm::mat4 trs_matrix(const glm::vec3& translation, const glm::quat& rotation, const glm::vec3& scale);
+
+/// Transforms normals by `world`: the cofactor matrix of its upper 3x3 times the sign of its
+/// determinant (proportional to the inverse transpose by a positive factor, and defined for
+/// singular matrices too). `flips_winding`: the determinant is negative.
+glm::mat3 normal_matrix(const glm::mat4& world, bool& flips_winding);
+
+/// Places `item` at its node's world matrix: its world and normal matrices, winding and the
+/// exact bounds of its transformed vertex positions.
+void place_draw_item(DrawItem& item, const Node& node, const Primitive& primitive);
+
+/// Sets the translations, rotations and scales `animation` drives to their values at `time`
+/// (seconds; before the first keyframe the first value, after the last the last), then the
+/// local and world matrices of the nodes, the draw items whose node moved and the scene's
+/// bounds. Returns the indices of the draw items that moved, in order: what a renderer must
+/// upload again. Channels must name nodes of `scene` without a matrix (the importer's are).
+std::vector<uint32_t> pose(Scene& scene, const Animation& animation, float time);
 
 }  // namespace loom::scene
