@@ -5,9 +5,11 @@
 // scene is the built-in procedural one or a glTF file (--scene FILE).
 #include <algorithm>
 #include <cinttypes>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <fstream>
 #include <filesystem>
 #include <map>
@@ -51,6 +53,8 @@ struct Options {
     /// A glTF file; empty: the built-in scene.
     std::filesystem::path scene;
     std::optional<uint32_t> camera;
+    /// --time SECONDS: the file's animations posed at that time (scene::pose); none: the static pose.
+    std::optional<float> time;
     /// --soak N: frames of the soak run (0: no soak run).
     uint64_t soak = 0;
     uint32_t resize_every = 100;
@@ -77,6 +81,8 @@ std::string extra_help() {
            "                        resources and it needs fewer bytes, as on Vulkan; interval otherwise, as on GL)\n"
            "  --scene FILE|builtin  a glTF 2.0 file (.gltf, .glb), or the built-in procedural scene (the default)\n"
            "  --camera N            the file's camera N (default: its first camera, or one framing the scene)\n"
+           "  --time SECONDS        pose the file's animations at SECONDS (each in file order; default: the\n"
+           "                        file's static pose)\n"
            "  --order NAME          pass order: memory (the default: the lowest peak of live bytes) or\n"
            "                        declared; the same pictures\n"
            "  --pipeline NAME       deferred (Figure 2, the default) or forward (one forward pass with the\n"
@@ -181,6 +187,16 @@ loom::Result<Options> parse(int argc, char** argv) {
                 return loom::make_error(loom::ErrorCode::InvalidArgument, "--camera expects a camera index, got '" + *v + "'");
             }
             options.camera = static_cast<uint32_t>(n);
+        } else if (name == "--time") {
+            auto v = take();
+            if (!v) return v.take_error();
+            char* end = nullptr;
+            const float seconds = std::strtof(v->c_str(), &end);
+            if (v->empty() || *end != '\0' || !std::isfinite(seconds) || seconds < 0.0f) {
+                return loom::make_error(loom::ErrorCode::InvalidArgument,
+                                        "--time expects seconds (a number, 0 or more), got '" + *v + "'");
+            }
+            options.time = seconds;
         } else {
             return args.unknown();
         }
@@ -197,6 +213,9 @@ loom::Result<Options> parse(int argc, char** argv) {
     }
     if (options.camera && options.scene.empty()) {
         return loom::make_error(loom::ErrorCode::InvalidArgument, "--camera needs a glTF scene (--scene FILE)");
+    }
+    if (options.time && options.scene.empty()) {
+        return loom::make_error(loom::ErrorCode::InvalidArgument, "--time needs a glTF scene (--scene FILE)");
     }
     if (options.soak != 0) {
         if (options.common.window) {
@@ -257,16 +276,26 @@ loom::Result<std::unique_ptr<loom::renderer::DeferredPipeline>> load_pipeline(lo
         scene_line = "scene: builtin (procedural)";
         return deferred::create_procedural_pipeline(device, deferred::procedural_scene(), settings);
     }
-    auto prepared = renderer::load_gltf_scene(options.scene);
-    if (!prepared) return prepared.take_error();
-    const scene::Scene& scene = (*prepared)->scene;
+    auto loaded = renderer::load_gltf_scene(options.scene);
+    if (!loaded) return loaded.take_error();
+    std::shared_ptr<const renderer::PreparedScene> prepared = *loaded;
+    std::string pose_line;
+    if (options.time) {
+        // The geometry and images stay; the nodes and draw items move.
+        auto posed = std::make_shared<renderer::PreparedScene>(*prepared);
+        for (const scene::Animation& animation : posed->scene.animations) scene::pose(posed->scene, animation, *options.time);
+        pose_line = "; posed at " + std::to_string(*options.time) + " s (" +
+                    std::to_string(posed->scene.animations.size()) + " animation(s))";
+        prepared = std::move(posed);
+    }
+    const scene::Scene& scene = prepared->scene;
     auto viewpoint = renderer::SceneViewpoint::choose(scene, options.camera);
     if (!viewpoint) return viewpoint.take_error();
-    auto gpu = renderer::GpuScene::create(device, *prepared);
+    auto gpu = renderer::GpuScene::create(device, prepared);
     if (!gpu) return gpu.take_error();
     renderer::PipelineScene content = renderer::gltf_pipeline_scene(*gpu, *viewpoint);
     scene_line = "scene: " + options.scene.string() + ": " + renderer::describe_gltf_scene(scene, content, *viewpoint) +
-                 "; textures with mipmaps: " + fg::format_bytes((*gpu)->texture_bytes());
+                 "; textures with mipmaps: " + fg::format_bytes((*gpu)->texture_bytes()) + pose_line;
     for (const std::string& warning : scene.warnings) scene_line += "\n  warning: " + warning;
     return renderer::DeferredPipeline::create(device, std::move(content), settings);
 }

@@ -406,6 +406,32 @@ TEST(DeferredOnData, RendersAModelOnEveryBackendWithTheSamePlan) {
     }
 }
 
+// --time poses the file's animations: CesiumMilkTruck's wheels turn, so the picture changes.
+TEST(DeferredOnData, PosesTheFilesAnimationsAtTheTimeAsked) {
+    LOOM_REQUIRE_DATA_DIR(data);
+    const std::filesystem::path model = data / "gltf" / "CesiumMilkTruck" / "glTF" / "CesiumMilkTruck.gltf";
+    const std::string backend(rhi::backend_name(backends_under_test().front()));
+    const std::filesystem::path dir = output_dir() / "compare" / "deferred_time";
+    std::filesystem::remove_all(dir);
+    std::vector<rhi::Image> pictures;
+    for (const std::string& time : std::vector<std::string>{"", " --time 0.625"}) {
+        const std::filesystem::path out = dir / (time.empty() ? "static" : "posed");
+        const int status = run(LOOM_DEFERRED_EXE, "--backend " + backend + " --size 160x90 --scene \"" + model.string() +
+                                                      "\"" + time + " --out \"" + out.string() + "\"",
+                               out / "stdout.txt", out / "stderr.txt");
+        const std::string output = read_file(out / "stdout.txt") + read_file(out / "stderr.txt");
+        ASSERT_EQ(status, 0) << output;
+        EXPECT_EQ(output.find("[warning]"), std::string::npos) << output;
+        EXPECT_EQ(output.find("posed at 0.625000 s (1 animation(s))") != std::string::npos, !time.empty()) << output;
+        auto picture = image_io::read_png(out / "final.png");
+        ASSERT_TRUE(picture.ok()) << picture.error().to_string();
+        pictures.push_back(std::move(*picture));
+    }
+    auto change = rhi::compare_images(pictures[0], pictures[1], {0.0, false});
+    ASSERT_TRUE(change.ok()) << change.error().to_string();
+    EXPECT_GT(change->pixels_above_threshold, 10u) << change->summary();
+}
+
 TEST(DeferredOnData, RejectsAMissingFileACameraItDoesNotHaveAndAnInvalidFile) {
     LOOM_REQUIRE_DATA_DIR(data);
     const std::filesystem::path dir = output_dir() / "compare" / "deferred_errors";
@@ -419,6 +445,9 @@ TEST(DeferredOnData, RejectsAMissingFileACameraItDoesNotHaveAndAnInvalidFile) {
          "camera 3 does not exist (the scene has 0 camera(s))"},
         {"--scene \"" + (data / "gltf" / "invalid" / "node" / "node_loop.gltf").string() + "\"", "node_loop.gltf"},
         {"--camera 1", "--camera needs a glTF scene"},
+        {"--time 1", "--time needs a glTF scene"},
+        {"--scene \"" + (data / "gltf" / "Box" / "glTF" / "Box.gltf").string() + "\" --time -1",
+         "--time expects seconds (a number, 0 or more), got '-1'"},
     };
     for (const Case& c : cases) {
         const int status = run(LOOM_DEFERRED_EXE, c.arguments + " --size 64x36 --out \"" + (dir / "out").string() + "\"",
