@@ -379,8 +379,9 @@ private:
         return true;
     }
 
-    // Makes the move best_sequence_ (from position `first` on, best_movers_ moved): positions
-    // and live bytes change there only, last users only for the moved passes' resources.
+    // Makes the move best_sequence_ (from position `first` on, best_movers_ moved), whose peak
+    // evaluate() found to be `best_peak`: positions and live bytes change there only, last
+    // users only for the moved passes' resources.
     void apply(uint32_t first, uint64_t best_peak) {
         std::copy(best_sequence_.begin(), best_sequence_.end(), order_.begin() + first);
         for (uint32_t k = 0; k < best_sequence_.size(); ++k) position_[best_sequence_[k]] = first + k;
