@@ -147,11 +147,7 @@ TEST(AnimationOnData, CesiumMilkTruckPosedHalfwayTurnsItsWheelsAlikeOnEveryBacke
     std::vector<rhi::Image> posed_pictures;
     for (const rhi::Backend backend : backends_under_test()) {
         SCOPED_TRACE(rhi::backend_name(backend));
-        rhi::DeviceDesc desc;
-        desc.backend = backend;
-        desc.headless = true;
-        desc.debug = true;
-        auto device = rhi::create_device(desc);
+        auto device = create_test_device(backend);
         ASSERT_TRUE(device.ok()) << device.error().to_string();
         auto still = render_gltf(**device, *loaded, false, 160, 120);
         auto moved = render_gltf(**device, posed, false, 160, 120);

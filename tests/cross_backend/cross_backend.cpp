@@ -23,11 +23,7 @@ void CrossBackendTest::SetUp() {
     std::string why_not;
     if (!both_backends_available(why_not)) GTEST_SKIP() << why_not;
     for (rhi::Backend backend : {rhi::Backend::OpenGL, rhi::Backend::Vulkan}) {
-        rhi::DeviceDesc desc;
-        desc.backend = backend;
-        desc.headless = true;
-        desc.debug = true;
-        auto device = rhi::create_device(desc);
+        auto device = create_test_device(backend);
         ASSERT_TRUE(device.ok()) << device.error().to_string();
         (backend == rhi::Backend::OpenGL ? gl_ : vulkan_) = std::move(*device);
     }

@@ -47,7 +47,7 @@ TEST(FlagshipCrossBackend, EveryTextureAndThePlanMatch) {
     FlagshipFrame frames[2];
     const rhi::Backend backends[2] = {rhi::Backend::OpenGL, rhi::Backend::Vulkan};
     for (int i = 0; i < 2; ++i) {
-        auto device = make_device(backends[i]);
+        auto device = create_test_device(backends[i]);
         ASSERT_TRUE(device.ok()) << device.error().to_string();
         auto frame = render_flagship(**device, 320, 180);
         ASSERT_TRUE(frame.ok()) << rhi::backend_name(backends[i]) << ": " << frame.error().to_string();

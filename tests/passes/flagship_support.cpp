@@ -2,14 +2,6 @@
 
 namespace loom::test {
 
-Result<std::unique_ptr<rhi::Device>> make_device(rhi::Backend backend) {
-    rhi::DeviceDesc desc;
-    desc.backend = backend;
-    desc.headless = true;
-    desc.debug = true;
-    return rhi::create_device(desc);
-}
-
 Result<std::map<std::string, rhi::Image>> read_back(rhi::Device& device, const renderer::DeferredPipeline& pipeline) {
     std::map<std::string, rhi::Image> images;
     for (const renderer::Intermediate& intermediate : pipeline.intermediates()) {

@@ -22,9 +22,6 @@ struct FlagshipFrame {
     std::map<std::string, rhi::Image> images;
 };
 
-/// A device of `backend` with API validation on.
-Result<std::unique_ptr<rhi::Device>> make_device(rhi::Backend backend);
-
 /// Renders `frames` frames of the built-in scene at `width` x `height` and reads everything back.
 Result<FlagshipFrame> render_flagship(rhi::Device& device, uint32_t width, uint32_t height,
                                       const renderer::PipelineSettings& settings = {}, uint32_t frames = 1);

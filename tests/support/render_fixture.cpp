@@ -27,12 +27,16 @@ std::string BackendParamName::operator()(const ::testing::TestParamInfo<rhi::Bac
     return std::string(rhi::backend_name(info.param));
 }
 
-void RenderTest::SetUp() {
+Result<std::unique_ptr<rhi::Device>> create_test_device(rhi::Backend backend) {
     rhi::DeviceDesc desc;
-    desc.backend = GetParam();
+    desc.backend = backend;
     desc.headless = true;
     desc.debug = true;
-    auto device = rhi::create_device(desc);
+    return rhi::create_device(desc);
+}
+
+void RenderTest::SetUp() {
+    auto device = create_test_device(GetParam());
     ASSERT_TRUE(device.ok()) << device.error().to_string();
     device_ = std::move(*device);
 }

@@ -18,6 +18,9 @@ namespace loom::test {
 /// Backends compiled in, filtered by $LOOM_TEST_BACKENDS when set.
 std::vector<rhi::Backend> backends_under_test();
 
+/// A headless device of `backend` with API debug output on, as every render test gets.
+Result<std::unique_ptr<rhi::Device>> create_test_device(rhi::Backend backend);
+
 /// Names parameterised tests "gl" / "vulkan".
 struct BackendParamName {
     std::string operator()(const ::testing::TestParamInfo<rhi::Backend>& info) const;
