@@ -695,20 +695,17 @@ std::vector<uint32_t> memory_order(const OrderProblem& problem, OrderCost* decla
     const uint32_t n = problem.pass_count();
     std::vector<uint32_t> declared(n);
     std::iota(declared.begin(), declared.end(), 0u);
-    if (n < 2) {
-        if (declared_cost) *declared_cost = order_cost(problem, declared);
-        return declared;
-    }
+    const OrderCost declared_order_cost = order_cost(problem, declared);
+    if (declared_cost) *declared_cost = declared_order_cost;
+    if (n < 2) return declared;
     const PassResources index = index_resources(problem);
     const uint64_t budget = kBaseWork + kWorkPerPass * (uint64_t{n} + index.user_count);
     const uint32_t radius = std::min(n, kRadius);
 
     // The starts by cost, the declared order first among equals, so that an order changes only
     // for a lower cost; the best is improved (every one in small graphs).
-    const OrderCost declared_order_cost = order_cost(problem, declared);
     std::vector<Start> starts{{declared, declared_order_cost}, greedy_forward(problem, index),
                               greedy_backward(problem, index)};
-    if (declared_cost) *declared_cost = declared_order_cost;
     std::vector<uint32_t> by_cost{0, 1, 2};
     std::stable_sort(by_cost.begin(), by_cost.end(),
                      [&](uint32_t a, uint32_t b) { return starts[a].cost < starts[b].cost; });

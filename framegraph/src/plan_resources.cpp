@@ -268,6 +268,20 @@ Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Exten
     return {};
 }
 
+// The running ports of resources put in another order into `out`: its resource k's are
+// resource by[k]'s of (`first`, `ports`) (laid out as ResolvedResources::running_ports).
+void permute_running_ports(std::span<const uint32_t> by, const std::vector<uint32_t>& first,
+                           const std::vector<PortAddress>& ports, ResolvedResources& out) {
+    out.running_ports.resize(ports.size());
+    out.first_running_port.assign(by.size() + 1, 0);
+    for (std::size_t k = 0; k < by.size(); ++k) {
+        const uint32_t i = by[k];
+        const uint32_t begin = out.first_running_port[k];
+        std::copy(ports.begin() + first[i], ports.begin() + first[i + 1], out.running_ports.begin() + begin);
+        out.first_running_port[k + 1] = begin + first[i + 1] - first[i];
+    }
+}
+
 // The resources of the groups given one by one in group order (resolve_resources): each made
 // in place in one array, with its starting port and its running ports one after another in
 // `kept_` (resource i's are kept_[first_kept_[i], first_kept_[i + 1])), then numbered in order
@@ -333,17 +347,11 @@ public:
         } else {
             resolved.resources.reserve(count);
             resolved.starts.reserve(count);
-            resolved.running_ports.resize(kept_.size());
-            resolved.first_running_port.resize(count + 1);
-            for (uint32_t r = 0; r < count; ++r) {
-                const uint32_t i = by_start[r];
+            for (uint32_t i : by_start) {
                 resolved.resources.push_back(std::move(resources_[i]));
                 resolved.starts.push_back(starts_[i]);
-                const uint32_t first = resolved.first_running_port[r];
-                std::copy(kept_.begin() + first_kept_[i], kept_.begin() + first_kept_[i + 1],
-                          resolved.running_ports.begin() + first);
-                resolved.first_running_port[r + 1] = first + first_kept_[i + 1] - first_kept_[i];
             }
+            permute_running_ports(by_start, first_kept_, kept_, resolved);
         }
         for (uint32_t r = 0; r < count; ++r) {
             for (const PortAddress& address : resolved.running_ports_of(r)) {
@@ -551,20 +559,15 @@ ResolvedResources reorder_resources(const ResolvedResources& resolved, const Sch
     ResolvedResources out;
     out.resources.reserve(resource_count);
     out.starts.reserve(resource_count);
-    out.running_ports.resize(resolved.running_ports.size());
-    out.first_running_port.resize(resource_count + 1);
-    for (uint32_t k = 0; k < resource_count; ++k) {
-        const uint32_t r = by_start[k];
+    for (uint32_t r : by_start) {
         // PlanResource::ports is not named yet (name_resource_ports), so no string but the
         // resource's name is copied.
         PlanResource& resource = out.resources.emplace_back(resolved.resources[r]);
         resource.lifetime = {position[resolved.starts[r].pass], resource.graph_output ? last_position : last[r]};
         resource.occupancy = resource.lifetime;
         out.starts.push_back(resolved.starts[r]);
-        const std::span<const PortAddress> ports = resolved.running_ports_of(r);
-        std::copy(ports.begin(), ports.end(), out.running_ports.begin() + out.first_running_port[k]);
-        out.first_running_port[k + 1] = out.first_running_port[k] + static_cast<uint32_t>(ports.size());
     }
+    permute_running_ports(by_start, resolved.first_running_port, resolved.running_ports, out);
     out.resource_of_port = resolved.resource_of_port;
     for (uint32_t& r : out.resource_of_port.values()) {
         if (r != kNoResource) r = renumbered[r];
