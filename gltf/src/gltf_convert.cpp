@@ -827,21 +827,10 @@ private:
                 scene_.nodes[child].parent = static_cast<uint32_t>(n);
             }
         }
-        // World matrices top-down from the roots, without recursion (hierarchies can be deep).
-        std::vector<uint32_t> stack;
-        std::size_t visited = 0;
-        for (std::size_t n = 0; n < count; ++n) {
-            if (!scene_.nodes[n].parent) stack.push_back(static_cast<uint32_t>(n));
+        std::vector<bool> every_node(count, true);
+        if (update_world_matrices(scene_.nodes, every_node) != count) {
+            return error(JsonPointer{} / "nodes", "the node hierarchy has a cycle");
         }
-        while (!stack.empty()) {
-            const uint32_t n = stack.back();
-            stack.pop_back();
-            ++visited;
-            Node& node = scene_.nodes[n];
-            node.world = node.parent ? scene_.nodes[*node.parent].world * node.local : node.local;
-            for (const uint32_t child : node.children) stack.push_back(child);
-        }
-        if (visited != count) return error(JsonPointer{} / "nodes", "the node hierarchy has a cycle");
         return {};
     }
 

@@ -45,6 +45,25 @@ glm::mat3 normal_matrix(const glm::mat4& world, bool& flips_winding) {
     return cofactor;
 }
 
+std::size_t update_world_matrices(std::vector<Node>& nodes, std::vector<bool>& moved) {
+    // Without recursion: hierarchies can be deep.
+    std::vector<uint32_t> stack;
+    for (uint32_t n = 0; n < nodes.size(); ++n) {
+        if (!nodes[n].parent) stack.push_back(n);
+    }
+    std::size_t reached = 0;
+    while (!stack.empty()) {
+        const uint32_t n = stack.back();
+        stack.pop_back();
+        ++reached;
+        Node& node = nodes[n];
+        if (node.parent && moved[*node.parent]) moved[n] = true;
+        if (moved[n]) node.world = node.parent ? nodes[*node.parent].world * node.local : node.local;
+        for (const uint32_t child : node.children) stack.push_back(child);
+    }
+    return reached;
+}
+
 void place_draw_item(DrawItem& item, const Node& node, const Primitive& primitive) {
     item.world = node.world;
     item.normal_matrix = normal_matrix(node.world, item.flips_winding);
@@ -77,19 +96,7 @@ std::vector<uint32_t> pose(Scene& scene, const Animation& animation, float time)
         Node& node = scene.nodes[n];
         if (moved[n] && !node.has_matrix) node.local = trs_matrix(node.translation, node.rotation, node.scale);
     }
-    // World matrices top-down from the roots: a node moves when it or an ancestor does.
-    std::vector<uint32_t> stack;
-    for (uint32_t n = 0; n < scene.nodes.size(); ++n) {
-        if (!scene.nodes[n].parent) stack.push_back(n);
-    }
-    while (!stack.empty()) {
-        const uint32_t n = stack.back();
-        stack.pop_back();
-        Node& node = scene.nodes[n];
-        if (node.parent && moved[*node.parent]) moved[n] = true;
-        if (moved[n]) node.world = node.parent ? scene.nodes[*node.parent].world * node.local : node.local;
-        for (const uint32_t child : node.children) stack.push_back(child);
-    }
+    update_world_matrices(scene.nodes, moved);  // a node moves when it or an ancestor does
     std::vector<uint32_t> moved_items;
     for (uint32_t i = 0; i < scene.draw_items.size(); ++i) {
         DrawItem& item = scene.draw_items[i];

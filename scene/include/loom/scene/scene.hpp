@@ -3,6 +3,7 @@
 // resolved — meshes in one vertex layout, materials, decoded images, samplers, cameras, and a
 // flat list of draw items (primitive + world matrix + material) with their bounds.
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -82,6 +83,11 @@ glm::mat4 trs_matrix(const glm::vec3& translation, const glm::quat& rotation, co
 /// determinant (proportional to the inverse transpose by a positive factor, and defined for
 /// singular matrices too). `flips_winding`: the determinant is negative.
 glm::mat3 normal_matrix(const glm::mat4& world, bool& flips_winding);
+
+/// World matrices top-down from the roots (parent's world times local): of the nodes `moved`
+/// marks and of their descendants, which it marks too (all true: every node). Returns how many
+/// nodes the roots reach: fewer than nodes.size() when the hierarchy has a cycle.
+std::size_t update_world_matrices(std::vector<Node>& nodes, std::vector<bool>& moved);
 
 /// Places `item` at its node's world matrix: its world and normal matrices, winding and the
 /// exact bounds of its transformed vertex positions.
