@@ -5,6 +5,7 @@
 
 #include "loom/passes/parts.hpp"
 #include "loom/passes/program.hpp"
+#include "loom/passes/retained_mesh.hpp"
 #include "loom/passes/shader_pass.hpp"
 
 namespace loom::passes {
@@ -117,8 +118,10 @@ rhi::RasterState MeshObject::raster() const {
 Status MeshObject::render(DrawContext& context) const {
     if (!mesh_) return make_error(ErrorCode::InvalidState, "mesh object '" + name_ + "' has no mesh");
     ObjectUniforms uniforms;
-    uniforms.model = model_;
-    uniforms.normal_matrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(model_))));
+    // The record a RetainedScene uploads for the same matrix: both paths give the same bits.
+    const ObjectRecord record = object_record(model_);
+    uniforms.model = record.model;
+    uniforms.normal_matrix = record.normal_matrix;
     uniforms.surface = mesh_surface_uniforms(surface_);
     Bindings object_set(context.program, context.commands, kObjectSet);
     LOOM_TRY(object_set.uniforms("ObjectUniforms", uniforms).bind());

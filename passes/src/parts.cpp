@@ -75,6 +75,9 @@ constexpr PartDesc kParts[] = {
     {"checker-material", 0, {}, "loom/parts/checker_material.frag.glsl", nullptr},
     {"retained-mesh", 2, "loom/parts/retained_mesh.vert.glsl", "loom/parts/retained_mesh.frag.glsl", nullptr},
     {"gltf-geometry", 1, "loom/parts/gltf_geometry.vert.glsl", "loom/parts/gltf_geometry.frag.glsl", nullptr},
+    // "gltf-geometry" for a RetainedScene: the record buffer and the material's set.
+    {"retained-gltf-geometry", 2, "loom/parts/retained_gltf_geometry.vert.glsl",
+     "loom/parts/retained_gltf_geometry.frag.glsl", nullptr},
     // One sampler per glTF texture (kSamplers in renderer/src/gltf_object.cpp).
     {"gltf-material", 5, {}, "loom/parts/gltf_material.frag.glsl", nullptr},
 };

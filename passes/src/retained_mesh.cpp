@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "loom/passes/parts.hpp"
+#include "loom/scene/scene.hpp"
 
 namespace loom::passes {
 namespace {
@@ -18,8 +19,11 @@ std::shared_ptr<const ObjectKind> retained_kind(std::string name, std::string_vi
 }  // namespace
 
 ObjectRecord object_record(const glm::mat4& model) {
-    // The same expressions as MeshObject::render, so both paths upload the same bits.
-    return ObjectRecord{model, glm::mat4(glm::transpose(glm::inverse(glm::mat3(model))))};
+    // MeshObject::render and loom::renderer's GltfObject upload the same bits. The cofactor
+    // matrix (scene::normal_matrix) rather than the inverse transpose: the same direction, and
+    // defined for singular matrices too (a node scaled flat, or to 0 by an animation).
+    bool flips_winding = false;
+    return ObjectRecord{model, glm::mat4(scene::normal_matrix(model, flips_winding))};
 }
 
 rhi::VertexBufferLayout object_index_layout() {

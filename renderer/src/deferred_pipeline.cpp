@@ -46,7 +46,7 @@ Status DeferredPipeline::build() {
     auto shadow = add_pass(graph_, std::make_unique<passes::ShadowMapPass>(config, settings_.shadow_map_size), passes_);
     if (!shadow) return shadow.take_error();
     shadow_ = *shadow;
-    if (!scene_.masked_shadow_casters.empty()) {
+    if (!scene_.masked_shadow_casters.empty() || (scene_.retained && scene_.retained_masked_shadows)) {
         auto masked = add_pass(graph_, std::make_unique<renderer::MaskedShadowPass>(config), passes_);
         if (!masked) return masked.take_error();
         masked_shadow_ = *masked;
@@ -139,9 +139,18 @@ Status DeferredPipeline::build() {
     for (const auto& object : scene_.shadow_casters) LOOM_TRY(passes::register_object(*shadow_, object));
     for (const auto& object : scene_.masked_shadow_casters) LOOM_TRY(passes::register_object(*masked_shadow_, object));
     for (const auto& object : scene_.opaque) LOOM_TRY(passes::register_object(lit_pass, object));
+    if (scene_.retained) {
+        LOOM_TRY(scene_.retained->attach(*shadow_));
+        if (masked_shadow_) LOOM_TRY(scene_.retained->attach(*masked_shadow_));
+        LOOM_TRY(scene_.retained->attach(lit_pass));
+    }
     if (transparent_) {
         for (const BlendedObject& blended_object : scene_.blended) {
-            LOOM_TRY(transparent_->register_object(blended_object.object, blended_object.bounds));
+            if (blended_object.moving_bounds) {
+                LOOM_TRY(transparent_->register_object(blended_object.object, blended_object.moving_bounds));
+            } else {
+                LOOM_TRY(transparent_->register_object(blended_object.object, blended_object.bounds));
+            }
         }
     }
     return {};

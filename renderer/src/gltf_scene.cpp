@@ -11,22 +11,33 @@ Result<std::shared_ptr<const renderer::PreparedScene>> load_gltf_scene(const std
 }
 
 PipelineScene gltf_pipeline_scene(const std::shared_ptr<const renderer::GpuScene>& gpu,
-                                  const renderer::SceneViewpoint& viewpoint) {
-    const renderer::SceneObjects objects = renderer::make_scene_objects(gpu);
-    PipelineScene scene;
-    scene.name = gpu->scene().source;
+                                  const renderer::SceneViewpoint& viewpoint,
+                                  std::shared_ptr<const scene::Scene> placements) {
+    const renderer::SceneObjects objects = renderer::make_scene_objects(gpu, placements);
+    PipelineScene scene = gltf_view(gpu->scene(), viewpoint, objects.bounds);
     for (const auto& object : objects.opaque) {
         // Cut-out surfaces cast cut-out shadows: through the masked shadow pass.
         (object->alpha_mode() == scene::AlphaMode::Mask ? scene.masked_shadow_casters : scene.shadow_casters).push_back(object);
         scene.opaque.push_back(object);
     }
-    for (const auto& object : objects.blended) scene.blended.push_back(BlendedObject{object, object->world_bounds()});
-    scene.camera = [viewpoint](float aspect) { return viewpoint.camera(aspect); };
-    // The camera's orientation does not depend on the aspect ratio; only its distance may.
-    scene.light = renderer::viewer_sun(viewpoint.camera(1.0f));
-    scene.bounds = objects.bounds;
-    scene.shadow_bounds = objects.bounds;
+    for (const auto& object : objects.blended) {
+        BlendedObject blended{object, object->world_bounds(), nullptr};
+        // The object reads the posed scene it keeps alive.
+        if (placements) blended.moving_bounds = [object] { return object->world_bounds(); };
+        scene.blended.push_back(std::move(blended));
+    }
     return scene;
+}
+
+PipelineScene gltf_view(const scene::Scene& scene, const renderer::SceneViewpoint& viewpoint, const scene::Bounds& bounds) {
+    PipelineScene view;
+    view.name = scene.source;
+    view.camera = [viewpoint](float aspect) { return viewpoint.camera(aspect); };
+    // The camera's orientation does not depend on the aspect ratio; only its distance may.
+    view.light = renderer::viewer_sun(viewpoint.camera(1.0f));
+    view.bounds = bounds;
+    view.shadow_bounds = bounds;
+    return view;
 }
 
 std::string describe_gltf_scene(const scene::Scene& scene, const PipelineScene& content,

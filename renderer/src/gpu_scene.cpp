@@ -16,9 +16,10 @@ std::shared_ptr<const PreparedScene> prepare_scene(scene::Scene scene) {
     return prepared;
 }
 
-Result<std::shared_ptr<GpuScene>> GpuScene::create(rhi::Device& device, std::shared_ptr<const PreparedScene> prepared) {
+Result<std::shared_ptr<GpuScene>> GpuScene::create(rhi::Device& device, std::shared_ptr<const PreparedScene> prepared,
+                                                   GpuSceneContent content) {
     std::shared_ptr<GpuScene> gpu(new GpuScene(device, std::move(prepared)));
-    LOOM_TRY(gpu->upload());
+    LOOM_TRY(gpu->upload(content));
     return gpu;
 }
 
@@ -54,10 +55,10 @@ Result<rhi::TextureHandle> GpuScene::upload_image(const std::vector<rhi::Image>&
     return *texture;
 }
 
-Status GpuScene::upload() {
+Status GpuScene::upload(GpuSceneContent content) {
     const scene::PackedGeometry& geometry = prepared_->geometry;
     const std::string& source = prepared_->scene.source;
-    if (!geometry.vertices.empty() && !geometry.indices.empty()) {
+    if (content == GpuSceneContent::All && !geometry.vertices.empty() && !geometry.indices.empty()) {
         rhi::BufferDesc vertices{source + " vertices", std::span(geometry.vertices).size_bytes(), rhi::BufferUsage::Vertex};
         auto vertex_buffer = device_->create_buffer(vertices);
         if (!vertex_buffer) return vertex_buffer.take_error();

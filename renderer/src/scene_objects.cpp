@@ -7,14 +7,15 @@
 
 namespace loom::renderer {
 
-SceneObjects make_scene_objects(std::shared_ptr<const GpuScene> gpu) {
+SceneObjects make_scene_objects(std::shared_ptr<const GpuScene> gpu, std::shared_ptr<const scene::Scene> placements) {
     SceneObjects objects;
     objects.gpu = gpu;
-    const scene::Scene& scene = gpu->scene();
+    if (!placements) placements = std::shared_ptr<const scene::Scene>(gpu, &gpu->scene());
+    const scene::Scene& scene = *placements;
     scene::Bounds bounds;
     for (uint32_t i = 0; i < scene.draw_items.size(); ++i) {
         if (gpu->prepared().geometry.range(scene.draw_items[i]).index_count == 0) continue;
-        auto object = std::make_shared<const GltfObject>(gpu, i);
+        auto object = std::make_shared<const GltfObject>(gpu, placements, i);
         bounds.extend(scene.draw_items[i].world_bounds);
         (object->alpha_mode() == scene::AlphaMode::Blend ? objects.blended : objects.opaque).push_back(std::move(object));
     }

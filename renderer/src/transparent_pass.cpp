@@ -39,8 +39,18 @@ TransparentPass::TransparentPass(const passes::PassConfig& config, passes::Light
 }
 
 Status TransparentPass::register_object(std::shared_ptr<const passes::Object> object, const scene::Bounds& world_bounds) {
+    return register_object(std::move(object), [world_bounds] { return world_bounds; });
+}
+
+Status TransparentPass::register_object(std::shared_ptr<const passes::Object> object,
+                                        std::function<scene::Bounds()> world_bounds) {
+    if (!world_bounds) {
+        return make_error(ErrorCode::InvalidArgument, "pass '" + name() + "': object '" +
+                                                          (object ? object->name() : std::string("(none)")) +
+                                                          "' has no function for its world bounds");
+    }
     LOOM_TRY(ShaderPass::register_object(std::move(object)));
-    centres_.push_back((world_bounds.min + world_bounds.max) * 0.5f);
+    bounds_.push_back(std::move(world_bounds));
     return {};
 }
 
@@ -52,7 +62,7 @@ Status TransparentPass::register_object(std::shared_ptr<const passes::Object> ob
 
 void TransparentPass::clear_objects() {
     ShaderPass::clear_objects();
-    centres_.clear();
+    bounds_.clear();
     last_order_.clear();
 }
 
@@ -61,8 +71,12 @@ std::vector<std::size_t> TransparentPass::sorted() const {
     std::iota(order.begin(), order.end(), std::size_t{0});
     // View-space z grows towards the eye: the smallest is the farthest.
     const glm::mat4& view = view_.camera.view;
-    auto depth = [&](std::size_t i) { return (view * glm::vec4(centres_[i], 1.0f)).z; };
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return depth(a) < depth(b); });
+    std::vector<float> depths(order.size());
+    for (std::size_t i = 0; i < depths.size(); ++i) {
+        const scene::Bounds bounds = bounds_[i]();
+        depths[i] = (view * glm::vec4((bounds.min + bounds.max) * 0.5f, 1.0f)).z;
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return depths[a] < depths[b]; });
     return order;
 }
 
@@ -73,9 +87,9 @@ std::vector<std::string> TransparentPass::draw_order() const {
 }
 
 Status TransparentPass::execute(fg::PassContext& context) {
-    if (centres_.size() != objects().size()) {
+    if (bounds_.size() != objects().size()) {
         return make_error(ErrorCode::InvalidState, "pass '" + name() + "': " + std::to_string(objects().size()) +
-                                                       " objects but " + std::to_string(centres_.size()) +
+                                                       " objects but " + std::to_string(bounds_.size()) +
                                                        " bounds (objects cleared through ShaderPass)");
     }
     std::vector<std::string> colors{"color"};

@@ -27,6 +27,7 @@
 #include "loom/sample_common/options.hpp"
 #include "loom/sample_common/output.hpp"
 #include "inspect_input.hpp"
+#include "animation_playback.hpp"
 #include "deferred_controls.hpp"
 #include "procedural_scene.hpp"
 #include "soak.hpp"
@@ -55,6 +56,8 @@ struct Options {
     std::optional<uint32_t> camera;
     /// --time SECONDS: the file's animations posed at that time (scene::pose); none: the static pose.
     std::optional<float> time;
+    /// --animate N: frames of the animation run (0: none).
+    uint32_t animate = 0;
     /// --soak N: frames of the soak run (0: no soak run).
     uint64_t soak = 0;
     uint32_t resize_every = 100;
@@ -83,6 +86,11 @@ std::string extra_help() {
            "  --camera N            the file's camera N (default: its first camera, or one framing the scene)\n"
            "  --time SECONDS        pose the file's animations at SECONDS (each in file order; default: the\n"
            "                        file's static pose)\n"
+           "  --animate N           play the file's animations for N frames (headless), sampled evenly from 0 s\n"
+           "                        to the end of the longest, through the retained object layer and, side by\n"
+           "                        side, through per-draw objects; writes animation.png (a contact sheet of\n"
+           "                        the frames), animation.csv (bytes uploaded per frame by each path) and\n"
+           "                        animation.txt into --out DIR; fails unless both paths draw the same pictures\n"
            "  --order NAME          pass order: memory (the default: the lowest peak of live bytes) or\n"
            "                        declared; the same pictures\n"
            "  --pipeline NAME       deferred (Figure 2, the default) or forward (one forward pass with the\n"
@@ -187,6 +195,16 @@ loom::Result<Options> parse(int argc, char** argv) {
                 return loom::make_error(loom::ErrorCode::InvalidArgument, "--camera expects a camera index, got '" + *v + "'");
             }
             options.camera = static_cast<uint32_t>(n);
+        } else if (name == "--animate") {
+            auto v = take();
+            if (!v) return v.take_error();
+            char* end = nullptr;
+            const unsigned long long n = std::strtoull(v->c_str(), &end, 10);
+            if (v->empty() || *end != '\0' || n == 0 || n > 4096) {
+                return loom::make_error(loom::ErrorCode::InvalidArgument,
+                                        "--animate expects a number of frames (1 to 4096), got '" + *v + "'");
+            }
+            options.animate = static_cast<uint32_t>(n);
         } else if (name == "--time") {
             auto v = take();
             if (!v) return v.take_error();
@@ -216,6 +234,15 @@ loom::Result<Options> parse(int argc, char** argv) {
     }
     if (options.time && options.scene.empty()) {
         return loom::make_error(loom::ErrorCode::InvalidArgument, "--time needs a glTF scene (--scene FILE)");
+    }
+    if (options.animate != 0) {
+        if (options.scene.empty()) {
+            return loom::make_error(loom::ErrorCode::InvalidArgument, "--animate needs a glTF scene (--scene FILE)");
+        }
+        if (options.common.window || options.soak != 0 || options.time || !options.inspect.empty()) {
+            return loom::make_error(loom::ErrorCode::InvalidArgument,
+                                    "--animate runs headless on its own (leave out --window, --soak, --time and --inspect)");
+        }
     }
     if (options.soak != 0) {
         if (options.common.window) {
@@ -532,6 +559,41 @@ int run_soak(const Options& options) {
     return verdict.steady ? EXIT_SUCCESS : EXIT_FAILURE;
 }
 
+int run_animation(const Options& options) {
+    using namespace loom;
+    auto device = rhi::create_device(samples::device_desc(options.common, "loom deferred"));
+    if (!device) return fail(device.error());
+    rhi::Device& dev = **device;
+    auto loaded = renderer::load_gltf_scene(options.scene);
+    if (!loaded) return fail(loaded.error());
+    deferred::AnimationSettings settings;
+    settings.frames = options.animate;
+    settings.size = {options.common.width, options.common.height};
+    settings.camera = options.camera;
+    settings.pipeline = pipeline_settings(options);
+    // Only the final pictures are read back.
+    settings.pipeline.capture = false;
+    auto run = deferred::play_animation(dev, *loaded, settings);
+    if (!run) return fail(run.error());
+
+    const std::filesystem::path dir = options.common.out;
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (auto status = image_io::write_png(run->contact_sheet, dir / "animation.png"); !status) return fail(status.error());
+    if (auto status = write_text(dir / "animation.csv", deferred::animation_csv(*run)); !status) return fail(status.error());
+    const std::string text = std::string(kName) + ": " + std::string(rhi::backend_name(dev.backend())) + ", " +
+                             dev.capabilities().device_name + ", " + std::to_string(settings.size.width) + "x" +
+                             std::to_string(settings.size.height) + "\n" + deferred::animation_summary(*run);
+    if (auto status = write_text(dir / "animation.txt", text); !status) return fail(status.error());
+    std::printf("%s", text.c_str());
+    std::printf("wrote animation.png (%u frames, %u per row), animation.csv and animation.txt to %s\n",
+                static_cast<unsigned>(run->frames.size()), run->columns, dir.string().c_str());
+    for (const std::string& warning : (*loaded)->scene.warnings) std::fprintf(stderr, "%s: warning: %s\n", kName, warning.c_str());
+    const bool identical = std::all_of(run->frames.begin(), run->frames.end(), [](const auto& f) { return f.identical; });
+    if (!identical) return fail("the retained and immediate paths drew different pictures (see animation.csv)");
+    return EXIT_SUCCESS;
+}
+
 int run_headless(const Options& options) {
     using namespace loom;
     auto device = rhi::create_device(samples::device_desc(options.common, "loom deferred"));
@@ -587,5 +649,6 @@ int main(int argc, char** argv) {
         return EXIT_SUCCESS;
     }
     if (options->soak != 0) return run_soak(*options);
+    if (options->animate != 0) return run_animation(*options);
     return options->common.window ? run_window(*options) : run_headless(*options);
 }

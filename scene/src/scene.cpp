@@ -34,6 +34,21 @@ glm::mat4 trs_matrix(const glm::vec3& translation, const glm::quat& rotation, co
     return matrix;
 }
 
+Scene copy_without_images(const Scene& source) {
+    Scene copy;
+    copy.source = source.source;
+    copy.nodes = source.nodes;
+    copy.meshes = source.meshes;
+    copy.materials = source.materials;
+    copy.textures = source.textures;
+    copy.draw_items = source.draw_items;
+    copy.cameras = source.cameras;
+    copy.bounds = source.bounds;
+    copy.animations = source.animations;
+    copy.warnings = source.warnings;
+    return copy;
+}
+
 glm::mat3 normal_matrix(const glm::mat4& world, bool& flips_winding) {
     const glm::vec3 c0(world[0]);
     const glm::vec3 c1(world[1]);

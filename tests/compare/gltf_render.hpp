@@ -9,6 +9,7 @@
 #include "loom/framegraph/executor.hpp"
 #include "loom/framegraph/plan.hpp"
 #include "loom/passes/view.hpp"
+#include "loom/renderer/deferred_pipeline.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/rhi/image.hpp"
 #include "loom/scene/scene.hpp"
@@ -26,8 +27,15 @@ struct GltfFrame {
     passes::SceneView view;
 };
 
+/// The settings the tests draw glTF scenes with: deferred or forward, a 512-texel shadow map.
+renderer::PipelineSettings gltf_test_settings(bool forward);
+
 /// One frame of `scene` (seen from its first camera, or framed) at width x height.
 Result<GltfFrame> render_gltf(rhi::Device& device, scene::Scene scene, bool forward, uint32_t width = 64,
                               uint32_t height = 64);
+
+/// Renders one frame of `pipeline` at width x height and reads everything it captured back.
+Result<GltfFrame> render_frame(rhi::Device& device, renderer::DeferredPipeline& pipeline, uint32_t width,
+                               uint32_t height);
 
 }  // namespace loom::test

@@ -35,8 +35,10 @@ struct ObjectRecord {
 };
 static_assert(sizeof(ObjectRecord) == 128);
 
-/// The record of a model matrix: the matrix and its normal matrix (inverse transpose of its
-/// upper 3x3), computed as MeshObject computes them.
+/// The record of a model matrix: the matrix and its normal matrix (scene::normal_matrix: the
+/// cofactor matrix of its upper 3x3, sign-corrected, which is the inverse transpose up to a
+/// positive factor and is defined for singular matrices too). MeshObject and GltfObject upload
+/// the same matrices.
 ObjectRecord object_record(const glm::mat4& model);
 
 /// The per-instance vertex buffer slot carrying the object index (stride 4, one Uint at

@@ -39,6 +39,7 @@
 #include "loom/passes/forward_pass.hpp"
 #include "loom/passes/geometry_pass.hpp"
 #include "loom/passes/mesh_object.hpp"
+#include "loom/passes/retained_scene.hpp"
 #include "loom/passes/shadow_map_pass.hpp"
 #include "loom/rhi/device.hpp"
 #include "loom/renderer/masked_shadow_pass.hpp"
@@ -78,6 +79,8 @@ struct PipelineSettings {
 struct BlendedObject {
     std::shared_ptr<const passes::Object> object;
     scene::Bounds bounds;
+    /// For objects that move: called at every frame's sort instead of using `bounds`.
+    std::function<scene::Bounds()> moving_bounds;
 };
 
 /// What the pipeline draws and how it looks at it, whatever kind the objects are: loom::passes'
@@ -94,6 +97,14 @@ struct PipelineScene {
     std::vector<std::shared_ptr<const passes::Object>> opaque;
     /// Drawn by the transparent pass; none: the pipeline has no transparent pass.
     std::vector<BlendedObject> blended;
+    /// Shapes of the retained object layer (loom/passes/retained_scene.hpp), drawn besides the
+    /// objects above: the pipeline attaches its shadow, masked-shadow, geometry and forward
+    /// passes to the scene (sorted queues), and each shape names the passes that draw it
+    /// (Shape::passes). Null: none. The scene draws on the pipeline's device only.
+    std::shared_ptr<passes::RetainedScene> retained;
+    /// Some retained shapes name the masked shadow pass: the pipeline has one even without
+    /// masked_shadow_casters.
+    bool retained_masked_shadows = false;
     /// The camera of a frame of aspect ratio width / height.
     std::function<scene::CameraMatrices(float aspect)> camera;
     passes::DirectionalLight light;

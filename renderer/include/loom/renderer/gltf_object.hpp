@@ -26,11 +26,18 @@ namespace loom::renderer {
 /// vertex buffer layout of loom::scene::Vertex.
 const std::shared_ptr<const passes::ObjectKind>& gltf_mesh_kind();
 
+/// "<node name or node N>: <mesh name or mesh N> #<primitive>": the name of draw item `item`.
+std::string gltf_item_name(const scene::Scene& scene, uint32_t item);
+
 /// One draw item of a GpuScene's scene.
 class GltfObject final : public passes::Object {
 public:
     /// `draw_item` indexes gpu->scene().draw_items (a programming error when out of range).
     GltfObject(std::shared_ptr<const GpuScene> gpu, uint32_t draw_item);
+    /// An item placed by the draw items of `placements` instead: a copy of gpu's scene that an
+    /// animation poses (scene::pose), read at every draw. Its draw items must be gpu's scene's.
+    GltfObject(std::shared_ptr<const GpuScene> gpu, std::shared_ptr<const scene::Scene> placements,
+               uint32_t draw_item);
 
     [[nodiscard]] const std::shared_ptr<const passes::ObjectKind>& kind() const override { return gltf_mesh_kind(); }
     /// "<node name or node N>: <mesh name or mesh N> #<primitive>".
@@ -46,11 +53,12 @@ public:
     [[nodiscard]] const scene::DrawItem& item() const;
     [[nodiscard]] const scene::Material& material() const;
     [[nodiscard]] scene::AlphaMode alpha_mode() const { return material().alpha_mode; }
-    /// World bounds of the primitive (for sorting and framing).
+    /// World bounds of the primitive (for sorting and framing), as placed now.
     [[nodiscard]] scene::Bounds world_bounds() const;
 
 private:
     std::shared_ptr<const GpuScene> gpu_;
+    std::shared_ptr<const scene::Scene> placements_;
     uint32_t draw_item_;
     std::string name_;
 };

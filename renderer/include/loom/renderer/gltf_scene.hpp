@@ -24,9 +24,17 @@ Result<std::shared_ptr<const renderer::PreparedScene>> load_gltf_scene(const std
 /// The pipeline scene of `gpu`'s scene seen from `viewpoint`: opaque and masked objects go to
 /// the geometry (or forward) pass and cast shadows (masked ones through the masked shadow pass,
 /// cut out), blended ones go to the transparent pass and cast none. The GpuScene may be shared
-/// by several pipelines on its device.
+/// by several pipelines on its device. With `placements` (a copy of the scene an animation
+/// poses), the objects are drawn where it places them, and the blended ones are sorted by the
+/// bounds it gives them at every frame; the pipeline's bounds stay those of the first pose.
 PipelineScene gltf_pipeline_scene(const std::shared_ptr<const renderer::GpuScene>& gpu,
-                                  const renderer::SceneViewpoint& viewpoint);
+                                  const renderer::SceneViewpoint& viewpoint,
+                                  std::shared_ptr<const scene::Scene> placements = nullptr);
+
+/// A pipeline scene without objects yet, as a glTF scene is seen: named after its file, the
+/// camera of `viewpoint`, the viewer's sun (viewer_sun), `bounds` for the position map and the
+/// shadow map.
+PipelineScene gltf_view(const scene::Scene& scene, const renderer::SceneViewpoint& viewpoint, const scene::Bounds& bounds);
 
 /// "3 opaque and 1 blended draw item(s), 2 material(s), 4 image(s); camera 0 'name'": what
 /// `content` (made from `scene`) draws and from where.

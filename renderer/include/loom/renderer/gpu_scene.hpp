@@ -30,12 +30,20 @@ struct PreparedScene {
 /// Packs the geometry and builds the mip chains of `scene`.
 std::shared_ptr<const PreparedScene> prepare_scene(scene::Scene scene);
 
+/// What GpuScene::create uploads.
+enum class GpuSceneContent : uint8_t {
+    All,           ///< geometry and textures
+    TexturesOnly,  ///< no vertex or index buffer (another owner draws the geometry)
+};
+
 /// The GPU side of a PreparedScene on one device (see the top of this file). Destroying it
 /// destroys its buffers, textures and samplers: the device must outlive it.
 class GpuScene {
 public:
-    /// Uploads everything. Errors: the device's (naming the buffer or texture).
-    static Result<std::shared_ptr<GpuScene>> create(rhi::Device& device, std::shared_ptr<const PreparedScene> prepared);
+    /// Uploads everything (`content`: or the textures only). Errors: the device's (naming the
+    /// buffer or texture).
+    static Result<std::shared_ptr<GpuScene>> create(rhi::Device& device, std::shared_ptr<const PreparedScene> prepared,
+                                                    GpuSceneContent content = GpuSceneContent::All);
     ~GpuScene();
     GpuScene(const GpuScene&) = delete;
     GpuScene& operator=(const GpuScene&) = delete;
@@ -43,7 +51,7 @@ public:
     [[nodiscard]] const PreparedScene& prepared() const { return *prepared_; }
     [[nodiscard]] const scene::Scene& scene() const { return prepared_->scene; }
     [[nodiscard]] rhi::Device& device() const { return *device_; }
-    /// Null when the scene has no geometry.
+    /// Null when the scene has no geometry or it was not uploaded (GpuSceneContent::TexturesOnly).
     [[nodiscard]] rhi::BufferHandle vertex_buffer() const { return vertices_; }
     [[nodiscard]] rhi::BufferHandle index_buffer() const { return indices_; }
     /// The texture and sampler of scene().textures[index] (index must be valid).
@@ -56,7 +64,7 @@ public:
 private:
     GpuScene(rhi::Device& device, std::shared_ptr<const PreparedScene> prepared)
         : device_(&device), prepared_(std::move(prepared)) {}
-    Status upload();
+    Status upload(GpuSceneContent content);
     Result<rhi::TextureHandle> upload_image(const std::vector<rhi::Image>& levels, const std::string& name);
 
     rhi::Device* device_;

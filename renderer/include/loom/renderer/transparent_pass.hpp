@@ -11,9 +11,10 @@
 //   in     shadow_map
 //
 // Objects are sorted by the distance of their bounds' centre along the view direction, every
-// frame; surfaces that interpenetrate or overlap within one object are not sorted further.
+// frame (bounds given as a function are read again, so objects may move); surfaces that interpenetrate or overlap within one object are not sorted further.
 // Objects must provide object_alpha() in their material part ("gltf-material" does).
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,6 +32,9 @@ public:
 
     /// Registers `object` (as ShaderPass::register_object) with the world bounds it is sorted by.
     Status register_object(std::shared_ptr<const passes::Object> object, const scene::Bounds& world_bounds);
+    /// The same for an object that moves: `world_bounds` is called at every frame's sort. An
+    /// empty function is an InvalidArgument error naming the object.
+    Status register_object(std::shared_ptr<const passes::Object> object, std::function<scene::Bounds()> world_bounds);
     /// Refused: the pass needs bounds to sort by (an InvalidArgument error naming the object).
     Status register_object(std::shared_ptr<const passes::Object> object) override;
     /// Drops every registered object and its bounds (hides ShaderPass::clear_objects, which
@@ -54,7 +58,7 @@ private:
     passes::LightingParts parts_;
     passes::SceneView view_;
     float threshold_ = 1.0f;
-    std::vector<glm::vec3> centres_;  ///< parallel to objects()
+    std::vector<std::function<scene::Bounds()>> bounds_;  ///< parallel to objects()
     std::vector<std::size_t> last_order_;
 };
 

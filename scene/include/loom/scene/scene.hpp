@@ -76,6 +76,10 @@ struct Scene {
     [[nodiscard]] uint64_t index_count() const;
 };
 
+/// A copy of `scene` without its decoded images (a renderer that has them on the device poses
+/// this copy: nodes, meshes, materials, draw items and animations are all there).
+Scene copy_without_images(const Scene& scene);
+
 /// translation * rotation * scale, as glTF composes a node's local matrix.
 glm::mat4 trs_matrix(const glm::vec3& translation, const glm::quat& rotation, const glm::vec3& scale);
 

@@ -1,34 +1,9 @@
-// Object part "gltf-geometry" (vertex stage): a glTF vertex (loom::scene::Vertex: position,
-// normal, tangent, uv0, uv1, colour at locations 0..5) placed in the world by the draw item's
-// model matrix. Besides the ObjectVertex it hands the fragment stage the world tangent (for
-// normal maps) and the second UV set through varyings of its own, at locations past the camera
-// part's 0..3 — only in passes with that part (elsewhere, e.g. the standard shadow map, no
-// fragment stage would read them).
+// Object part "gltf-geometry" (vertex stage): a glTF vertex placed in the world by the draw
+// item's model matrix (gltf_vertex.glsl), from the object's GltfObjectUniforms, whose alpha.z is
+// the mirror sign.
 #include "loom/parts/gltf_object.glsl"
-
-layout(location = 0) in vec3 in_position;
-layout(location = 1) in vec3 in_normal;
-layout(location = 2) in vec4 in_tangent;
-layout(location = 3) in vec2 in_uv0;
-layout(location = 4) in vec2 in_uv1;
-layout(location = 5) in vec4 in_color;
-
-#ifdef LOOM_PART_CAMERA
-layout(location = 6) out vec4 v_gltf_tangent;  // xyz: world tangent, w: world handedness
-layout(location = 7) out vec2 v_gltf_uv1;
-#endif
+#include "loom/parts/gltf_vertex.glsl"
 
 ObjectVertex object_vertex() {
-    ObjectVertex v;
-    v.world_position = transform_point(gltf.model, in_position).xyz;
-    v.world_normal = transform_vector(mat3(gltf.normal_matrix), in_normal);
-    v.uv = in_uv0;
-    v.color = in_color;
-#ifdef LOOM_PART_CAMERA
-    // Tangents are surface directions: they follow the model matrix. A mirroring matrix turns
-    // cross(normal, tangent) around, so the handedness flips with it.
-    v_gltf_tangent = vec4(transform_vector(mat3(gltf.model), in_tangent.xyz), in_tangent.w * gltf.alpha.z);
-    v_gltf_uv1 = in_uv1;
-#endif
-    return v;
+    return gltf_vertex(gltf.model, gltf.normal_matrix, gltf.alpha.z);
 }

@@ -4,6 +4,8 @@
 #ifndef LOOM_PARTS_GLTF_OBJECT_GLSL
 #define LOOM_PARTS_GLTF_OBJECT_GLSL
 
+#include "loom/parts/gltf_material_constants.glsl"
+
 layout(set = LOOM_SET, binding = LOOM_BINDING(0)) uniform GltfObjectUniforms {
     mat4 model;               // object to world
     mat4 normal_matrix;       // upper 3x3: normals to world (cofactor matrix, sign-corrected)
@@ -20,23 +22,5 @@ layout(set = LOOM_SET, binding = LOOM_BINDING(0)) uniform GltfObjectUniforms {
     // sample as before.
     vec4 uv_transform[10];
 } gltf;
-
-// Indices of the textures in gltf.uv_transform (two rows each).
-const int kGltfBaseColorIndex = 0;
-const int kGltfMetallicRoughnessIndex = 1;
-const int kGltfNormalIndex = 2;
-const int kGltfOcclusionIndex = 3;
-const int kGltfEmissiveIndex = 4;
-
-// Bits of gltf.textures.y.
-const int kGltfBaseColor = 1;
-const int kGltfMetallicRoughness = 2;
-const int kGltfNormal = 4;
-const int kGltfOcclusion = 8;
-const int kGltfEmissive = 16;
-
-// alpha.x
-const float kGltfAlphaMask = 1.0;
-const float kGltfAlphaBlend = 2.0;
 
 #endif

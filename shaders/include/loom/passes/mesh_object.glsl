@@ -5,7 +5,7 @@
 
 layout(set = LOOM_SET, binding = LOOM_BINDING(0)) uniform ObjectUniforms {
     mat4 model;            // object to world
-    mat4 normal_matrix;    // upper 3x3: normals to world (inverse transpose of model's 3x3)
+    mat4 normal_matrix;    // upper 3x3: normals to world (cofactor matrix, sign-corrected)
     vec4 base_color;       // linear RGBA
     vec4 secondary_color;  // linear RGBA (second colour of patterned materials)
     vec4 emissive;         // rgb: emitted radiance

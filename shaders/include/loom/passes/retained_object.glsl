@@ -12,16 +12,7 @@
 
 // Each stage declares only what it reads, so that a pass leaving the object's fragment parts out
 // (the shadow map) has no material block in its program and binds no material.
-#ifdef LOOM_STAGE_VERTEX
-struct ObjectRecord {
-    mat4 model;          // object to world
-    mat4 normal_matrix;  // upper 3x3: normals to world (inverse transpose of model's 3x3)
-};
-
-layout(std430, set = LOOM_SET, binding = LOOM_BINDING(0)) readonly buffer ObjectRecords {
-    ObjectRecord records[];
-} object_records;
-#endif
+#include "loom/passes/object_records.glsl"
 
 #ifdef LOOM_STAGE_FRAGMENT
 layout(std140, set = LOOM_SET, binding = LOOM_BINDING(1)) uniform MaterialUniforms {

@@ -1,0 +1,163 @@
+#include "loom/renderer/retained_gltf_scene.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <span>
+#include <string>
+#include <utility>
+
+#include "loom/passes/parts.hpp"
+#include "loom/passes/retained_mesh.hpp"
+#include "loom/renderer/gltf_scene.hpp"
+#include "loom/scene/mesh.hpp"
+
+#include "gltf_material_block.hpp"
+
+namespace loom::renderer {
+namespace {
+
+/// The passes of DeferredPipeline that draw a retained item (Shape::passes): the shadow map it
+/// casts into (cut out through its material when masked) and both lit passes (the pipeline has
+/// one of them).
+std::vector<std::string> passes_of(scene::AlphaMode mode) {
+    return {mode == scene::AlphaMode::Mask ? "masked-shadow" : "shadow", "geometry", "forward"};
+}
+
+/// The material as the retained kind binds it: its MaterialUniforms (fixed: glTF materials do
+/// not change) and a texture for each of the part's samplers (the GpuScene's white one where the
+/// material has none), sampled as the file says.
+std::shared_ptr<passes::GpuMaterial> make_material(const GpuScene& gpu, uint32_t index) {
+    const scene::Material& material = gpu.scene().materials[index];
+    const GltfMaterialBlock block = gltf_material_block(material);
+    auto uniforms = std::make_shared<passes::UniformSet>(
+        "MaterialUniforms", passes::UpdateFrequency::PerMaterial, static_cast<uint32_t>(sizeof(GltfMaterialBlock)),
+        [block](std::span<std::byte> bytes) { std::memcpy(bytes.data(), &block, sizeof(block)); },
+        std::vector<std::shared_ptr<passes::ParamNode>>{});
+    std::vector<passes::MaterialTexture> textures;
+    const auto refs = gltf_texture_refs(material);
+    for (std::size_t i = 0; i < refs.size(); ++i) {
+        passes::MaterialTexture texture;
+        texture.name = std::string(kGltfSamplers[i]);
+        if (refs[i]->has_value()) {
+            texture.texture = gpu.texture((*refs[i])->texture).texture;
+            texture.sampler = gpu.scene().textures[(*refs[i])->texture].sampler;
+        } else {
+            texture.texture = gpu.fallback().texture;
+        }
+        textures.push_back(std::move(texture));
+    }
+    std::string name = material.name.empty() ? "material " + std::to_string(index) : material.name;
+    return std::make_shared<passes::GpuMaterial>(std::move(name), std::move(uniforms), std::move(textures),
+                                                 material.double_sided ? rhi::CullMode::None : rhi::CullMode::Back);
+}
+
+}  // namespace
+
+const std::shared_ptr<const passes::ObjectKind>& retained_gltf_mesh_kind() {
+    static const std::shared_ptr<const passes::ObjectKind> kind = std::make_shared<const passes::ObjectKind>(
+        "retained-gltf-mesh",
+        std::vector<passes::ShaderPart>{passes::standard_part("retained-gltf-geometry").shader,
+                                        passes::standard_part("gltf-material").shader},
+        std::vector<rhi::VertexBufferLayout>{scene::vertex_buffer_layout(), passes::object_index_layout()});
+    return kind;
+}
+
+Result<std::shared_ptr<RetainedGltfScene>> RetainedGltfScene::create(rhi::Device& device,
+                                                                     std::shared_ptr<const PreparedScene> prepared,
+                                                                     passes::RetainedConfig config) {
+    bool any_blended = false;
+    for (const scene::DrawItem& item : prepared->scene.draw_items) {
+        any_blended |= prepared->scene.materials[item.material].alpha_mode == scene::AlphaMode::Blend;
+    }
+    auto gpu = GpuScene::create(device, prepared, any_blended ? GpuSceneContent::All : GpuSceneContent::TexturesOnly);
+    if (!gpu) return gpu.take_error();
+    std::shared_ptr<RetainedGltfScene> scene(new RetainedGltfScene());
+    scene->gpu_ = std::move(*gpu);
+    scene->posed_ = std::make_shared<scene::Scene>(scene::copy_without_images(prepared->scene));
+    LOOM_TRY(scene->build(config));
+    return scene;
+}
+
+Status RetainedGltfScene::build(passes::RetainedConfig config) {
+    retained_ = std::make_shared<passes::RetainedScene>(config);
+    const scene::Scene& scene = *posed_;
+    models_.resize(scene.draw_items.size());
+    shapes_.resize(scene.draw_items.size());
+    std::map<std::pair<uint32_t, uint32_t>, std::shared_ptr<const passes::Geometry>> geometries;
+    std::map<uint32_t, std::shared_ptr<passes::GpuMaterial>> materials;
+    for (uint32_t i = 0; i < scene.draw_items.size(); ++i) {
+        const scene::DrawItem& item = scene.draw_items[i];
+        const scene::Primitive& primitive = scene.meshes[item.mesh].primitives[item.primitive];
+        if (primitive.indices.empty()) continue;
+        const scene::AlphaMode mode = scene.materials[item.material].alpha_mode;
+        if (mode == scene::AlphaMode::Blend) {
+            blended_.push_back(std::make_shared<const GltfObject>(gpu_, posed_, i));
+            continue;
+        }
+        std::shared_ptr<const passes::Geometry>& geometry = geometries[{item.mesh, item.primitive}];
+        if (!geometry) {
+            const std::span<const scene::Vertex> vertices(primitive.vertices);
+            const std::span<const std::byte> bytes = std::as_bytes(vertices);
+            auto made = passes::Geometry::create(
+                scene.source + " mesh " + std::to_string(item.mesh) + " #" + std::to_string(item.primitive),
+                {scene::vertex_buffer_layout()}, {std::vector<std::byte>(bytes.begin(), bytes.end())},
+                static_cast<uint32_t>(vertices.size()), primitive.indices);
+            if (!made) return made.take_error();
+            geometry = *made;
+        }
+        std::shared_ptr<passes::GpuMaterial>& material = materials[item.material];
+        if (!material) material = make_material(*gpu_, item.material);
+        models_[i] = std::make_shared<passes::InputParam<glm::mat4>>(item.world);
+        auto shape = std::make_shared<passes::Shape>(gltf_item_name(scene, i), retained_gltf_mesh_kind(), geometry, material,
+                                                     models_[i]);
+        shape->passes = passes_of(mode);
+        masked_ |= mode == scene::AlphaMode::Mask;
+        LOOM_TRY(retained_->submit(shape));
+        shapes_[i] = std::move(shape);
+    }
+    return {};
+}
+
+PipelineScene RetainedGltfScene::pipeline_scene(const SceneViewpoint& viewpoint) {
+    // The bounds of what is drawn, as gltf_pipeline_scene() takes them.
+    scene::Bounds bounds;
+    for (std::size_t i = 0; i < shapes_.size(); ++i) {
+        if (shapes_[i]) bounds.extend(posed_->draw_items[i].world_bounds);
+    }
+    for (const auto& object : blended_) bounds.extend(object->world_bounds());
+    if (bounds.empty()) bounds = scene::Bounds{glm::vec3(-0.5f), glm::vec3(0.5f)};
+    PipelineScene pipeline = gltf_view(*posed_, viewpoint, bounds);
+    // The layer keeps this object (the GpuScene's textures, the posed scene) alive.
+    pipeline.retained = std::shared_ptr<passes::RetainedScene>(shared_from_this(), retained_.get());
+    pipeline.retained_masked_shadows = masked_;
+    for (const auto& object : blended_) {
+        BlendedObject blended{object, object->world_bounds(), nullptr};
+        blended.moving_bounds = [object] { return object->world_bounds(); };
+        pipeline.blended.push_back(std::move(blended));
+    }
+    return pipeline;
+}
+
+Result<std::vector<uint32_t>> RetainedGltfScene::pose(uint32_t animation, float time) {
+    if (animation >= posed_->animations.size()) {
+        return make_error(ErrorCode::InvalidArgument, posed_->source + ": animation " + std::to_string(animation) +
+                                                          " does not exist (the scene has " +
+                                                          std::to_string(posed_->animations.size()) + " animation(s))");
+    }
+    if (!std::isfinite(time) || time < 0.0f) {
+        return make_error(ErrorCode::InvalidArgument,
+                          posed_->source + ": animation time " + std::to_string(time) + " is not a time (seconds >= 0)");
+    }
+    std::vector<uint32_t> moved = scene::pose(*posed_, posed_->animations[animation], time);
+    for (uint32_t item : moved) {
+        if (models_[item]) models_[item]->set(posed_->draw_items[item].world);
+    }
+    return moved;
+}
+
+const passes::Shape* RetainedGltfScene::shape(uint32_t item) const {
+    return item < shapes_.size() ? shapes_[item].get() : nullptr;
+}
+
+}  // namespace loom::renderer
