@@ -2,9 +2,44 @@
 #ifndef LOOM_COMMON_GLSL
 #define LOOM_COMMON_GLSL
 
+// dot(), normalize(), length(), reflect() and cross() of vec3s, with every sum written out in
+// one fixed order without fused multiply-adds ("precise"). Mesa lowers the built-ins differently
+// for GL (SPIRV-Cross's GLSL) and Vulkan (the SPIR-V): its dot product, for one, fuses its
+// multiply-adds on one backend and not on the other, so the built-ins differ in the last bit
+// between backends (in about 40 % of a frame's view rays). Through the specular highlight of a
+// smooth surface one bit of n.h becomes several 8-bit levels, so lighting uses these.
+float dot3(vec3 a, vec3 b) {
+    precise float r = a.x * b.x;
+    r += a.y * b.y;
+    r += a.z * b.z;
+    return r;
+}
+
+vec3 normalize3(vec3 v) {
+    precise vec3 r = v * inversesqrt(dot3(v, v));
+    return r;
+}
+
+float length3(vec3 v) {
+    return sqrt(dot3(v, v));
+}
+
+// The reflection of the incident direction `i` about the unit normal `n` (as reflect()).
+vec3 reflect3(vec3 i, vec3 n) {
+    precise vec3 r = i - n * (2.0 * dot3(n, i));
+    return r;
+}
+
+vec3 cross3(vec3 a, vec3 b) {
+    precise vec3 p = vec3(a.y * b.z, a.z * b.x, a.x * b.y);
+    precise vec3 q = vec3(a.z * b.y, a.x * b.z, a.y * b.x);
+    precise vec3 r = p - q;
+    return r;
+}
+
 // Rec. 709 relative luminance of a linear RGB colour.
 float luminance(vec3 linear_rgb) {
-    return dot(linear_rgb, vec3(0.2126, 0.7152, 0.0722));
+    return dot3(linear_rgb, vec3(0.2126, 0.7152, 0.0722));
 }
 
 // The exact sRGB transfer functions (IEC 61966-2-1), per channel.

@@ -9,7 +9,7 @@ layout(location = 3) in vec4 v_color;
 SurfaceInput surface_input() {
     SurfaceInput s;
     s.world_position = v_world_position;
-    s.world_normal = normalize(v_world_normal);
+    s.world_normal = normalize3(v_world_normal);
     s.uv = v_uv;
     s.color = v_color;
     return s;

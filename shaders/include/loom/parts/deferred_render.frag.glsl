@@ -18,7 +18,7 @@ void main() {
     vec4 albedo = texelFetch(gbuffer_albedo, texel, 0);
     vec4 emission = texelFetch(gbuffer_emission, texel, 0);
     vec3 color;
-    if (dot(normal.xyz, normal.xyz) < 0.25) {
+    if (dot3(normal.xyz, normal.xyz) < 0.25) {
         vec2 uv = gl_FragCoord.xy / vec2(textureSize(gbuffer_position, 0));  // (0,0) top-left
         color = sky_radiance(view_ray(uv));
     } else {
@@ -26,7 +26,7 @@ void main() {
 #ifdef LOOM_PART_SHADOW_RENDER
         visibility = shadow_visibility(position.xyz, normal.xyz);
 #endif
-        color = shade(position.xyz, normalize(normal.xyz), unpack_material(position, normal, albedo, emission), visibility);
+        color = shade(position.xyz, normalize3(normal.xyz), unpack_material(position, normal, albedo, emission), visibility);
     }
     out_color = vec4(color, 1.0);
 #ifdef LOOM_PART_HIGH_PASS_RENDER

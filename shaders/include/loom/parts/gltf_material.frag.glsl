@@ -38,7 +38,7 @@ vec2 gltf_uv(SurfaceInput surface, int uv_set) {
 // The coordinates texture `index` (kGltf*Index) samples: its UV set, moved by its transform.
 vec2 gltf_texture_uv(SurfaceInput surface, int index, int uv_set) {
     vec3 uv = vec3(gltf_uv(surface, uv_set), 1.0);
-    return vec2(dot(gltf.uv_transform[2 * index].xyz, uv), dot(gltf.uv_transform[2 * index + 1].xyz, uv));
+    return vec2(dot3(gltf.uv_transform[2 * index].xyz, uv), dot3(gltf.uv_transform[2 * index + 1].xyz, uv));
 }
 
 bool gltf_has(int texture_bit) {
@@ -48,14 +48,14 @@ bool gltf_has(int texture_bit) {
 // The normal map's normal in world space, from the interpolated normal and tangent frame.
 vec3 gltf_mapped_normal(vec3 n, vec3 map_value) {
 #ifdef LOOM_PART_CAMERA
-    vec3 t = v_gltf_tangent.xyz - n * dot(n, v_gltf_tangent.xyz);
-    if (dot(t, t) < 1e-12) return n;  // no usable tangent: keep the surface normal
-    t = normalize(t);
-    vec3 b = cross(n, t) * (v_gltf_tangent.w < 0.0 ? -1.0 : 1.0);
+    vec3 t = v_gltf_tangent.xyz - n * dot3(n, v_gltf_tangent.xyz);
+    if (dot3(t, t) < 1e-12) return n;  // no usable tangent: keep the surface normal
+    t = normalize3(t);
+    vec3 b = cross3(n, t) * (v_gltf_tangent.w < 0.0 ? -1.0 : 1.0);
     vec3 tangent_space = map_value * 2.0 - 1.0;
     tangent_space.xy *= gltf.factors.z;
     vec3 mapped = t * tangent_space.x + b * tangent_space.y + n * tangent_space.z;
-    return dot(mapped, mapped) > 1e-12 ? normalize(mapped) : n;
+    return dot3(mapped, mapped) > 1e-12 ? normalize3(mapped) : n;
 #else
     return n;
 #endif
