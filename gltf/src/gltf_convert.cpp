@@ -10,6 +10,7 @@
 #include <utility>
 
 #include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #include "accessor_reader.hpp"
 #include "gltf_constants.hpp"
@@ -98,6 +99,7 @@ public:
         LOOM_TRY(convert_materials());
         LOOM_TRY(convert_meshes());
         LOOM_TRY(convert_nodes());
+        LOOM_TRY(convert_skins());
         LOOM_TRY(flatten_scene());
         check_unused_images();
         check_accessor_bounds();
@@ -117,10 +119,10 @@ private:
 
     // ---- data the importer does not use ------------------------------------------------------
     //
-    // Skins are not imported (and animations only in part, below): what the specification
-    // forbids in their values is a warning naming the accessor's user (the validator checked
-    // their formats and counts and warned about those; only accessors of the right format are
-    // read here).
+    // Values the importer does not use (and skinning data it uses only in part): what the
+    // specification forbids in them is a warning naming the accessor's user (the validator
+    // checked their formats and counts and warned about those; only accessors of the right format
+    // are read here).
 
     // Accessor `index` as floats when it has `components` per element, else nullopt; a read
     // error (missing data) is a warning at `where`.
@@ -334,7 +336,7 @@ private:
         return static_cast<uint32_t>(animation.samplers.size() - 1);
     }
 
-    // JOINTS_n / WEIGHTS_n of every primitive (skins are not imported): weights non-negative and
+    // JOINTS_n / WEIGHTS_n of every primitive (JOINTS_0 / WEIGHTS_0 are imported): weights non-negative and
     // summing to 1 per vertex over all sets, no joint twice in a vertex with weight, joint
     // indices inside the smallest skin of the nodes that draw the mesh. One warning per check.
     void check_skinning_attributes() {
@@ -709,8 +711,12 @@ private:
         for (const auto& [semantic, accessor] : source.attributes) {
             const bool extra_uv = semantic.rfind("TEXCOORD_", 0) == 0 && semantic != "TEXCOORD_0" && semantic != "TEXCOORD_1";
             const bool extra_color = semantic.rfind("COLOR_", 0) == 0 && semantic != "COLOR_0";
-            const bool skinning = semantic.rfind("JOINTS_", 0) == 0 || semantic.rfind("WEIGHTS_", 0) == 0;
-            if (extra_uv || extra_color || skinning) warn(where / "attributes" / semantic, semantic + " is not imported");
+            const bool extra_skin = (semantic.rfind("JOINTS_", 0) == 0 && semantic != "JOINTS_0") ||
+                                    (semantic.rfind("WEIGHTS_", 0) == 0 && semantic != "WEIGHTS_0");
+            if (extra_uv || extra_color) warn(where / "attributes" / semantic, semantic + " is not imported");
+            if (extra_skin) {
+                warn(where / "attributes" / semantic, semantic + " is not imported (four joints per vertex are: JOINTS_0 and WEIGHTS_0)");
+            }
         }
 
         Primitive primitive;
@@ -744,6 +750,7 @@ private:
             }
         }
         fix_vertex_values(primitive.vertices, has("NORMAL"), has("TANGENT"), has("COLOR_0"), where / "attributes");
+        if (has("JOINTS_0") && has("WEIGHTS_0")) read_skin_influences(source, primitive, where / "attributes");
         if (has("NORMAL")) primitive.from_file |= kAttributeNormal;
         if (has("TANGENT")) primitive.from_file |= kAttributeTangent;
         if (has("TEXCOORD_0")) primitive.from_file |= kAttributeUv0;
@@ -800,6 +807,30 @@ private:
         return std::optional<Primitive>{std::move(primitive)};
     }
 
+    // JOINTS_0 and WEIGHTS_0 as the primitive's skin influences, one per vertex. Data of another
+    // shape (the validator reported it) leaves the primitive unskinned, with a warning.
+    void read_skin_influences(const tinygltf::Primitive& source, Primitive& primitive, const JsonPointer& where) {
+        const int joints_accessor = source.attributes.at("JOINTS_0");
+        const int weights_accessor = source.attributes.at("WEIGHTS_0");
+        auto joints = reader_.components(joints_accessor) == 4 ? reader_.read_stored(joints_accessor)
+                                                               : Result<std::vector<double>>(std::vector<double>{});
+        auto weights = reader_.components(weights_accessor) == 4 ? reader_.read_floats(weights_accessor, 4)
+                                                                 : Result<std::vector<float>>(std::vector<float>{});
+        const std::size_t count = primitive.vertices.size();
+        if (!joints || !weights || joints->size() != count * 4 || weights->size() != count * 4) {
+            warn(where / "JOINTS_0", "JOINTS_0 and WEIGHTS_0 are not four values per vertex; the primitive is not skinned");
+            return;
+        }
+        primitive.skin.resize(count);
+        for (std::size_t v = 0; v < count; ++v) {
+            for (std::size_t c = 0; c < 4; ++c) {
+                const double joint = (*joints)[v * 4 + c];
+                primitive.skin[v].joints[static_cast<int>(c)] = joint >= 0.0 && joint < 4294967296.0 ? static_cast<uint32_t>(joint) : 0u;
+                primitive.skin[v].weights[static_cast<int>(c)] = (*weights)[v * 4 + c];
+            }
+        }
+    }
+
     // ---- nodes and the flattened scene ---------------------------------------------------
 
     Status convert_nodes() {
@@ -812,6 +843,7 @@ private:
             set_transform(source, node);
             if (source.mesh >= 0) node.mesh = static_cast<uint32_t>(source.mesh);
             if (source.camera >= 0) node.camera = static_cast<uint32_t>(source.camera);
+            if (source.skin >= 0) node.skin = static_cast<uint32_t>(source.skin);
             for (const int child : source.children) {
                 if (child < 0 || static_cast<std::size_t>(child) >= count) {
                     return error(JsonPointer{} / "nodes" / as_index(n) / "children", "child node does not exist");
@@ -889,6 +921,45 @@ private:
         return camera;
     }
 
+    // Skins: their joints and inverse bind matrices (the identity where the file gives none, or
+    // gives matrices the validator reported: fewer than joints, or not MAT4 floats).
+    Status convert_skins() {
+        for (std::size_t s = 0; s < model_.skins.size(); ++s) {
+            const tinygltf::Skin& source = model_.skins[s];
+            const JsonPointer where = JsonPointer{} / "skins" / as_index(s);
+            Skin skin;
+            skin.name = source.name.empty() ? "skin " + std::to_string(s) : source.name;
+            for (std::size_t j = 0; j < source.joints.size(); ++j) {
+                const int joint = source.joints[j];
+                if (joint < 0 || static_cast<std::size_t>(joint) >= scene_.nodes.size()) {
+                    return error(where / "joints" / as_index(j), "joint node does not exist");
+                }
+                skin.joints.push_back(static_cast<uint32_t>(joint));
+            }
+            skin.inverse_bind_matrices.assign(skin.joints.size(), glm::mat4(1.0f));
+            if (source.inverseBindMatrices >= 0) {
+                const auto matrices = read_unused(source.inverseBindMatrices, 16, where / "inverseBindMatrices");
+                if (matrices && matrices->size() >= skin.joints.size() * 16) {
+                    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+                        skin.inverse_bind_matrices[j] = glm::make_mat4(matrices->data() + j * 16);  // column-major, as glTF
+                    }
+                } else {
+                    warn(where / "inverseBindMatrices", "not one MAT4 per joint; the joints' inverse bind matrices are the identity");
+                }
+            }
+            scene_.skins.push_back(std::move(skin));
+        }
+        for (std::size_t n = 0; n < scene_.nodes.size(); ++n) {
+            const std::optional<uint32_t> skin = scene_.nodes[n].skin;
+            if (skin && *skin >= scene_.skins.size()) return error(JsonPointer{} / "nodes" / as_index(n) / "skin", "skin does not exist");
+        }
+        if (!scene_.skins.empty()) {
+            warn(JsonPointer{} / "skins", "skins are imported and posed (scene::joint_matrices), but loom::renderer draws "
+                                          "skinned primitives undeformed, in their bind pose");
+        }
+        return {};
+    }
+
     Status flatten_scene() {
         auto roots = scene_roots();
         if (!roots) return roots.take_error();
@@ -908,7 +979,12 @@ private:
                     item.mesh = *node.mesh;
                     item.primitive = static_cast<uint32_t>(p);
                     item.material = primitive.material;
-                    place_draw_item(item, node, primitive);
+                    if (node.skin && !primitive.skin.empty()) {
+                        item.skin = node.skin;
+                        place_skinned_draw_item(item, scene_, primitive);
+                    } else {
+                        place_draw_item(item, node, primitive);
+                    }
                     scene_.bounds.extend(item.world_bounds);
                     scene_.draw_items.push_back(std::move(item));
                 }

@@ -1328,7 +1328,6 @@ private:
         }); !status) {
             return status;
         }
-        if (count(Collection::Skins) != 0) warn(JsonPointer{} / "skins", "skins are not imported (the bind pose is used)");
         return {};
     }
 
@@ -1675,17 +1674,35 @@ private:
                 warn(where, "has a skin, but mesh " + std::to_string(*mesh) + " has no JOINTS_0 attribute");
                 continue;
             }
-            // The scene that holds the skinned node must hold a joint too.
+            // A scene that holds the skinned node must hold a joint too (under any of its roots:
+            // the skeleton and the mesh are often siblings at the top of a scene).
             const uint64_t root = root_of(n);
-            bool joint_in_its_tree = false;
+            const std::set<uint64_t> roots = scene_roots_beside(root);
+            bool joint_in_its_scene = false;
             for (const json& joint : (*skins)[*skin].at("joints")) {
-                joint_in_its_tree = joint_in_its_tree || root_of(joint.get<uint64_t>()) == root;
+                joint_in_its_scene = joint_in_its_scene || roots.count(root_of(joint.get<uint64_t>())) != 0;
             }
-            if (!joint_in_its_tree && in_a_scene(root)) {
+            if (!joint_in_its_scene && in_a_scene(root)) {
                 warn(where, "is skinned, but no joint of skin " + std::to_string(*skin) + " is in its scene");
             }
         }
     }
+    // The roots of every scene that lists `root` among its nodes.
+    std::set<uint64_t> scene_roots_beside(uint64_t root) const {
+        std::set<uint64_t> beside;
+        const json* scenes = find(root_, "scenes");
+        if (scenes == nullptr) return beside;
+        for (const json& scene : *scenes) {
+            const json* roots = find(scene, "nodes");
+            if (roots == nullptr) continue;
+            bool lists_it = false;
+            for (const json& r : *roots) lists_it = lists_it || r.get<uint64_t>() == root;
+            if (!lists_it) continue;
+            for (const json& r : *roots) beside.insert(r.get<uint64_t>());
+        }
+        return beside;
+    }
+
     bool in_a_scene(uint64_t root) const {
         const json* scenes = find(root_, "scenes");
         if (scenes == nullptr) return false;

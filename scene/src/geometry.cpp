@@ -61,7 +61,12 @@ std::vector<uint32_t> triangle_list(Topology topology, std::span<const uint32_t>
 void generate_flat_normals(Primitive& primitive) {
     std::vector<Vertex> vertices;
     vertices.reserve(primitive.indices.size() - primitive.indices.size() % 3);
+    // The skin follows the vertices: one entry per corner.
+    std::vector<SkinInfluences> skin;
     for (std::size_t i = 0; i + 2 < primitive.indices.size(); i += 3) {
+        if (!primitive.skin.empty()) {
+            for (std::size_t c = 0; c < 3; ++c) skin.push_back(primitive.skin[primitive.indices[i + c]]);
+        }
         Vertex corners[3] = {primitive.vertices[primitive.indices[i]], primitive.vertices[primitive.indices[i + 1]],
                              primitive.vertices[primitive.indices[i + 2]]};
         const glm::vec3 normal =
@@ -72,6 +77,7 @@ void generate_flat_normals(Primitive& primitive) {
         }
     }
     primitive.vertices = std::move(vertices);
+    primitive.skin = std::move(skin);
     primitive.indices.resize(primitive.vertices.size());
     for (std::size_t i = 0; i < primitive.indices.size(); ++i) primitive.indices[i] = static_cast<uint32_t>(i);
     primitive.generated |= kAttributeNormal;

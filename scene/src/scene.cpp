@@ -45,6 +45,7 @@ Scene copy_without_images(const Scene& source) {
     copy.cameras = source.cameras;
     copy.bounds = source.bounds;
     copy.animations = source.animations;
+    copy.skins = source.skins;
     copy.warnings = source.warnings;
     return copy;
 }
@@ -88,6 +89,36 @@ void place_draw_item(DrawItem& item, const Node& node, const Primitive& primitiv
     }
 }
 
+std::vector<glm::mat4> joint_matrices(const Scene& scene, uint32_t skin) {
+    const Skin& s = scene.skins[skin];
+    std::vector<glm::mat4> matrices(s.joints.size());
+    for (std::size_t j = 0; j < s.joints.size(); ++j) matrices[j] = scene.nodes[s.joints[j]].world * s.inverse_bind_matrices[j];
+    return matrices;
+}
+
+glm::vec3 skinned_position(const glm::vec3& position, const SkinInfluences& influences,
+                           std::span<const glm::mat4> joint_matrices) {
+    const glm::vec4 p(position, 1.0f);
+    glm::vec3 sum(0.0f);
+    for (int c = 0; c < 4; ++c) {
+        const float weight = influences.weights[c];
+        if (weight == 0.0f || influences.joints[c] >= joint_matrices.size()) continue;
+        sum += weight * glm::vec3(joint_matrices[influences.joints[c]] * p);
+    }
+    return sum;
+}
+
+void place_skinned_draw_item(DrawItem& item, const Scene& scene, const Primitive& primitive) {
+    item.world = glm::mat4(1.0f);
+    item.normal_matrix = glm::mat3(1.0f);
+    item.flips_winding = false;
+    item.world_bounds = Bounds{};
+    const std::vector<glm::mat4> joints = joint_matrices(scene, *item.skin);
+    for (std::size_t v = 0; v < primitive.vertices.size(); ++v) {
+        item.world_bounds.extend(skinned_position(primitive.vertices[v].position, primitive.skin[v], joints));
+    }
+}
+
 std::vector<uint32_t> pose(Scene& scene, const Animation& animation, float time) {
     std::vector<bool> moved(scene.nodes.size(), false);
     std::array<float, 4> value{};
@@ -112,11 +143,22 @@ std::vector<uint32_t> pose(Scene& scene, const Animation& animation, float time)
         if (moved[n] && !node.has_matrix) node.local = trs_matrix(node.translation, node.rotation, node.scale);
     }
     update_world_matrices(scene.nodes, moved);  // a node moves when it or an ancestor does
+    // A skin moves when one of its joints does.
+    std::vector<bool> moved_skins(scene.skins.size(), false);
+    for (std::size_t s = 0; s < scene.skins.size(); ++s) {
+        for (const uint32_t joint : scene.skins[s].joints) moved_skins[s] = moved_skins[s] || moved[joint];
+    }
     std::vector<uint32_t> moved_items;
     for (uint32_t i = 0; i < scene.draw_items.size(); ++i) {
         DrawItem& item = scene.draw_items[i];
-        if (!moved[item.node]) continue;
-        place_draw_item(item, scene.nodes[item.node], scene.meshes[item.mesh].primitives[item.primitive]);
+        const Primitive& primitive = scene.meshes[item.mesh].primitives[item.primitive];
+        if (item.skin) {
+            if (!moved_skins[*item.skin]) continue;
+            place_skinned_draw_item(item, scene, primitive);
+        } else {
+            if (!moved[item.node]) continue;
+            place_draw_item(item, scene.nodes[item.node], primitive);
+        }
         moved_items.push_back(i);
     }
     if (!moved_items.empty()) {

@@ -166,5 +166,84 @@ TEST(AnimationPose, MovesTheAnimatedNodesTheirDescendantsAndTheirDrawItemsOnly) 
     EXPECT_TRUE(pose(scene, Animation{}, 1.0f).empty());
 }
 
+// A two-joint arm: joint 0 at the origin, joint 1 (its child) at (0, 1, 0), both bound where
+// they stand (inverse bind matrices: the inverses of their world matrices). The skinned mesh
+// (on node 2, moved away by (10, 0, 0), which glTF ignores for skinned meshes) has a vertex on
+// each joint and one at (0, 2, 0) that follows joint 1 alone, and one at (1, 1, 0) half on each.
+Scene arm_scene() {
+    Scene scene;
+    Mesh mesh;
+    Primitive arm;
+    for (const glm::vec3& p : {glm::vec3(0, 0, 0), glm::vec3(0, 2, 0), glm::vec3(1, 1, 0)}) arm.vertices.push_back(Vertex{p});
+    arm.indices = {0, 2, 1};
+    arm.skin = {SkinInfluences{glm::uvec4(0, 0, 0, 0), glm::vec4(1, 0, 0, 0)},
+                SkinInfluences{glm::uvec4(1, 0, 0, 0), glm::vec4(1, 0, 0, 0)},
+                SkinInfluences{glm::uvec4(0, 1, 0, 0), glm::vec4(0.5f, 0.5f, 0, 0)}};
+    mesh.primitives.push_back(arm);
+    scene.meshes.push_back(mesh);
+    scene.nodes.resize(3);
+    scene.nodes[0].children = {1};
+    scene.nodes[1].parent = 0;
+    scene.nodes[1].translation = glm::vec3(0, 1, 0);
+    scene.nodes[2].translation = glm::vec3(10, 0, 0);
+    scene.nodes[2].mesh = 0;
+    scene.nodes[2].skin = 0;
+    for (Node& node : scene.nodes) node.local = trs_matrix(node.translation, node.rotation, node.scale);
+    std::vector<bool> every(3, true);
+    update_world_matrices(scene.nodes, every);
+    Skin skin;
+    skin.joints = {0, 1};
+    skin.inverse_bind_matrices = {glm::inverse(scene.nodes[0].world), glm::inverse(scene.nodes[1].world)};
+    scene.skins.push_back(skin);
+    DrawItem item;
+    item.node = 2;
+    item.skin = 0;
+    place_skinned_draw_item(item, scene, scene.meshes[0].primitives[0]);
+    scene.bounds.extend(item.world_bounds);
+    scene.draw_items.push_back(item);
+    return scene;
+}
+
+TEST(SkinPose, JointsPlaceTheVerticesByTheirWeightsAndTheMeshNodeIsIgnored) {
+    Scene scene = arm_scene();
+    // At rest every joint matrix is the identity: the mesh stands as modelled, not at x = 10.
+    for (const glm::mat4& m : joint_matrices(scene, 0)) EXPECT_EQ(m, glm::mat4(1.0f));
+    const DrawItem& item = scene.draw_items[0];
+    EXPECT_EQ(item.world, glm::mat4(1.0f));
+    EXPECT_EQ(item.world_bounds.min, glm::vec3(0, 0, 0));
+    EXPECT_EQ(item.world_bounds.max, glm::vec3(1, 2, 0));
+
+    // A quarter turn of joint 1 about z (pivot (0, 1, 0)): the tip (0, 2, 0) goes to (-1, 1, 0);
+    // the vertex half on each joint goes halfway between (1, 1, 0) and its turned place (0, 2, 0).
+    Animation bend;
+    bend.samplers = {AnimationSampler{{0.0f, 1.0f}, {0, 0, 0, 1, 0, 0, std::sqrt(0.5f), std::sqrt(0.5f)},
+                                      Interpolation::Linear, 4}};
+    bend.channels = {{1, 0, AnimatedProperty::Rotation}};
+    EXPECT_EQ(pose(scene, bend, 1.0f), (std::vector<uint32_t>{0}));
+    const std::vector<glm::mat4> joints = joint_matrices(scene, 0);
+    const Primitive& arm = scene.meshes[0].primitives[0];
+    const glm::vec3 tip = skinned_position(arm.vertices[1].position, arm.skin[1], joints);
+    const glm::vec3 middle = skinned_position(arm.vertices[2].position, arm.skin[2], joints);
+    EXPECT_NEAR(tip.x, -1.0f, 1e-6f);
+    EXPECT_NEAR(tip.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(middle.x, 0.5f, 1e-6f);
+    EXPECT_NEAR(middle.y, 1.5f, 1e-6f);
+    EXPECT_EQ(skinned_position(arm.vertices[0].position, arm.skin[0], joints), glm::vec3(0, 0, 0));
+    EXPECT_NEAR(scene.draw_items[0].world_bounds.min.x, -1.0f, 1e-6f);
+    EXPECT_NEAR(scene.draw_items[0].world_bounds.max.x, 0.5f, 1e-6f);
+    EXPECT_NEAR(scene.draw_items[0].world_bounds.max.y, 1.5f, 1e-6f);
+    EXPECT_NEAR(scene.bounds.max.y, 1.5f, 1e-6f);
+    EXPECT_EQ(scene.draw_items[0].world, glm::mat4(1.0f));
+
+    // Moving the mesh's own node moves nothing: glTF ignores it for skinned meshes.
+    Animation slide;
+    slide.samplers = {translations(Interpolation::Linear)};
+    slide.channels = {{2, 0, AnimatedProperty::Translation}};
+    EXPECT_TRUE(pose(scene, slide, 1.0f).empty());
+    // Joints past the skin's end and zero weights are ignored.
+    EXPECT_EQ(skinned_position(glm::vec3(1, 2, 3), SkinInfluences{glm::uvec4(7, 0, 0, 0), glm::vec4(1, 0, 0, 0)}, joints),
+              glm::vec3(0, 0, 0));
+}
+
 }  // namespace
 }  // namespace loom::scene

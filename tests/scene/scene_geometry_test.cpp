@@ -190,5 +190,20 @@ TEST(SceneGeometry, BoundsOperations) {
     EXPECT_EQ(box.transformed(shift).min, glm::vec3(9, 0, 3));
 }
 
+// Flat normals give every triangle its own corners; a skinned primitive's influences follow them.
+TEST(Geometry, FlatNormalsKeepEachCornersSkinInfluences) {
+    scene::Primitive primitive;
+    for (const glm::vec3& p : {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(1, 1, 0)}) {
+        primitive.vertices.push_back(scene::Vertex{p});
+    }
+    primitive.indices = {0, 1, 2, 2, 1, 3};
+    for (uint32_t v = 0; v < 4; ++v) primitive.skin.push_back({glm::uvec4(v, 0, 0, 0), glm::vec4(1, 0, 0, 0)});
+    scene::generate_flat_normals(primitive);
+    ASSERT_EQ(primitive.vertices.size(), 6u);
+    ASSERT_EQ(primitive.skin.size(), 6u);
+    const uint32_t corners[6] = {0, 1, 2, 2, 1, 3};
+    for (std::size_t c = 0; c < 6; ++c) EXPECT_EQ(primitive.skin[c].joints.x, corners[c]) << c;
+}
+
 }  // namespace
 }  // namespace loom::test

@@ -24,7 +24,8 @@ std::vector<uint32_t> triangle_list(Topology topology, std::span<const uint32_t>
 
 /// Flat normals (what glTF requires when a file has none): every triangle gets its own three
 /// vertices carrying the triangle's face normal, so the primitive becomes non-indexed
-/// (indices 0, 1, 2, ...). Degenerate triangles get (0, 0, 1).
+/// (indices 0, 1, 2, ...), and its skin influences (when it has them) follow its vertices.
+/// Degenerate triangles get (0, 0, 1).
 void generate_flat_normals(Primitive& primitive);
 
 /// Smooth normals: each vertex gets the normalised sum of the unnormalised face normals (the

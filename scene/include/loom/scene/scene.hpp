@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,16 @@ struct Node {
     bool has_matrix = false;
     std::optional<uint32_t> mesh;    ///< index into Scene::meshes
     std::optional<uint32_t> camera;  ///< index of the glTF camera (not of Scene::cameras)
+    std::optional<uint32_t> skin;    ///< index into Scene::skins: the skin that deforms `mesh`
+};
+
+/// A glTF skin: the nodes that act as its joints and, per joint, the inverse bind matrix that
+/// takes the mesh's bind-pose vertices into the joint's space.
+struct Skin {
+    std::string name;
+    std::vector<uint32_t> joints;  ///< indices into Scene::nodes
+    /// One per joint (the identity where the file gives none).
+    std::vector<glm::mat4> inverse_bind_matrices;
 };
 
 /// One thing to draw: a mesh primitive placed in the world with its material.
@@ -51,6 +62,11 @@ struct DrawItem {
     /// clockwise, so the renderer must flip its front-face winding for this item.
     bool flips_winding = false;
     Bounds world_bounds;  ///< exact bounds of the transformed vertex positions
+    /// Index into Scene::skins when the primitive is skinned (its node has a skin and the
+    /// primitive has influences): its vertices are placed by joint_matrices(), not by a node, so
+    /// `world` and `normal_matrix` are the identity (glTF ignores the skinned mesh's node
+    /// transform) and `world_bounds` are the bounds of the skinned positions.
+    std::optional<uint32_t> skin;
 };
 
 /// A loaded scene. Indices between the vectors are always valid.
@@ -68,6 +84,7 @@ struct Scene {
     /// rotation or scale (pose() plays them); channels the importer cannot play are left out
     /// with a warning.
     std::vector<Animation> animations;
+    std::vector<Skin> skins;  ///< the file's skins, in file order
     /// Non-fatal problems found while importing (also logged through loom::log at Warning).
     std::vector<std::string> warnings;
 
@@ -97,11 +114,25 @@ std::size_t update_world_matrices(std::vector<Node>& nodes, std::vector<bool>& m
 /// exact bounds of its transformed vertex positions.
 void place_draw_item(DrawItem& item, const Node& node, const Primitive& primitive);
 
+/// The skinning matrix of every joint of skin `skin` as the nodes are posed now: the joint's
+/// world matrix times its inverse bind matrix. A skinned vertex is placed at the weighted sum of
+/// its joints' matrices applied to its position.
+std::vector<glm::mat4> joint_matrices(const Scene& scene, uint32_t skin);
+
+/// Where `vertex` of a skinned primitive lies, given its influences and the skin's
+/// joint_matrices() (joints past their end are ignored).
+glm::vec3 skinned_position(const glm::vec3& position, const SkinInfluences& influences,
+                           std::span<const glm::mat4> joint_matrices);
+
+/// Places a skinned draw item (DrawItem::skin set) at its skin's current pose: identity world
+/// and normal matrices, and the exact bounds of its skinned vertex positions.
+void place_skinned_draw_item(DrawItem& item, const Scene& scene, const Primitive& primitive);
+
 /// Sets the translations, rotations and scales `animation` drives to their values at `time`
 /// (seconds; before the first keyframe the first value, after the last the last), then the
 /// local and world matrices of the nodes, the draw items whose node moved and the scene's
 /// bounds. Returns the indices of the draw items that moved, in order: what a renderer must
-/// upload again. Channels must name nodes of `scene` without a matrix (the importer's are).
+/// upload again (skinned items move when a joint of their skin does). Channels must name nodes of `scene` without a matrix (the importer's are).
 std::vector<uint32_t> pose(Scene& scene, const Animation& animation, float time);
 
 }  // namespace loom::scene
