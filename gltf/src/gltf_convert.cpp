@@ -953,10 +953,6 @@ private:
             const std::optional<uint32_t> skin = scene_.nodes[n].skin;
             if (skin && *skin >= scene_.skins.size()) return error(JsonPointer{} / "nodes" / as_index(n) / "skin", "skin does not exist");
         }
-        if (!scene_.skins.empty()) {
-            warn(JsonPointer{} / "skins", "skins are imported and posed (scene::joint_matrices), but loom::renderer draws "
-                                          "skinned primitives undeformed, in their bind pose");
-        }
         return {};
     }
 

@@ -78,6 +78,11 @@ constexpr PartDesc kParts[] = {
     // "gltf-geometry" for a RetainedScene: the record buffer and the material's set.
     {"retained-gltf-geometry", 2, "loom/parts/retained_gltf_geometry.vert.glsl",
      "loom/parts/retained_gltf_geometry.frag.glsl", nullptr},
+    // The skinned variants: the joint palette besides (gltf_skinning.glsl).
+    {"gltf-skinned-geometry", 2, "loom/parts/gltf_skinned_geometry.vert.glsl",
+     "loom/parts/gltf_skinned_geometry.frag.glsl", nullptr},
+    {"retained-gltf-skinned-geometry", 3, "loom/parts/retained_gltf_skinned_geometry.vert.glsl",
+     "loom/parts/retained_gltf_skinned_geometry.frag.glsl", nullptr},
     // One sampler per glTF texture (kSamplers in renderer/src/gltf_object.cpp).
     {"gltf-material", 5, {}, "loom/parts/gltf_material.frag.glsl", nullptr},
 };

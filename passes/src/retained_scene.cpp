@@ -588,6 +588,9 @@ Status RetainedScene::draw(DrawSourceContext& context) {
         if (&program != bound_program || batch_state.material != bound_material) {
             Bindings object_set(program, commands, kObjectSet);
             if (program.find("ObjectRecords")) object_set.buffer("ObjectRecords", object_records_.whole());
+            for (const auto& [name, binding] : shared_buffers_) {
+                if (program.find(name)) object_set.buffer(name, binding);
+            }
             if (const MaterialEntry* material = batch_state.material) {
                 const GpuMaterial& m = *material->material;
                 if (material->slot && program.find(m.uniforms()->block())) {
@@ -655,6 +658,14 @@ std::vector<rhi::DrawIndexedIndirectCommand> RetainedScene::commands(const Shade
 std::vector<uint32_t> RetainedScene::instances(const ShaderPass& pass) const {
     const Queue* queue = find_queue(pass);
     return queue ? queue->instances : std::vector<uint32_t>{};
+}
+
+void RetainedScene::set_shared_buffer(const std::string& name, const rhi::BufferBinding& binding) {
+    if (!binding.buffer) {
+        shared_buffers_.erase(name);
+    } else {
+        shared_buffers_[name] = binding;
+    }
 }
 
 void RetainedScene::release_gpu() {

@@ -32,6 +32,17 @@ std::string gltf_item_name(const scene::Scene& scene, uint32_t index) {
            (mesh.empty() ? "mesh " + std::to_string(item.mesh) : mesh) + " #" + std::to_string(item.primitive);
 }
 
+const std::shared_ptr<const passes::ObjectKind>& gltf_skinned_mesh_kind() {
+    static const std::shared_ptr<const passes::ObjectKind> kind = std::make_shared<const passes::ObjectKind>(
+        "gltf-skinned-mesh",
+        std::vector<passes::ShaderPart>{
+            passes::standard_part("gltf-skinned-geometry").shader,
+            passes::standard_part("gltf-material").shader,
+        },
+        std::vector<rhi::VertexBufferLayout>{scene::vertex_buffer_layout(), scene::skin_buffer_layout()});
+    return kind;
+}
+
 const std::shared_ptr<const passes::ObjectKind>& gltf_mesh_kind() {
     static const std::shared_ptr<const passes::ObjectKind> kind = std::make_shared<const passes::ObjectKind>(
         "gltf-mesh",
@@ -44,13 +55,20 @@ const std::shared_ptr<const passes::ObjectKind>& gltf_mesh_kind() {
 }
 
 GltfObject::GltfObject(std::shared_ptr<const GpuScene> gpu, uint32_t draw_item)
-    : GltfObject(gpu, std::shared_ptr<const scene::Scene>(gpu, &gpu->scene()), draw_item) {}
+    : GltfObject(gpu, std::shared_ptr<const scene::Scene>(gpu, &gpu->scene()),
+                 gpu->skin_palette() ? std::shared_ptr<const SkinPalette>(gpu, gpu->skin_palette()) : nullptr, draw_item) {}
 
 GltfObject::GltfObject(std::shared_ptr<const GpuScene> gpu, std::shared_ptr<const scene::Scene> placements,
                        uint32_t draw_item)
+    : GltfObject(std::move(gpu), std::move(placements), nullptr, draw_item) {}
+
+GltfObject::GltfObject(std::shared_ptr<const GpuScene> gpu, std::shared_ptr<const scene::Scene> placements,
+                       std::shared_ptr<const SkinPalette> palette, uint32_t draw_item)
     : gpu_(std::move(gpu)),
       placements_(std::move(placements)),
+      palette_(std::move(palette)),
       draw_item_(draw_item),
+      skinned_(palette_ && item().skin && gpu_->skin_buffer()),
       name_(gltf_item_name(gpu_->scene(), draw_item)) {}
 
 const scene::DrawItem& GltfObject::item() const { return placements_->draw_items.at(draw_item_); }
@@ -82,6 +100,7 @@ Status GltfObject::render(passes::DrawContext& context) const {
 
     passes::Bindings set(context.program, context.commands, passes::kObjectSet);
     set.uniforms("GltfObjectUniforms", u);
+    if (skinned_) set.buffer("JointMatrices", palette_->range(*draw.skin));
     for (std::size_t i = 0; i < refs.size(); ++i) {
         // Passes that leave the material out of their fragment stage have no samplers.
         if (!context.program.find(kGltfSamplers[i])) continue;
@@ -96,6 +115,7 @@ Status GltfObject::render(passes::DrawContext& context) const {
                           "object '" + name_ + "': its GpuScene has no geometry (created with the textures only)");
     }
     context.commands.set_vertex_buffer(0, gpu_->vertex_buffer());
+    if (skinned_) context.commands.set_vertex_buffer(1, gpu_->skin_buffer());
     context.commands.set_index_buffer(gpu_->index_buffer(), rhi::IndexType::Uint32);
     context.commands.draw_indexed(range.index_count, 1, range.first_index, range.base_vertex);
     return {};

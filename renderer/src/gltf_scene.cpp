@@ -12,8 +12,9 @@ Result<std::shared_ptr<const renderer::PreparedScene>> load_gltf_scene(const std
 
 PipelineScene gltf_pipeline_scene(const std::shared_ptr<const renderer::GpuScene>& gpu,
                                   const renderer::SceneViewpoint& viewpoint,
-                                  std::shared_ptr<const scene::Scene> placements) {
-    const renderer::SceneObjects objects = renderer::make_scene_objects(gpu, placements);
+                                  std::shared_ptr<const scene::Scene> placements,
+                                  std::shared_ptr<const SkinPalette> palette) {
+    const renderer::SceneObjects objects = renderer::make_scene_objects(gpu, placements, palette);
     PipelineScene scene = gltf_view(gpu->scene(), viewpoint, objects.bounds);
     for (const auto& object : objects.opaque) {
         // Cut-out surfaces cast cut-out shadows: through the masked shadow pass.

@@ -27,6 +27,7 @@ GpuScene::~GpuScene() {
     // Errors here would mean stale handles of our own; nothing a caller could act on.
     if (vertices_) (void)device_->destroy(vertices_);
     if (indices_) (void)device_->destroy(indices_);
+    if (skin_) (void)device_->destroy(skin_);
     for (rhi::TextureHandle texture : images_) (void)device_->destroy(texture);
     for (rhi::SamplerHandle sampler : samplers_) (void)device_->destroy(sampler);
     if (fallback_.texture) (void)device_->destroy(fallback_.texture);
@@ -69,6 +70,18 @@ Status GpuScene::upload(GpuSceneContent content) {
         if (!index_buffer) return index_buffer.take_error();
         indices_ = *index_buffer;
         LOOM_TRY(device_->write_buffer(indices_, 0, std::as_bytes(std::span(geometry.indices))));
+        if (!geometry.skin.empty()) {
+            rhi::BufferDesc skin{source + " skin influences", std::span(geometry.skin).size_bytes(), rhi::BufferUsage::Vertex};
+            auto skin_buffer = device_->create_buffer(skin);
+            if (!skin_buffer) return skin_buffer.take_error();
+            skin_ = *skin_buffer;
+            LOOM_TRY(device_->write_buffer(skin_, 0, std::as_bytes(std::span(geometry.skin))));
+        }
+        if (!prepared_->scene.skins.empty()) {
+            auto palette = SkinPalette::create(*device_, prepared_->scene);
+            if (!palette) return palette.take_error();
+            palette_ = std::move(*palette);
+        }
     }
 
     const scene::Scene& scene = prepared_->scene;

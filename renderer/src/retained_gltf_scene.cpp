@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <tuple>
 #include <span>
 #include <string>
 #include <utility>
@@ -54,6 +55,16 @@ std::shared_ptr<passes::GpuMaterial> make_material(const GpuScene& gpu, uint32_t
 
 }  // namespace
 
+const std::shared_ptr<const passes::ObjectKind>& retained_gltf_skinned_mesh_kind() {
+    static const std::shared_ptr<const passes::ObjectKind> kind = std::make_shared<const passes::ObjectKind>(
+        "retained-gltf-skinned-mesh",
+        std::vector<passes::ShaderPart>{passes::standard_part("retained-gltf-skinned-geometry").shader,
+                                        passes::standard_part("gltf-material").shader},
+        std::vector<rhi::VertexBufferLayout>{scene::vertex_buffer_layout(), scene::skin_buffer_layout(),
+                                             passes::object_index_layout()});
+    return kind;
+}
+
 const std::shared_ptr<const passes::ObjectKind>& retained_gltf_mesh_kind() {
     static const std::shared_ptr<const passes::ObjectKind> kind = std::make_shared<const passes::ObjectKind>(
         "retained-gltf-mesh",
@@ -75,16 +86,25 @@ Result<std::shared_ptr<RetainedGltfScene>> RetainedGltfScene::create(rhi::Device
     std::shared_ptr<RetainedGltfScene> scene(new RetainedGltfScene());
     scene->gpu_ = std::move(*gpu);
     scene->posed_ = std::make_shared<scene::Scene>(scene::copy_without_images(prepared->scene));
+    if (!scene->posed_->skins.empty()) {
+        auto palette = SkinPalette::create(device, *scene->posed_);
+        if (!palette) return palette.take_error();
+        scene->palette_ = std::move(*palette);
+    }
     LOOM_TRY(scene->build(config));
     return scene;
 }
 
 Status RetainedGltfScene::build(passes::RetainedConfig config) {
     retained_ = std::make_shared<passes::RetainedScene>(config);
+    if (palette_) retained_->set_shared_buffer("JointMatrices", palette_->whole());
     const scene::Scene& scene = *posed_;
     models_.resize(scene.draw_items.size());
     shapes_.resize(scene.draw_items.size());
-    std::map<std::pair<uint32_t, uint32_t>, std::shared_ptr<const passes::Geometry>> geometries;
+    // By mesh, primitive and skin (a skinned primitive's joint indices point at its skin's
+    // joints in the palette; kNoSkin for unskinned ones).
+    constexpr uint32_t kNoSkin = UINT32_MAX;
+    std::map<std::tuple<uint32_t, uint32_t, uint32_t>, std::shared_ptr<const passes::Geometry>> geometries;
     std::map<uint32_t, std::shared_ptr<passes::GpuMaterial>> materials;
     for (uint32_t i = 0; i < scene.draw_items.size(); ++i) {
         const scene::DrawItem& item = scene.draw_items[i];
@@ -92,25 +112,37 @@ Status RetainedGltfScene::build(passes::RetainedConfig config) {
         if (primitive.indices.empty()) continue;
         const scene::AlphaMode mode = scene.materials[item.material].alpha_mode;
         if (mode == scene::AlphaMode::Blend) {
-            blended_.push_back(std::make_shared<const GltfObject>(gpu_, posed_, i));
+            blended_.push_back(std::make_shared<const GltfObject>(gpu_, posed_, palette_, i));
             continue;
         }
-        std::shared_ptr<const passes::Geometry>& geometry = geometries[{item.mesh, item.primitive}];
+        const bool skinned = item.skin && palette_ && !primitive.skin.empty();
+        std::shared_ptr<const passes::Geometry>& geometry =
+            geometries[{item.mesh, item.primitive, skinned ? *item.skin : kNoSkin}];
         if (!geometry) {
-            const std::span<const scene::Vertex> vertices(primitive.vertices);
-            const std::span<const std::byte> bytes = std::as_bytes(vertices);
+            const std::span<const std::byte> bytes = std::as_bytes(std::span<const scene::Vertex>(primitive.vertices));
+            std::vector<rhi::VertexBufferLayout> layouts{scene::vertex_buffer_layout()};
+            std::vector<std::vector<std::byte>> streams{std::vector<std::byte>(bytes.begin(), bytes.end())};
+            if (skinned) {
+                std::vector<scene::SkinInfluences> influences = primitive.skin;
+                const uint32_t base = palette_->base(*item.skin);
+                for (scene::SkinInfluences& influence : influences) influence.joints += glm::uvec4(base);
+                const std::span<const std::byte> skin_bytes = std::as_bytes(std::span<const scene::SkinInfluences>(influences));
+                layouts.push_back(scene::skin_buffer_layout());
+                streams.emplace_back(skin_bytes.begin(), skin_bytes.end());
+            }
             auto made = passes::Geometry::create(
-                scene.source + " mesh " + std::to_string(item.mesh) + " #" + std::to_string(item.primitive),
-                {scene::vertex_buffer_layout()}, {std::vector<std::byte>(bytes.begin(), bytes.end())},
-                static_cast<uint32_t>(vertices.size()), primitive.indices);
+                scene.source + " mesh " + std::to_string(item.mesh) + " #" + std::to_string(item.primitive) +
+                    (skinned ? " skin " + std::to_string(*item.skin) : ""),
+                std::move(layouts), std::move(streams), static_cast<uint32_t>(primitive.vertices.size()), primitive.indices);
             if (!made) return made.take_error();
             geometry = *made;
         }
         std::shared_ptr<passes::GpuMaterial>& material = materials[item.material];
         if (!material) material = make_material(*gpu_, item.material);
         models_[i] = std::make_shared<passes::InputParam<glm::mat4>>(item.world);
-        auto shape = std::make_shared<passes::Shape>(gltf_item_name(scene, i), retained_gltf_mesh_kind(), geometry, material,
-                                                     models_[i]);
+        auto shape = std::make_shared<passes::Shape>(gltf_item_name(scene, i),
+                                                     skinned ? retained_gltf_skinned_mesh_kind() : retained_gltf_mesh_kind(),
+                                                     geometry, material, models_[i]);
         shape->passes = passes_of(mode);
         masked_ |= mode == scene::AlphaMode::Mask;
         LOOM_TRY(retained_->submit(shape));
@@ -150,8 +182,17 @@ Result<std::vector<uint32_t>> RetainedGltfScene::pose(uint32_t animation, float 
                           posed_->source + ": animation time " + std::to_string(time) + " is not a time (seconds >= 0)");
     }
     std::vector<uint32_t> moved = scene::pose(*posed_, posed_->animations[animation], time);
+    std::vector<bool> skins_to_write(posed_->skins.size(), false);
     for (uint32_t item : moved) {
-        if (models_[item]) models_[item]->set(posed_->draw_items[item].world);
+        const std::optional<uint32_t> skin = posed_->draw_items[item].skin;
+        if (skin) {
+            skins_to_write[*skin] = true;
+        } else if (models_[item]) {
+            models_[item]->set(posed_->draw_items[item].world);
+        }
+    }
+    for (uint32_t s = 0; s < skins_to_write.size(); ++s) {
+        if (skins_to_write[s] && palette_) LOOM_TRY(palette_->write(*posed_, s));
     }
     return moved;
 }

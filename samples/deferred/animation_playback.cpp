@@ -7,6 +7,7 @@
 
 #include "loom/renderer/gltf_scene.hpp"
 #include "loom/renderer/retained_gltf_scene.hpp"
+#include "loom/renderer/skin_palette.hpp"
 #include "loom/scene/animation.hpp"
 
 namespace loom::deferred {
@@ -64,7 +65,14 @@ Result<AnimationRun> play_animation(rhi::Device& device, std::shared_ptr<const r
     auto gpu = renderer::GpuScene::create(device, prepared);
     if (!gpu) return gpu.take_error();
     auto posed = std::make_shared<scene::Scene>(scene::copy_without_images(file));
-    renderer::PipelineScene immediate_content = renderer::gltf_pipeline_scene(*gpu, *viewpoint, posed);
+    // Its joint palette is written whole every frame, as its uniforms are.
+    std::shared_ptr<renderer::SkinPalette> palette;
+    if (!file.skins.empty()) {
+        auto made = renderer::SkinPalette::create(device, *posed);
+        if (!made) return made.take_error();
+        palette = std::move(*made);
+    }
+    renderer::PipelineScene immediate_content = renderer::gltf_pipeline_scene(*gpu, *viewpoint, posed, palette);
     immediate_content.bounds = bounds;
     immediate_content.shadow_bounds = bounds;
     run.scene_line = file.source + ": " + std::to_string(run.shapes) + " retained shape(s), " +
@@ -76,23 +84,31 @@ Result<AnimationRun> play_animation(rhi::Device& device, std::shared_ptr<const r
     run.columns = static_cast<uint32_t>(std::ceil(std::sqrt(static_cast<double>(settings.frames))));
     const uint32_t rows = (settings.frames + run.columns - 1) / run.columns;
     run.contact_sheet = rhi::Image(run.columns * settings.size.width, rows * settings.size.height, rhi::Format::RGBA8Unorm);
+    // The layer's uploads: its own (records, materials, draw lists, geometry) and the joint
+    // matrices posing wrote.
+    auto layer_bytes = [&] {
+        const renderer::SkinPalette* joints = (*retained)->skin_palette();
+        return (*retained)->retained().stats().uploaded_bytes() + (joints ? joints->bytes_written() : 0);
+    };
     for (uint32_t i = 0; i < settings.frames; ++i) {
         AnimationFrame frame;
         frame.time = settings.frames == 1 ? 0.0f : run.duration * static_cast<float>(i) / static_cast<float>(settings.frames - 1);
+        // Each path's writes right before its own frame, so the device counts them there.
+        const uint64_t layer_before = layer_bytes();
         std::vector<bool> moved(file.draw_items.size(), false);
         for (uint32_t a = 0; a < file.animations.size(); ++a) {
             auto items = (*retained)->pose(a, frame.time);
             if (!items) return items.take_error();
             for (uint32_t item : *items) moved[item] = true;
-            (void)scene::pose(*posed, posed->animations[a], frame.time);
         }
         frame.moved = static_cast<uint32_t>(std::count(moved.begin(), moved.end(), true));
-
-        const uint64_t layer_before = (*retained)->retained().stats().uploaded_bytes();
         auto kept = draw(device, **retained_pipeline, settings.size);
         if (!kept) return kept.take_error();
         frame.retained_bytes = kept->bytes;
-        frame.layer_bytes = (*retained)->retained().stats().uploaded_bytes() - layer_before;
+        frame.layer_bytes = layer_bytes() - layer_before;
+
+        for (uint32_t a = 0; a < file.animations.size(); ++a) (void)scene::pose(*posed, posed->animations[a], frame.time);
+        if (palette) LOOM_TRY(palette->write_all(*posed));
         auto drawn = draw(device, **immediate_pipeline, settings.size);
         if (!drawn) return drawn.take_error();
         frame.immediate_bytes = drawn->bytes;

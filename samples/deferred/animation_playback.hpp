@@ -4,10 +4,12 @@
 // side on one device, each through its own pipeline:
 //
 //   retained   the scene in the retained object layer (renderer::RetainedGltfScene): posing
-//              sets the world matrices of the items that moved, and the next frame uploads
-//              their records (128 bytes each) and nothing else of the scene;
+//              sets the world matrices of the items that moved and writes the joint matrices of
+//              the skins that moved (64 bytes per joint), and the next frame uploads their
+//              records (128 bytes each) and nothing else of the scene;
 //   immediate  GltfObjects reading the posed scene at every draw: every draw writes its object's
-//              uniform block (384 bytes) into per-frame memory.
+//              uniform block (384 bytes) into per-frame memory, and every skin's joint matrices
+//              are written every frame.
 //
 // Per frame it records the bytes each path uploaded (what the device counted: the passes' own
 // per-frame uniforms included, the same in both) and the retained layer's own uploads, and
@@ -40,7 +42,7 @@ struct AnimationFrame {
     float time = 0.0f;            ///< seconds
     uint32_t moved = 0;           ///< draw items the pose moved (since the frame before)
     uint64_t retained_bytes = 0;  ///< the device's bytes uploaded in the retained path's frame
-    uint64_t layer_bytes = 0;     ///< of which the retained layer's (records, materials, draw lists, geometry)
+    uint64_t layer_bytes = 0;     ///< of which the retained layer's (records, materials, draw lists, geometry, joints)
     uint64_t immediate_bytes = 0; ///< the device's bytes uploaded in the immediate path's frame
     bool identical = false;       ///< the two final pictures are bit-identical
 };

@@ -28,4 +28,17 @@ rhi::VertexBufferLayout vertex_buffer_layout() {
     return layout;
 }
 
+static_assert(sizeof(SkinInfluences) == 32, "two vec4s, as skin_buffer_layout() reads them");
+
+rhi::VertexBufferLayout skin_buffer_layout() {
+    rhi::VertexBufferLayout layout;
+    layout.stride = sizeof(SkinInfluences);
+    layout.step = rhi::VertexStepMode::PerVertex;
+    layout.attributes = {
+        {vertex_location::kJoints, rhi::VertexFormat::Uint4, offsetof(SkinInfluences, joints)},
+        {vertex_location::kWeights, rhi::VertexFormat::Float4, offsetof(SkinInfluences, weights)},
+    };
+    return layout;
+}
+
 }  // namespace loom::scene

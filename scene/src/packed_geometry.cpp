@@ -12,8 +12,19 @@ PackedGeometry pack_geometry(const Scene& scene) {
     assert(scene.vertex_count() <= static_cast<uint64_t>(std::numeric_limits<int32_t>::max()));
     assert(scene.index_count() <= std::numeric_limits<uint32_t>::max());
     packed.ranges.resize(scene.meshes.size());
+    bool skinned = false;
+    for (const Mesh& mesh : scene.meshes) {
+        for (const Primitive& primitive : mesh.primitives) skinned = skinned || !primitive.skin.empty();
+    }
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         for (const Primitive& primitive : scene.meshes[m].primitives) {
+            if (skinned) {
+                if (primitive.skin.empty()) {
+                    packed.skin.resize(packed.skin.size() + primitive.vertices.size());
+                } else {
+                    packed.skin.insert(packed.skin.end(), primitive.skin.begin(), primitive.skin.end());
+                }
+            }
             PrimitiveRange range;
             range.first_index = static_cast<uint32_t>(packed.indices.size());
             range.index_count = static_cast<uint32_t>(primitive.indices.size());

@@ -159,6 +159,11 @@ public:
     [[nodiscard]] std::vector<DrawBatch> batches(const ShaderPass& pass) const;
     [[nodiscard]] std::vector<rhi::DrawIndexedIndirectCommand> commands(const ShaderPass& pass) const;
     [[nodiscard]] std::vector<uint32_t> instances(const ShaderPass& pass) const;
+    /// A buffer the shapes' programs may read besides their records and materials (e.g. a skin's
+    /// joint palette): bound in set 1 under `name` for every batch whose program declares a
+    /// resource of that name. The caller keeps it alive and writes it; setting a name again
+    /// replaces the binding, an empty buffer removes it.
+    void set_shared_buffer(const std::string& name, const rhi::BufferBinding& binding);
     /// The record slot of a submitted shape; nullopt when it is not submitted.
     [[nodiscard]] std::optional<uint32_t> object_slot(const Shape& shape) const;
 
@@ -197,6 +202,7 @@ private:
     std::map<const Geometry*, std::unique_ptr<GeometryEntry>> geometries_;
     std::map<const GpuMaterial*, std::unique_ptr<MaterialEntry>> materials_;
     std::map<std::string, uint32_t> kind_ranks_;  ///< kinds in order of first submission
+    std::map<std::string, rhi::BufferBinding> shared_buffers_;
     // The finalize queue (geometries to place) and the upload queue (stale sets).
     std::vector<GeometryEntry*> to_place_;
     std::vector<ObjectEntry*> stale_objects_;

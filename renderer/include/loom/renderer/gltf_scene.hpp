@@ -26,10 +26,13 @@ Result<std::shared_ptr<const renderer::PreparedScene>> load_gltf_scene(const std
 /// cut out), blended ones go to the transparent pass and cast none. The GpuScene may be shared
 /// by several pipelines on its device. With `placements` (a copy of the scene an animation
 /// poses), the objects are drawn where it places them, and the blended ones are sorted by the
-/// bounds it gives them at every frame; the pipeline's bounds stay those of the first pose.
+/// bounds it gives them at every frame; the pipeline's bounds stay those of the first pose. With
+/// `palette` (the placements' joint matrices, written by the caller after each pose), skinned
+/// items are deformed by their joints.
 PipelineScene gltf_pipeline_scene(const std::shared_ptr<const renderer::GpuScene>& gpu,
                                   const renderer::SceneViewpoint& viewpoint,
-                                  std::shared_ptr<const scene::Scene> placements = nullptr);
+                                  std::shared_ptr<const scene::Scene> placements = nullptr,
+                                  std::shared_ptr<const SkinPalette> palette = nullptr);
 
 /// A pipeline scene without objects yet, as a glTF scene is seen: named after its file, the
 /// camera of `viewpoint`, the viewer's sun (viewer_sun), `bounds` for the position map and the

@@ -14,6 +14,7 @@
 #include "loom/rhi/result.hpp"
 #include "loom/scene/packed_geometry.hpp"
 #include "loom/scene/scene.hpp"
+#include "loom/renderer/skin_palette.hpp"
 
 namespace loom::renderer {
 
@@ -54,6 +55,13 @@ public:
     /// Null when the scene has no geometry or it was not uploaded (GpuSceneContent::TexturesOnly).
     [[nodiscard]] rhi::BufferHandle vertex_buffer() const { return vertices_; }
     [[nodiscard]] rhi::BufferHandle index_buffer() const { return indices_; }
+    /// The packed geometry's skin influences (PackedGeometry::skin), parallel to the vertex
+    /// buffer; null when no primitive is skinned or the geometry was not uploaded.
+    [[nodiscard]] rhi::BufferHandle skin_buffer() const { return skin_; }
+    /// The joint matrices of the scene's skins as it was prepared (its static pose: GltfObjects
+    /// of the scene itself are deformed by them); null when it has no skins or the geometry was
+    /// not uploaded.
+    [[nodiscard]] const SkinPalette* skin_palette() const { return palette_.get(); }
     /// The texture and sampler of scene().textures[index] (index must be valid).
     [[nodiscard]] rhi::TextureBinding texture(uint32_t index) const { return textures_[index]; }
     /// A 1x1 opaque white texture with a default sampler, bound where a material has no texture.
@@ -71,6 +79,8 @@ private:
     std::shared_ptr<const PreparedScene> prepared_;
     rhi::BufferHandle vertices_;
     rhi::BufferHandle indices_;
+    rhi::BufferHandle skin_;
+    std::unique_ptr<SkinPalette> palette_;
     std::vector<rhi::TextureHandle> images_;       ///< one per scene image
     std::vector<rhi::SamplerHandle> samplers_;     ///< one per scene texture
     std::vector<rhi::TextureBinding> textures_;    ///< one per scene texture

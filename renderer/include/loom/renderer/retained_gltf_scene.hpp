@@ -11,6 +11,11 @@
 //   auto pipeline = DeferredPipeline::create(device, (*gltf)->pipeline_scene(viewpoint));
 //   for (float t : times) { (*gltf)->pose(0, t); (*pipeline)->render(frame); }
 //
+// Skinned items are shapes of the kind "retained-gltf-skinned-mesh": their geometry carries the
+// influences with joint indices into the scene's SkinPalette, which the layer binds for every
+// batch (RetainedScene::set_shared_buffer); posing writes the joint matrices of the skins that
+// moved (64 bytes per joint) and their records stay as they are (the identity).
+//
 // Blended items are drawn by the transparent pass as GltfObjects, sorted back to front every
 // frame: they read their placement from the posed scene and their geometry from the GpuScene's
 // buffers (uploaded only when the scene has blended items).
@@ -28,6 +33,7 @@
 #include "loom/renderer/deferred_pipeline.hpp"
 #include "loom/renderer/gpu_scene.hpp"
 #include "loom/renderer/scene_objects.hpp"
+#include "loom/renderer/skin_palette.hpp"
 
 namespace loom::renderer {
 
@@ -36,6 +42,11 @@ namespace loom::renderer {
 /// per-instance object index (passes::object_index_layout()). It draws exactly what
 /// "gltf-mesh" draws.
 const std::shared_ptr<const passes::ObjectKind>& retained_gltf_mesh_kind();
+/// The kind "retained-gltf-skinned-mesh" of skinned draw items: parts
+/// "retained-gltf-skinned-geometry" (the layer's shared buffer "JointMatrices" besides the
+/// record and the material) and "gltf-material"; vertex buffers scene::vertex_buffer_layout(),
+/// scene::skin_buffer_layout() (joint indices into the whole palette) and the object index.
+const std::shared_ptr<const passes::ObjectKind>& retained_gltf_skinned_mesh_kind();
 
 class RetainedGltfScene : public std::enable_shared_from_this<RetainedGltfScene> {
 public:
@@ -56,8 +67,9 @@ public:
     PipelineScene pipeline_scene(const SceneViewpoint& viewpoint);
 
     /// Poses the scene's animation `animation` at `time` seconds (scene::pose): the moved opaque
-    /// and masked items get their new world matrix (uploaded by the next frame), the moved
-    /// blended items and the scene's bounds follow. Returns the draw items that moved. An index
+    /// and masked items get their new world matrix (uploaded by the next frame), the joint
+    /// matrices of the skins whose joints moved are written to the palette, the moved blended
+    /// items and the scene's bounds follow. Returns the draw items that moved. An index
     /// the file does not have, or a negative or non-finite time, is an InvalidArgument error.
     Result<std::vector<uint32_t>> pose(uint32_t animation, float time);
 
@@ -71,6 +83,9 @@ public:
     /// Shapes submitted (opaque and masked draw items) and materials made for them.
     [[nodiscard]] std::size_t shape_count() const { return retained_->size(); }
     [[nodiscard]] std::size_t material_count() const { return retained_->material_count(); }
+    /// The joint palette of the scene's skins (null without skins): bytes_written() counts what
+    /// posing wrote.
+    [[nodiscard]] const SkinPalette* skin_palette() const { return palette_.get(); }
 
 private:
     RetainedGltfScene() = default;
@@ -80,6 +95,7 @@ private:
     /// A copy of the prepared scene without its images, posed by pose().
     std::shared_ptr<scene::Scene> posed_;
     std::shared_ptr<passes::RetainedScene> retained_;
+    std::shared_ptr<SkinPalette> palette_;
     /// Per draw item: its shape's world matrix and its shape (null where it has none).
     std::vector<std::shared_ptr<passes::InputParam<glm::mat4>>> models_;
     std::vector<std::shared_ptr<passes::Shape>> shapes_;

@@ -25,6 +25,9 @@ struct PrimitiveRange {
 struct PackedGeometry {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;  ///< as in the primitives (not offset by base_vertex)
+    /// Parallel to `vertices` when any primitive is skinned (zeros for the others), else empty:
+    /// the primitives' skin influences, with joint indices into their skin's joint list.
+    std::vector<SkinInfluences> skin;
     /// ranges[mesh][primitive], parallel to Scene::meshes[mesh].primitives.
     std::vector<std::vector<PrimitiveRange>> ranges;
 

@@ -20,20 +20,25 @@ layout(location = 6) out vec4 v_gltf_tangent;  // xyz: world tangent, w: world h
 layout(location = 7) out vec2 v_gltf_uv1;
 #endif
 
-// `mirror`: -1 when `model` mirrors (negative determinant), else +1.
-ObjectVertex gltf_vertex(mat4 model, mat4 normal_matrix, float mirror) {
+// The vertex with the given object-space position, normal and tangent direction (the inputs',
+// or where a skin moved them). `mirror`: -1 when `model` mirrors (negative determinant), else +1.
+ObjectVertex gltf_vertex_at(mat4 model, mat4 normal_matrix, float mirror, vec3 position, vec3 normal, vec3 tangent) {
     ObjectVertex v;
-    v.world_position = transform_point(model, in_position).xyz;
-    v.world_normal = transform_vector(mat3(normal_matrix), in_normal);
+    v.world_position = transform_point(model, position).xyz;
+    v.world_normal = transform_vector(mat3(normal_matrix), normal);
     v.uv = in_uv0;
     v.color = in_color;
 #ifdef LOOM_PART_CAMERA
     // Tangents are surface directions: they follow the model matrix. A mirroring matrix turns
     // cross(normal, tangent) around, so the handedness flips with it.
-    v_gltf_tangent = vec4(transform_vector(mat3(model), in_tangent.xyz), in_tangent.w * mirror);
+    v_gltf_tangent = vec4(transform_vector(mat3(model), tangent), in_tangent.w * mirror);
     v_gltf_uv1 = in_uv1;
 #endif
     return v;
+}
+
+ObjectVertex gltf_vertex(mat4 model, mat4 normal_matrix, float mirror) {
+    return gltf_vertex_at(model, normal_matrix, mirror, in_position, in_normal, in_tangent.xyz);
 }
 
 #endif
