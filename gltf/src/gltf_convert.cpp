@@ -104,7 +104,6 @@ public:
         check_unused_images();
         check_accessor_bounds();
         convert_animations();
-        check_skin_data();
         check_skinning_attributes();
         return std::move(scene_);
     }
@@ -411,23 +410,6 @@ private:
                 unnormalized = true;
                 warn(where / sets[0].weights_name, "vertex " + std::to_string(v) + "'s weights sum to " + std::to_string(sum) +
                                                        ", not 1");
-            }
-        }
-    }
-
-    void check_skin_data() {
-        for (std::size_t s = 0; s < model_.skins.size(); ++s) {
-            const JsonPointer where = JsonPointer{} / "skins" / as_index(s) / "inverseBindMatrices";
-            if (model_.skins[s].inverseBindMatrices < 0) continue;
-            const auto matrices = read_unused(model_.skins[s].inverseBindMatrices, 16, where);
-            if (!matrices) continue;
-            for (std::size_t m = 0; m * 16 + 15 < matrices->size(); ++m) {
-                const float* column_major = matrices->data() + m * 16;
-                if (column_major[3] != 0.0f || column_major[7] != 0.0f || column_major[11] != 0.0f ||
-                    column_major[15] != 1.0f) {
-                    warn(where, "matrix " + std::to_string(m) + " is not affine (its last row must be 0 0 0 1)");
-                    break;
-                }
             }
         }
     }
@@ -922,7 +904,8 @@ private:
     }
 
     // Skins: their joints and inverse bind matrices (the identity where the file gives none, or
-    // gives matrices the validator reported: fewer than joints, or not MAT4 floats).
+    // gives matrices the validator reported: fewer than joints, or not MAT4 floats). A matrix
+    // whose last row is not 0 0 0 1 is kept, with a warning.
     Status convert_skins() {
         for (std::size_t s = 0; s < model_.skins.size(); ++s) {
             const tinygltf::Skin& source = model_.skins[s];
@@ -939,6 +922,7 @@ private:
             skin.inverse_bind_matrices.assign(skin.joints.size(), glm::mat4(1.0f));
             if (source.inverseBindMatrices >= 0) {
                 const auto matrices = read_unused(source.inverseBindMatrices, 16, where / "inverseBindMatrices");
+                if (matrices) warn_unless_affine(*matrices, where / "inverseBindMatrices");
                 if (matrices && matrices->size() >= skin.joints.size() * 16) {
                     for (std::size_t j = 0; j < skin.joints.size(); ++j) {
                         skin.inverse_bind_matrices[j] = glm::make_mat4(matrices->data() + j * 16);  // column-major, as glTF
@@ -954,6 +938,18 @@ private:
             if (skin && *skin >= scene_.skins.size()) return error(JsonPointer{} / "nodes" / as_index(n) / "skin", "skin does not exist");
         }
         return {};
+    }
+
+    // A warning at `where` naming the first of the column-major MAT4s in `matrices` whose last
+    // row is not 0 0 0 1.
+    void warn_unless_affine(const std::vector<float>& matrices, const JsonPointer& where) {
+        for (std::size_t m = 0; m * 16 + 15 < matrices.size(); ++m) {
+            const float* column_major = matrices.data() + m * 16;
+            if (column_major[3] != 0.0f || column_major[7] != 0.0f || column_major[11] != 0.0f || column_major[15] != 1.0f) {
+                warn(where, "matrix " + std::to_string(m) + " is not affine (its last row must be 0 0 0 1)");
+                return;
+            }
+        }
     }
 
     Status flatten_scene() {
