@@ -1,5 +1,7 @@
 #include "gltf_material_block.hpp"
 
+#include "loom/passes/parts.hpp"
+
 namespace loom::renderer {
 namespace {
 
@@ -17,6 +19,16 @@ float alpha_mode_value(scene::AlphaMode mode) {
 std::array<const std::optional<scene::TextureRef>*, 5> gltf_texture_refs(const scene::Material& m) {
     return {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture, &m.occlusion_texture,
             &m.emissive_texture};
+}
+
+std::shared_ptr<const passes::ObjectKind> make_gltf_kind(std::string name, std::string_view geometry_part,
+                                                         std::vector<rhi::VertexBufferLayout> vertex_buffers) {
+    return std::make_shared<const passes::ObjectKind>(
+        std::move(name),
+        // "gltf-material" has one resource per sampler of kGltfSamplers.
+        std::vector<passes::ShaderPart>{passes::standard_part(geometry_part).shader,
+                                        passes::standard_part("gltf-material").shader},
+        std::move(vertex_buffers));
 }
 
 GltfMaterialBlock gltf_material_block(const scene::Material& m) {

@@ -1,15 +1,21 @@
 #pragma once
-// The glTF material as the "gltf-material" part reads it: the members of GltfObjectUniforms
-// after its two matrices (gltf_object.glsl), which are also the whole of the retained kind's
-// MaterialUniforms (retained_gltf_object.glsl). Shared by GltfObject, which writes the block per
-// draw, and RetainedGltfScene, which writes it once per material.
+// The C++ side of the "gltf-material" part, shared by GltfObject, which writes its block per
+// draw, and RetainedGltfScene, which writes it once per material: the block (the members of
+// GltfObjectUniforms after its two matrices, gltf_object.glsl, which are also the whole of the
+// retained kinds' MaterialUniforms, retained_gltf_object.glsl), its sampler names, and the
+// object kinds made of a glTF geometry part and this material part.
 
 #include <array>
+#include <memory>
 #include <optional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/glm.hpp>
 
+#include "loom/passes/object.hpp"
+#include "loom/rhi/descriptions.hpp"
 #include "loom/scene/material.hpp"
 
 namespace loom::renderer {
@@ -35,5 +41,9 @@ std::array<const std::optional<scene::TextureRef>*, 5> gltf_texture_refs(const s
 
 /// The block of `material` (alpha.z 0).
 GltfMaterialBlock gltf_material_block(const scene::Material& material);
+
+/// The object kind `name`: the part `geometry_part` and "gltf-material", with `vertex_buffers`.
+std::shared_ptr<const passes::ObjectKind> make_gltf_kind(std::string name, std::string_view geometry_part,
+                                                         std::vector<rhi::VertexBufferLayout> vertex_buffers);
 
 }  // namespace loom::renderer

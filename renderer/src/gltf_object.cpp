@@ -4,7 +4,6 @@
 
 #include <glm/glm.hpp>
 
-#include "loom/passes/parts.hpp"
 #include "loom/passes/program.hpp"
 #include "loom/passes/shader_pass.hpp"
 #include "loom/scene/mesh.hpp"
@@ -33,24 +32,14 @@ std::string gltf_item_name(const scene::Scene& scene, uint32_t index) {
 }
 
 const std::shared_ptr<const passes::ObjectKind>& gltf_skinned_mesh_kind() {
-    static const std::shared_ptr<const passes::ObjectKind> kind = std::make_shared<const passes::ObjectKind>(
-        "gltf-skinned-mesh",
-        std::vector<passes::ShaderPart>{
-            passes::standard_part("gltf-skinned-geometry").shader,
-            passes::standard_part("gltf-material").shader,
-        },
-        std::vector<rhi::VertexBufferLayout>{scene::vertex_buffer_layout(), scene::skin_buffer_layout()});
+    static const std::shared_ptr<const passes::ObjectKind> kind = make_gltf_kind(
+        "gltf-skinned-mesh", "gltf-skinned-geometry", {scene::vertex_buffer_layout(), scene::skin_buffer_layout()});
     return kind;
 }
 
 const std::shared_ptr<const passes::ObjectKind>& gltf_mesh_kind() {
-    static const std::shared_ptr<const passes::ObjectKind> kind = std::make_shared<const passes::ObjectKind>(
-        "gltf-mesh",
-        std::vector<passes::ShaderPart>{
-            passes::standard_part("gltf-geometry").shader,
-            passes::standard_part("gltf-material").shader,  // one resource per sampler of kGltfSamplers
-        },
-        std::vector<rhi::VertexBufferLayout>{scene::vertex_buffer_layout()});
+    static const std::shared_ptr<const passes::ObjectKind> kind =
+        make_gltf_kind("gltf-mesh", "gltf-geometry", {scene::vertex_buffer_layout()});
     return kind;
 }
 

@@ -8,7 +8,6 @@
 #include <string>
 #include <utility>
 
-#include "loom/passes/parts.hpp"
 #include "loom/passes/retained_mesh.hpp"
 #include "loom/renderer/gltf_scene.hpp"
 #include "loom/scene/mesh.hpp"
@@ -56,21 +55,15 @@ std::shared_ptr<passes::GpuMaterial> make_material(const GpuScene& gpu, uint32_t
 }  // namespace
 
 const std::shared_ptr<const passes::ObjectKind>& retained_gltf_skinned_mesh_kind() {
-    static const std::shared_ptr<const passes::ObjectKind> kind = std::make_shared<const passes::ObjectKind>(
-        "retained-gltf-skinned-mesh",
-        std::vector<passes::ShaderPart>{passes::standard_part("retained-gltf-skinned-geometry").shader,
-                                        passes::standard_part("gltf-material").shader},
-        std::vector<rhi::VertexBufferLayout>{scene::vertex_buffer_layout(), scene::skin_buffer_layout(),
-                                             passes::object_index_layout()});
+    static const std::shared_ptr<const passes::ObjectKind> kind =
+        make_gltf_kind("retained-gltf-skinned-mesh", "retained-gltf-skinned-geometry",
+                       {scene::vertex_buffer_layout(), scene::skin_buffer_layout(), passes::object_index_layout()});
     return kind;
 }
 
 const std::shared_ptr<const passes::ObjectKind>& retained_gltf_mesh_kind() {
-    static const std::shared_ptr<const passes::ObjectKind> kind = std::make_shared<const passes::ObjectKind>(
-        "retained-gltf-mesh",
-        std::vector<passes::ShaderPart>{passes::standard_part("retained-gltf-geometry").shader,
-                                        passes::standard_part("gltf-material").shader},
-        std::vector<rhi::VertexBufferLayout>{scene::vertex_buffer_layout(), passes::object_index_layout()});
+    static const std::shared_ptr<const passes::ObjectKind> kind = make_gltf_kind(
+        "retained-gltf-mesh", "retained-gltf-geometry", {scene::vertex_buffer_layout(), passes::object_index_layout()});
     return kind;
 }
 

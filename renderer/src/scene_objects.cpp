@@ -11,16 +11,13 @@ SceneObjects make_scene_objects(std::shared_ptr<const GpuScene> gpu, std::shared
                                 std::shared_ptr<const SkinPalette> palette) {
     SceneObjects objects;
     objects.gpu = gpu;
-    if (!placements) {
-        // The scene itself, in its own pose: its skins' matrices are the GpuScene's.
-        placements = std::shared_ptr<const scene::Scene>(gpu, &gpu->scene());
-        if (!palette && gpu->skin_palette()) palette = std::shared_ptr<const SkinPalette>(gpu, gpu->skin_palette());
-    }
-    const scene::Scene& scene = *placements;
+    const scene::Scene& scene = placements ? *placements : gpu->scene();
     scene::Bounds bounds;
     for (uint32_t i = 0; i < scene.draw_items.size(); ++i) {
         if (gpu->prepared().geometry.range(scene.draw_items[i]).index_count == 0) continue;
-        auto object = std::make_shared<const GltfObject>(gpu, placements, palette, i);
+        // Without placements: the scene itself, in its own pose (and its GpuScene's palette).
+        auto object = placements ? std::make_shared<const GltfObject>(gpu, placements, palette, i)
+                                 : std::make_shared<const GltfObject>(gpu, i);
         bounds.extend(scene.draw_items[i].world_bounds);
         (object->alpha_mode() == scene::AlphaMode::Blend ? objects.blended : objects.opaque).push_back(std::move(object));
     }

@@ -30,7 +30,8 @@ struct SceneObjects {
 /// One GltfObject per draw item of `gpu`'s scene (items with no indices are skipped), placed by
 /// `placements` when given (a copy of the scene that an animation poses: GltfObject reads it at
 /// every draw), skinned items deformed by `palette` when given (the placements' skins). Without
-/// placements, skinned items are deformed by the GpuScene's own palette (its static pose).
+/// placements, skinned items are deformed by the GpuScene's own palette (its static pose), and
+/// `palette` is not used.
 SceneObjects make_scene_objects(std::shared_ptr<const GpuScene> gpu,
                                 std::shared_ptr<const scene::Scene> placements = nullptr,
                                 std::shared_ptr<const SkinPalette> palette = nullptr);
