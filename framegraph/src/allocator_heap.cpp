@@ -341,6 +341,8 @@ public:
     static constexpr uint32_t kRestartResources = 4096;
 
     [[nodiscard]] std::string_view name() const override { return "heap"; }
+    // Lifetimes and sizes are all it needs.
+    [[nodiscard]] bool reads_pass_lists() const override { return false; }
 
     [[nodiscard]] Result<Allocation> allocate(const AllocationProblem& problem) const override {
         const auto count = static_cast<uint32_t>(problem.resources.size());

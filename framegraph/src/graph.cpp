@@ -72,7 +72,7 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
     const auto first_port = static_cast<uint32_t>(sources_.size());
     port_offset_.push_back(first_port);
     sources_.resize(first_port + pass->ports().size());
-    consumers_.resize(first_port + pass->ports().size());
+    consumer_lists_.resize(first_port + pass->ports().size());
     marked_output_.resize(first_port + pass->ports().size());
     passes_.push_back(std::move(pass));
     index_name(index);
@@ -87,7 +87,9 @@ void FrameGraph::reserve(uint32_t passes, uint32_t ports) {
     if (std::size_t{passes} * 2 > name_slots_.size()) grow_name_index(std::size_t{passes} * 2);
     port_offset_.reserve(passes);
     sources_.reserve(ports);
-    consumers_.reserve(ports);
+    consumer_lists_.reserve(ports);
+    // Each list starts with room for two (see link).
+    consumer_pool_.reserve(std::size_t{ports} * 2);
     marked_output_.reserve(ports);
     connections_.reserve(ports);
 }
@@ -98,7 +100,8 @@ void FrameGraph::clear() {
     name_hashes_.clear();
     port_offset_.clear();
     sources_.clear();
-    consumers_.clear();
+    consumer_lists_.clear();
+    consumer_pool_.clear();
     connections_.clear();
     outputs_.clear();
     marked_output_.clear();
@@ -122,11 +125,18 @@ std::optional<std::string> FrameGraph::address_problem(PortAddress address) cons
 
 void FrameGraph::link(PortAddress from, PortAddress to) {
     sources_[flat(to)] = from;
-    std::vector<PortAddress>& consumers = consumers_[flat(from)];
-    // Outputs are mostly read once or twice: room for two at the first saves the second's
-    // reallocation.
-    if (consumers.empty()) consumers.reserve(2);
-    consumers.push_back(to);
+    ConsumerList& list = consumer_lists_[flat(from)];
+    if (list.count == list.capacity) {
+        // Outputs are mostly read once or twice: room for two at the first, doubled when full,
+        // the list moving to the end of the pool (its old slots stay unused).
+        const uint32_t capacity = list.capacity == 0 ? 2 : list.capacity * 2;
+        const auto offset = static_cast<uint32_t>(consumer_pool_.size());
+        consumer_pool_.resize(consumer_pool_.size() + capacity);
+        std::copy_n(consumer_pool_.begin() + list.offset, list.count, consumer_pool_.begin() + offset);
+        list.offset = offset;
+        list.capacity = capacity;
+    }
+    consumer_pool_[list.offset + list.count++] = to;
     connections_.push_back({from, to});
 }
 
@@ -170,7 +180,10 @@ const Port& FrameGraph::port_at(PortAddress address) const { return passes_[addr
 
 std::optional<PortAddress> FrameGraph::source(PortAddress address) const { return sources_[flat(address)]; }
 
-std::span<const PortAddress> FrameGraph::consumers(PortAddress address) const { return consumers_[flat(address)]; }
+std::span<const PortAddress> FrameGraph::consumers(PortAddress address) const {
+    const ConsumerList& list = consumer_lists_[flat(address)];
+    return {consumer_pool_.data() + list.offset, list.count};
+}
 
 std::string FrameGraph::port_name(PortAddress address) const {
     return passes_[address.pass]->name() + "." + port_at(address).name;
@@ -229,7 +242,7 @@ Status FrameGraph::connect(PortAddress from, PortAddress to) {
                            std::string(port_kind_name(to_port.kind)) + " takes one source");
     }
     if (to_port.kind == PortKind::InOut) {
-        for (const PortAddress& consumer : consumers_[flat(from)]) {
+        for (const PortAddress& consumer : consumers(from)) {
             if (port_at(consumer).kind == PortKind::InOut) {
                 return graph_error(what() + port_name(from) + " is already modified in place by " +
                                    port_name(consumer) + "; one texture has one in-place writer at a time (chain " +

@@ -80,6 +80,63 @@ std::string quoted_name(std::string_view name) { return detail::concat("'", deta
 
 namespace {
 
+// A length as LEB128: seven bits a byte, low bits first, the high bit set on all but the last.
+void append_length(std::string& out, std::size_t length) {
+    do {
+        auto byte = static_cast<unsigned char>(length & 0x7f);
+        length >>= 7;
+        if (length != 0) byte |= 0x80;
+        out.push_back(static_cast<char>(byte));
+    } while (length != 0);
+}
+
+// Reads a length written by append_length at `at`, moving `at` past it.
+std::size_t read_length(const char*& at) {
+    std::size_t length = 0;
+    for (unsigned shift = 0;; shift += 7) {
+        const auto byte = static_cast<unsigned char>(*at++);
+        length |= std::size_t{byte & 0x7fu} << shift;
+        if ((byte & 0x80) == 0) return length;
+    }
+}
+
+}  // namespace
+
+std::string_view PortSetNames::const_iterator::operator*() const {
+    const char* at = at_;
+    const std::size_t length = read_length(at);
+    return {at, length};
+}
+
+PortSetNames::const_iterator& PortSetNames::const_iterator::operator++() {
+    const std::size_t length = read_length(at_);
+    at_ += length;
+    return *this;
+}
+
+PortSetNames::PortSetNames(std::initializer_list<std::string_view> names) {
+    for (std::string_view name : names) push_back(name);
+}
+
+void PortSetNames::push_back(std::string_view name) {
+    append_length(encoded_, name.size());
+    encoded_.append(name);
+}
+
+bool PortSetNames::contains(std::string_view name) const { return std::find(begin(), end(), name) != end(); }
+
+std::size_t PortSetNames::size() const { return static_cast<std::size_t>(std::distance(begin(), end())); }
+
+std::string_view PortSetNames::front() const { return empty() ? std::string_view{} : *begin(); }
+
+std::string_view PortSetNames::operator[](std::size_t index) const { return *std::next(begin(), static_cast<std::ptrdiff_t>(index)); }
+
+bool operator==(const PortSetNames& names, const std::vector<std::string>& list) {
+    return std::equal(names.begin(), names.end(), list.begin(), list.end());
+}
+
+namespace {
+
 Port texture_port(std::string name, PortKind kind, TextureSpec spec, bool optional, const std::string& port_set,
                   SubresourceRange range) {
     Port port;
@@ -224,7 +281,9 @@ Status Pass::status() const {
 void Pass::merge(Port declaration, const std::string& port_set) {
     const std::optional<uint32_t> known = port_index(declaration.name);
     if (!known) {
-        if (declaration.port_sets.size() != 1 || declaration.port_sets.front() != port_set) declaration.port_sets = {port_set};
+        if (declaration.port_sets.size() != 1 || declaration.port_sets.front() != port_set) {
+            declaration.port_sets = {port_set};
+        }
         // Most passes declare a handful of ports: room for four at the first is one allocation
         // where growing one by one reallocates (and moves every port) at one, two and four.
         if (ports_.empty()) ports_.reserve(kFirstPorts);
@@ -239,7 +298,7 @@ void Pass::merge(Port declaration, const std::string& port_set) {
     if (error_) return;  // keep the first error; later ones are usually consequences
 
     Port& existing = ports_[*known];
-    const std::string& first_set = existing.port_sets.front();
+    const std::string first_set(existing.port_sets.front());
     if (existing.kind != declaration.kind) {
         error_ = make_error(ErrorCode::Graph, "pass " + quoted_name(name_) + ": port " +
                                                   quoted_name(declaration.name) + " is declared as " +
@@ -291,9 +350,7 @@ void Pass::merge(Port declaration, const std::string& port_set) {
         existing.spec = std::move(*joined);
     }
     existing.optional = existing.optional && declaration.optional;
-    if (std::find(existing.port_sets.begin(), existing.port_sets.end(), port_set) == existing.port_sets.end()) {
-        existing.port_sets.push_back(port_set);
-    }
+    if (!existing.port_sets.contains(port_set)) existing.port_sets.push_back(port_set);
 }
 
 }  // namespace loom::fg

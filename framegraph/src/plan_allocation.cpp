@@ -271,11 +271,19 @@ SpecClassAssignment assign_spec_classes(const std::vector<PlanResource>& resourc
 AllocationProblem make_allocation_problem(const std::vector<PlanPass>& order,
                                           const std::vector<PlanResource>& resources,
                                           std::vector<uint32_t> graph_output_resources, uint32_t spec_class_count,
-                                          uint64_t max_heap_bytes) {
+                                          uint64_t max_heap_bytes, bool with_pass_lists) {
     AllocationProblem problem;
     problem.spec_class_count = spec_class_count;
     problem.max_heap_bytes = max_heap_bytes;
     problem.passes.resize(order.size());
+    problem.resources.reserve(resources.size());
+    for (const PlanResource& resource : resources) {
+        problem.resources.push_back(AllocationResource{resource.spec_class, resource.occupancy, resource.bytes,
+                                                       resource.alignment, resource.name});
+    }
+    problem.graph_outputs = std::move(graph_output_resources);
+    if (!with_pass_lists) return problem;
+
     // Each list sized first, so that it is one allocation rather than one per doubling.
     std::vector<uint32_t> begin_count(order.size(), 0);
     for (const PlanResource& resource : resources) ++begin_count[resource.lifetime.first];
@@ -297,14 +305,7 @@ AllocationProblem make_allocation_problem(const std::vector<PlanPass>& order,
             if (port_writes(port.kind)) step.non_inputs.push_back(*port.resource);
         }
     }
-    problem.resources.reserve(resources.size());
-    for (uint32_t r = 0; r < resources.size(); ++r) {
-        const PlanResource& resource = resources[r];
-        problem.passes[resource.lifetime.first].begins.push_back(r);
-        problem.resources.push_back(AllocationResource{resource.spec_class, resource.occupancy, resource.bytes,
-                                                       resource.alignment, resource.name});
-    }
-    problem.graph_outputs = std::move(graph_output_resources);
+    for (uint32_t r = 0; r < resources.size(); ++r) problem.passes[resources[r].lifetime.first].begins.push_back(r);
     return problem;
 }
 

@@ -218,11 +218,12 @@ SpecClassAssignment assign_spec_classes(const std::vector<PlanResource>& resourc
 
 /// The problem an allocator is given: per position of `order` the resources its ports read and
 /// write and the resources that start there, and every resource (spec_class assigned) with its
-/// class, lifetime, bytes and alignment.
+/// class, lifetime, bytes and alignment. Without `with_pass_lists` (Allocator::reads_pass_lists)
+/// the per-position lists stay empty.
 AllocationProblem make_allocation_problem(const std::vector<PlanPass>& order,
                                           const std::vector<PlanResource>& resources,
                                           std::vector<uint32_t> graph_output_resources, uint32_t spec_class_count,
-                                          uint64_t max_heap_bytes);
+                                          uint64_t max_heap_bytes, bool with_pass_lists = true);
 
 /// The textures and buffers an allocation makes.
 struct TextureAssignment {

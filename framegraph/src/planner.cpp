@@ -111,7 +111,8 @@ Result<Plan> plan_in_order(const FrameGraph& graph, const PlanOptions& options, 
 
     const AllocationProblem problem =
         detail::make_allocation_problem(plan.order, plan.resources, std::move(resolved.graph_output_resources),
-                                        static_cast<uint32_t>(plan.spec_classes.size()), options.max_heap_bytes);
+                                        static_cast<uint32_t>(plan.spec_classes.size()), options.max_heap_bytes,
+                                        allocator.reads_pass_lists());
     auto textures = detail::allocate_textures(allocator, problem, plan.resources, options.frame, memory);
     if (!textures) return textures.take_error();
     for (uint32_t r = 0; r < plan.resources.size(); ++r) {

@@ -83,6 +83,11 @@ public:
     /// Assigns textures (and placements) to the problem's resources. Two resources whose
     /// lifetimes overlap never share a texture, nor overlapping heap bytes.
     [[nodiscard]] virtual Result<Allocation> allocate(const AllocationProblem& problem) const = 0;
+    /// True when allocate() reads the lists of AllocationProblem::passes (inputs, non_inputs,
+    /// begins). An allocator that works from the resources' lifetimes alone says false, and
+    /// planning then leaves the lists empty (passes still has one entry per position), which
+    /// saves three lists per pass.
+    [[nodiscard]] virtual bool reads_pass_lists() const { return true; }
 };
 
 /// "paper", "interval", "heap".

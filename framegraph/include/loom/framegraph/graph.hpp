@@ -132,7 +132,7 @@ public:
     [[nodiscard]] const Port& port_at(PortAddress address) const;
     /// The port feeding `address` (an input or inout), if connected.
     [[nodiscard]] std::optional<PortAddress> source(PortAddress address) const;
-    /// The ports `address` feeds, in connection order.
+    /// The ports `address` feeds, in connection order (valid until the graph changes).
     [[nodiscard]] std::span<const PortAddress> consumers(PortAddress address) const;
     /// "pass.port"
     [[nodiscard]] std::string port_name(PortAddress address) const;
@@ -172,7 +172,15 @@ private:
     std::vector<std::size_t> name_hashes_;  // per pass
     std::vector<uint32_t> port_offset_;                 // first flat port index of each pass
     std::vector<std::optional<PortAddress>> sources_;   // per flat port
-    std::vector<std::vector<PortAddress>> consumers_;   // per flat port
+    // The ports each flat port feeds: a range of consumer_pool_ per port, so that no port
+    // allocates a list of its own.
+    struct ConsumerList {
+        uint32_t offset = 0;
+        uint32_t count = 0;
+        uint32_t capacity = 0;
+    };
+    std::vector<ConsumerList> consumer_lists_;          // per flat port
+    std::vector<PortAddress> consumer_pool_;
     std::vector<Connection> connections_;
     std::vector<PortAddress> outputs_;
     std::vector<bool> marked_output_;                  // per flat port: in outputs_

@@ -11,6 +11,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <string>
@@ -120,6 +122,62 @@ struct PortAddress {
 /// port_of(id, 2).
 inline PortAddress port_of(PassId pass, uint32_t index) { return {pass.index, index}; }
 
+/// The names of the port sets that declared a port, in the order they did. Nearly every port
+/// has one, usually short: the names are kept in one string (each prefixed by its length), so
+/// one name up to 14 bytes takes no allocation. Reads like a list of string_views.
+class PortSetNames {
+public:
+    class const_iterator {
+    public:
+        using iterator_category = std::forward_iterator_tag;
+        using value_type = std::string_view;
+        using difference_type = std::ptrdiff_t;
+        using pointer = const std::string_view*;
+        using reference = std::string_view;
+
+        const_iterator() = default;
+        std::string_view operator*() const;
+        const_iterator& operator++();
+        const_iterator operator++(int) {
+            const_iterator before = *this;
+            ++*this;
+            return before;
+        }
+        friend bool operator==(const const_iterator&, const const_iterator&) = default;
+
+    private:
+        friend class PortSetNames;
+        const_iterator(const char* at) : at_(at) {}
+        const char* at_ = nullptr;
+    };
+    using iterator = const_iterator;
+    using value_type = std::string_view;
+    using size_type = std::size_t;
+
+    PortSetNames() = default;
+    PortSetNames(std::initializer_list<std::string_view> names);
+
+    /// Appends `name` (kept as given; Pass::add checks port set names).
+    void push_back(std::string_view name);
+    /// True when `name` is one of the names.
+    [[nodiscard]] bool contains(std::string_view name) const;
+    [[nodiscard]] std::size_t size() const;
+    [[nodiscard]] bool empty() const { return encoded_.empty(); }
+    /// The first name; "" when there is none.
+    [[nodiscard]] std::string_view front() const;
+    /// The name at `index` (< size()).
+    [[nodiscard]] std::string_view operator[](std::size_t index) const;
+    [[nodiscard]] const_iterator begin() const { return const_iterator(encoded_.data()); }
+    [[nodiscard]] const_iterator end() const { return const_iterator(encoded_.data() + encoded_.size()); }
+
+    friend bool operator==(const PortSetNames&, const PortSetNames&) = default;
+    /// The same names in the same order.
+    friend bool operator==(const PortSetNames& names, const std::vector<std::string>& list);
+
+private:
+    std::string encoded_;  // per name: its length (LEB128), then its bytes
+};
+
 /// One declared port.
 struct Port {
     std::string name;
@@ -131,7 +189,7 @@ struct Port {
     /// graph output, no texture is allocated for it.
     bool optional = false;
     /// Names of the port sets that declared this port, in the order they did.
-    std::vector<std::string> port_sets;
+    PortSetNames port_sets;
     /// Texture or buffer.
     ResourceType type = ResourceType::Texture;
     /// The buffer constraints (buffer ports).
