@@ -186,7 +186,13 @@ std::span<const PortAddress> FrameGraph::consumers(PortAddress address) const {
 }
 
 std::string FrameGraph::port_name(PortAddress address) const {
-    return passes_[address.pass]->name() + "." + port_at(address).name;
+    // Sized once: plans name every port of every resource this way.
+    const std::string& pass = passes_[address.pass]->name();
+    const std::string& port = port_at(address).name;
+    std::string name;
+    name.reserve(pass.size() + 1 + port.size());
+    name.append(pass).append(1, '.').append(port);
+    return name;
 }
 
 Result<PortAddress> FrameGraph::resolve(const PortRef& ref) const {

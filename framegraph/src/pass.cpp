@@ -262,7 +262,12 @@ Pass& Pass::read(PortAddress source, TextureSpec spec, SubresourceRange range) {
         return *this;
     }
     const auto index = static_cast<uint32_t>(ports_.size());
-    merge(texture_port(std::move(port), PortKind::Input, std::move(spec), false, name_, range), name_);
+    Port input = texture_port(std::move(port), PortKind::Input, std::move(spec), false, name_, range);
+    if (error_) {
+        merge(std::move(input), name_);  // as any declaration after an error
+    } else {
+        append_port(std::move(input));  // the name is new (checked above): nothing to merge with
+    }
     if (reads_.empty()) reads_.reserve(kFirstPorts);
     reads_.emplace_back(index, source);
     return *this;
@@ -278,21 +283,25 @@ Status Pass::status() const {
     return {};
 }
 
+void Pass::append_port(Port port) {
+    // Most passes declare a handful of ports: room for four at the first is one allocation
+    // where growing one by one reallocates (and moves every port) at one, two and four.
+    if (ports_.empty()) ports_.reserve(kFirstPorts);
+    ports_.push_back(std::move(port));
+    if (ports_.size() == kIndexedPorts) {
+        for (uint32_t i = 0; i < ports_.size(); ++i) port_indices_.emplace(ports_[i].name, i);
+    } else if (ports_.size() > kIndexedPorts) {
+        port_indices_.emplace(ports_.back().name, static_cast<uint32_t>(ports_.size() - 1));
+    }
+}
+
 void Pass::merge(Port declaration, const std::string& port_set) {
     const std::optional<uint32_t> known = port_index(declaration.name);
     if (!known) {
         if (declaration.port_sets.size() != 1 || declaration.port_sets.front() != port_set) {
             declaration.port_sets = {port_set};
         }
-        // Most passes declare a handful of ports: room for four at the first is one allocation
-        // where growing one by one reallocates (and moves every port) at one, two and four.
-        if (ports_.empty()) ports_.reserve(kFirstPorts);
-        ports_.push_back(std::move(declaration));
-        if (ports_.size() == kIndexedPorts) {
-            for (uint32_t i = 0; i < ports_.size(); ++i) port_indices_.emplace(ports_[i].name, i);
-        } else if (ports_.size() > kIndexedPorts) {
-            port_indices_.emplace(ports_.back().name, static_cast<uint32_t>(ports_.size() - 1));
-        }
+        append_port(std::move(declaration));
         return;
     }
     if (error_) return;  // keep the first error; later ones are usually consequences
