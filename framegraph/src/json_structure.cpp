@@ -5,7 +5,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include <nlohmann/json.hpp>
+#include "json_document.hpp"
 
 namespace loom::fg {
 namespace {
@@ -41,13 +41,9 @@ std::string member_path(const Container& parent) {
 }
 
 // The key's text as the parser will see it (escapes decoded), so "a" and "\u0061" are one key.
+// Not a valid string: the parser reports it later with its position.
 std::string decode_key(std::string_view quoted) {
-    try {
-        const auto decoded = nlohmann::json::parse(quoted);
-        if (decoded.is_string()) return decoded.get<std::string>();
-    } catch (const nlohmann::json::exception&) {
-        // Not a valid string: the parser reports it later with its position.
-    }
+    if (auto decoded = detail::decode_json_string(quoted)) return std::move(*decoded);
     return std::string(quoted);
 }
 

@@ -1,9 +1,9 @@
 #pragma once
-// A check of a JSON text's structure that runs before nlohmann::json builds a document from
-// it: what the parser would accept but a graph file must not contain, found in one pass with
-// memory bounded by the nesting limit. nlohmann::json keeps the last of duplicate keys without
-// a word, builds a document (and recurses over it when printing) as deep as the text nests,
-// and throws a different exception type for numbers beyond a double.
+// A check of a JSON text's structure: what JSON allows but a graph file must not contain, found
+// in one loose pass (it reads any text, JSON or not) with memory bounded by the nesting limit.
+// It ran before nlohmann::json parsed graph files; JsonDocument (json_document.hpp) now makes
+// the same checks while it parses, and runs this one when it refuses a text, so that the
+// structure problems are still reported first, with the same messages, wherever a text breaks.
 
 #include <cstddef>
 #include <optional>

@@ -50,7 +50,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
-#include <unordered_map>
+#include <vector>
 
 #include "loom/framegraph/graph.hpp"
 #include "loom/rhi/format.hpp"
@@ -70,10 +70,25 @@ struct GraphFile {
     PassOrder order = kDefaultPassOrder;
     /// What the text was called in parse_graph_json (the file name for load_graph_file).
     std::string source;
-    /// Where each pass ("pass") and port ("pass.port") is declared in the text, as a JSON
-    /// pointer ("/passes/2", "/passes/2/outputs/0"; a port a pass and its port sets both
-    /// declare: its first declaration).
-    std::unordered_map<std::string, std::string> pointers;
+
+    /// Where the pass `subject` ("pass") or port ("pass.port") is declared in the text, as a
+    /// JSON pointer ("/passes/2", "/passes/2/outputs/0", "/passes/2/parts/1/inputs/0"; a port a
+    /// pass and its port sets both declare: its first declaration); nullopt for a name the file
+    /// does not declare. Written when asked for, from port_locations.
+    [[nodiscard]] std::optional<std::string> pointer(std::string_view subject) const;
+
+    /// Where a port is first declared: a list of the pass's own ports or of one of its "parts".
+    struct PortLocation {
+        static constexpr uint32_t kOwnPorts = ~uint32_t{0};
+        uint32_t part = kOwnPorts;       ///< index in the pass's "parts", or kOwnPorts
+        PortKind list = PortKind::Input;  ///< "inputs", "outputs" or "inouts"
+        uint32_t index = 0;              ///< index in that list
+    };
+    /// Where the ports of the file's passes are declared, as parse_graph_json found them (read
+    /// by pointer()): pass i's ports, in Pass::ports() order, are port_locations[
+    /// first_port_location[i]] up to port_locations[first_port_location[i + 1]].
+    std::vector<PortLocation> port_locations;
+    std::vector<uint32_t> first_port_location;
 };
 
 /// Parses a JSON graph. `source` names the text in error messages (usually the file name).
