@@ -730,8 +730,14 @@ std::string_view JsonValue::key(std::size_t i) const {
 std::optional<JsonValue> JsonValue::find(std::string_view key) const {
     const auto& node = document_->nodes_[index_];
     if (node.type != JsonType::Object) return std::nullopt;
+    // Graph readers ask for many keys of small objects, most of them absent: the length and the
+    // first byte settle nearly every comparison without a call to memcmp.
     for (std::size_t i = 0; i < node.count; ++i) {
-        if (document_->view(document_->nodes_[node.first + i].key) == key) return JsonValue(document_, node.first + i);
+        const JsonDocument::Span& span = document_->nodes_[node.first + i].key;
+        if (span.length != key.size()) continue;
+        const std::string_view candidate = document_->view(span);
+        if (!key.empty() && candidate.front() != key.front()) continue;
+        if (candidate == key) return JsonValue(document_, node.first + i);
     }
     return std::nullopt;
 }
