@@ -3,7 +3,9 @@
 // compiled in loom and, where their sources were found at configure time, in
 // skaarj1989/FrameGraph and acdemiralp/fg, in one process on a warm heap. Each benchmark reports
 // per_pass (seconds per pass; Google Benchmark prints it in the unit it chooses) and
-// allocs_per_pass (heap allocations per pass, counted by this program's operator new).
+// allocs_per_pass (heap allocations per pass, counted by this program's operator new) and
+// peak_bytes (the most bytes the program's operator new had handed out at once during one
+// untimed run, above what was live before it: the graph, its plan and every scratch array).
 // docs/BENCHMARKS.md, "Frame-graph compile vs peers", has the table and the command.
 //
 //   loom_framegraph_compile_bench [google benchmark flags]
@@ -11,6 +13,8 @@
 #include <atomic>
 #include <cstdlib>
 #include <new>
+
+#include <malloc.h>
 
 #include <benchmark/benchmark.h>
 
@@ -21,18 +25,30 @@ namespace {
 // Every allocation of the program, counted (relaxed: the benchmark is single-threaded; the
 // counter only has to be exact between two reads on the benchmark's thread).
 std::atomic<uint64_t> g_allocations{0};
+// Bytes handed out and not yet freed (as malloc_usable_size counts them, so that frees, which
+// may not know the size, subtract what was added), and the most at once since the last reset.
+std::atomic<uint64_t> g_live_bytes{0};
+std::atomic<uint64_t> g_peak_bytes{0};
 
-void* counted_allocation(std::size_t size) {
+void* counted(void* p) {
+    if (!p) throw std::bad_alloc();
     g_allocations.fetch_add(1, std::memory_order_relaxed);
-    if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-    throw std::bad_alloc();
+    const uint64_t bytes = malloc_usable_size(p);
+    const uint64_t live = g_live_bytes.fetch_add(bytes, std::memory_order_relaxed) + bytes;
+    if (live > g_peak_bytes.load(std::memory_order_relaxed)) g_peak_bytes.store(live, std::memory_order_relaxed);
+    return p;
 }
 
+void* counted_allocation(std::size_t size) { return counted(std::malloc(size == 0 ? 1 : size)); }
+
 void* counted_aligned_allocation(std::size_t size, std::align_val_t alignment) {
-    g_allocations.fetch_add(1, std::memory_order_relaxed);
     const auto align = static_cast<std::size_t>(alignment);
-    if (void* p = std::aligned_alloc(align, (size + align - 1) / align * align)) return p;
-    throw std::bad_alloc();
+    return counted(std::aligned_alloc(align, (size + align - 1) / align * align));
+}
+
+void release(void* p) noexcept {
+    if (p) g_live_bytes.fetch_sub(malloc_usable_size(p), std::memory_order_relaxed);
+    std::free(p);
 }
 
 }  // namespace
@@ -47,14 +63,14 @@ void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
 }
 void* operator new(std::size_t size, std::align_val_t alignment) { return counted_aligned_allocation(size, alignment); }
 void* operator new[](std::size_t size, std::align_val_t alignment) { return counted_aligned_allocation(size, alignment); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p) noexcept { release(p); }
+void operator delete[](void* p) noexcept { release(p); }
+void operator delete(void* p, std::size_t) noexcept { release(p); }
+void operator delete[](void* p, std::size_t) noexcept { release(p); }
+void operator delete(void* p, std::align_val_t) noexcept { release(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { release(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { release(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { release(p); }
 
 namespace {
 
@@ -67,13 +83,18 @@ void run_compile(benchmark::State& state, Compile compile) {
     const auto passes = static_cast<uint32_t>(state.range(0));
     const CompileGraph graph = make_compile_graph(passes);
     const CompileNames names = make_compile_names(graph);
+    const uint64_t live_before = g_live_bytes.load(std::memory_order_relaxed);
+    g_peak_bytes.store(live_before, std::memory_order_relaxed);
     benchmark::DoNotOptimize(compile(graph, names));
+    const uint64_t peak_bytes = g_peak_bytes.load(std::memory_order_relaxed) - live_before;
     const uint64_t allocations_before = g_allocations.load(std::memory_order_relaxed);
     for (auto _ : state) benchmark::DoNotOptimize(compile(graph, names));
     const uint64_t allocations = g_allocations.load(std::memory_order_relaxed) - allocations_before;
     const double pass_runs = static_cast<double>(passes) * static_cast<double>(state.iterations());
     state.counters["per_pass"] = benchmark::Counter(passes, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
     state.counters["allocs_per_pass"] = static_cast<double>(allocations) / pass_runs;
+    state.counters["peak_bytes"] =
+        benchmark::Counter(static_cast<double>(peak_bytes), benchmark::Counter::kDefaults, benchmark::Counter::OneK::kIs1024);
 }
 
 void BM_CompileLoomByName(benchmark::State& state, LoomAllocatorUnderTest allocator) {
