@@ -107,9 +107,9 @@ private:
         uint32_t length = 0;
         bool decoded = false;
     };
+    // 32 bytes (a Span member would pad it to 48): a graph file has about one node per ten
+    // bytes of text, so the nodes outweigh the text.
     struct Node {
-        JsonType type = JsonType::Null;
-        Span key;  // members of objects
         union {
             uint64_t unsigned_value;
             int64_t integer_value;
@@ -118,8 +118,19 @@ private:
             std::size_t string_offset;
         };
         std::size_t count = 0;  // containers: children; strings: their length
+        std::size_t key_offset = 0;  // members of objects: their key (a Span)
+        uint32_t key_length = 0;
+        JsonType type = JsonType::Null;
+        bool key_decoded = false;
         bool string_decoded = false;
         Node() : unsigned_value(0) {}
+
+        [[nodiscard]] Span key() const { return {key_offset, key_length, key_decoded}; }
+        void set_key(const Span& span) {
+            key_offset = span.offset;
+            key_length = span.length;
+            key_decoded = span.decoded;
+        }
     };
 
     [[nodiscard]] std::string_view view(const Span& span) const {

@@ -5,7 +5,8 @@
 // per_pass (seconds per pass; Google Benchmark prints it in the unit it chooses) and
 // allocs_per_pass (heap allocations per pass, counted by this program's operator new) and
 // peak_bytes (the most bytes the program's operator new had handed out at once during one
-// untimed run, above what was live before it: the graph, its plan and every scratch array).
+// untimed run, above what was live before it: the graph, its plan and every scratch array). The
+// heap is kept warm for every library alike (warm_heap.hpp).
 // docs/BENCHMARKS.md, "Frame-graph compile vs peers", has the table and the command.
 //
 //   loom_framegraph_compile_bench [google benchmark flags]
@@ -19,6 +20,7 @@
 #include <benchmark/benchmark.h>
 
 #include "compile_libraries.hpp"
+#include "warm_heap.hpp"
 
 namespace {
 
@@ -133,4 +135,11 @@ BENCHMARK(BM_CompileAcdemiralp)->Apply(sizes);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+    loom::bench::keep_heap_warm();
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

@@ -27,6 +27,7 @@
 #include "loom/framegraph/framegraph.hpp"
 #include "loom/framegraph/graph_file.hpp"
 #include "random_graph.hpp"
+#include "warm_heap.hpp"
 
 namespace {
 
@@ -474,6 +475,7 @@ BENCHMARK(BM_ScaleLiveHeap)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benc
 BENCHMARK(BM_ScalePlanJson)->RangeMultiplier(10)->Range(1000, 100000)->Unit(benchmark::kMillisecond)->Complexity();
 
 int main(int argc, char** argv) {
+    loom::bench::keep_heap_warm();
     // Our own flag first; Google Benchmark rejects flags it does not know.
     std::vector<char*> rest;
     for (int i = 0; i < argc; ++i) {
