@@ -289,8 +289,10 @@ Status Pass::status() const {
 
 void Pass::append_port(Port port) {
     // Most passes declare a handful of ports: room for four at the first is one allocation
-    // where growing one by one reallocates (and moves every port) at one, two and four.
-    if (ports_.empty()) ports_.reserve(kFirstPorts);
+    // where growing one by one reallocates (and moves every port) at one, two and four. Past
+    // that the room grows by half, not double: a Port is 240 bytes, and a pass of five ports
+    // would otherwise hold room for eight.
+    if (ports_.size() == ports_.capacity()) ports_.reserve(ports_.empty() ? kFirstPorts : ports_.size() + ports_.size() / 2);
     ports_.push_back(std::move(port));
     if (ports_.size() == kIndexedPorts) {
         for (uint32_t i = 0; i < ports_.size(); ++i) port_indices_.emplace(ports_[i].name, i);
