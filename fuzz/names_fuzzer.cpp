@@ -52,7 +52,7 @@ void require_valid_names(const Pass& pass) {
     bool valid = !loom::fg::name_problem(pass.name());
     for (const loom::fg::Port& port : pass.ports()) {
         valid = valid && !loom::fg::name_problem(port.name);
-        for (const std::string& set : port.port_sets) valid = valid && (set == pass.name() || !loom::fg::name_problem(set));
+        for (std::string_view set : port.port_sets) valid = valid && (set == pass.name() || !loom::fg::name_problem(set));
     }
     if (!valid) {
         std::fprintf(stderr, "names fuzzer: add_pass accepted a pass with a name name_problem() refuses\n");
