@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <numeric>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -94,9 +95,11 @@ public:
                 const uint32_t slot = starts_[compact[class_of[r]] * stride + resources[r].lifetime.first]++;
                 slot_resource_[slot] = r;
             }
-            // Each count was moved to the next bucket's beginning; move it back.
-            std::copy_backward(starts_.begin(), starts_.end() - 1, starts_.end());
-            starts_[0] = 0;
+            // Each start was moved to the next bucket's; move them back.
+            if (!starts_.empty()) {
+                std::copy_backward(starts_.begin(), starts_.end() - 1, starts_.end());
+                starts_[0] = 0;
+            }
         } else {
             std::iota(slot_resource_.begin(), slot_resource_.end(), 0u);
             std::stable_sort(slot_resource_.begin(), slot_resource_.end(), [&](uint32_t a, uint32_t b) {
@@ -252,6 +255,16 @@ struct HeapState {
 
 enum class Fit : uint8_t { Lowest, Best };
 
+// What placing a resource reads of it, laid out in the order of a strategy, so that a strategy
+// reads its resources one after the other instead of jumping between them.
+struct Request {
+    uint64_t bytes = 0;
+    uint64_t alignment = 1;  // at least 1
+    Lifetime life;
+    uint32_t resource = 0;
+    uint32_t slot = 0;  // in the LifetimeIndex
+};
+
 struct Placement {
     std::vector<HeapRange> where;  // per resource
     std::vector<uint64_t> heap_sizes;
@@ -268,47 +281,47 @@ Error overflow_error(const AllocationResource& resource) {
 class Placer {
 public:
     Placer(const AllocationProblem& problem, const LifetimeIndex& index)
-        : problem_(problem), index_(index), heap_of_(index.size()), range_(index.size()),
-          earlier_member_(index.size()) {
+        : problem_(problem), index_(index), slots_(index.size()), earlier_member_(index.size()) {
         for (const AllocationResource& resource : problem.resources) smallest_ = std::min(smallest_, resource.bytes);
+        for (uint32_t slot = 0; slot < index.size(); ++slot) slots_[slot].last = index.life(slot).last;
         runs_.reserve(index.class_count());
     }
 
     /// Places the resources in `order` into `out`. False when the heaps together reached
     /// `give_up` bytes (UINT64_MAX: never) before the last resource: this placement cannot be
     /// smaller than one of that size (heaps only grow), and `out` is incomplete.
-    Result<bool> place(const std::vector<uint32_t>& order, Fit fit, uint64_t give_up, Placement& out) {
+    Result<bool> place(const std::vector<Request>& order, Fit fit, uint64_t give_up, Placement& out) {
         fit_ = fit;
         heaps_.clear();
         finder_.clear();
-        std::fill(heap_of_.begin(), heap_of_.end(), kNone);
+        for (SlotState& state : slots_) state.heap = kNone;
         out.where.resize(problem_.resources.size());
         out.heap_sizes.clear();
         uint64_t total = 0;
         bool total_overflows = false;
-        for (uint32_t r : order) {
-            const AllocationResource& resource = problem_.resources[r];
-            const uint32_t slot = index_.slot_of(r);
+        for (const Request& request : order) {
+            const uint32_t slot = request.slot;
             runs_found_ = false;
             const auto count = static_cast<uint32_t>(heaps_.size());
             std::optional<uint64_t> offset;
             uint32_t h = 0;
             for (uint32_t from = 0; !offset; from = h + 1) {
-                auto candidate = finder_.first(from, count, resource.lifetime, resource.bytes);
+                auto candidate = finder_.first(from, count, request.life, request.bytes);
                 if (!candidate) break;
                 h = *candidate;
-                offset = find_offset(h, slot, resource);
+                offset = find_offset(h, request);
             }
             if (!offset) {
                 h = count;
-                open_heap(resource.bytes);
-                offset = find_offset(h, slot, resource);
-                if (!offset) return overflow_error(resource);
+                open_heap(request.bytes);
+                offset = find_offset(h, request);
+                if (!offset) return overflow_error(problem_.resources[request.resource]);
             }
             HeapState& heap = heaps_[h];
-            const uint64_t end = *offset + resource.bytes;  // find_offset checked the sum
-            heap_of_[slot] = h;
-            range_[slot] = {*offset, end};
+            const uint64_t end = *offset + request.bytes;  // find_offset checked the sum
+            slots_[slot].heap = h;
+            slots_[slot].begin = *offset;
+            slots_[slot].end = end;
             earlier_member_[slot] = heap.last_member;
             heap.last_member = slot;
             ++heap.members;
@@ -318,7 +331,7 @@ public:
                 heap.size = end;
             }
             if (heap.capacity != 0) note_full(h, slot, *offset, end);
-            out.where[r] = HeapRange{h, *offset};
+            out.where[request.resource] = HeapRange{h, *offset};
             if (give_up < UINT64_MAX && !total_overflows && total >= give_up) return false;
         }
         if (total_overflows) return make_error(ErrorCode::Graph, "heap allocator: the heaps together exceed 2^64 bytes");
@@ -337,6 +350,17 @@ private:
         uint64_t end = 0;
         uint32_t slot = 0;
     };
+    // A resource's place in a strategy, beside the end of its lifetime: what a query reads of a
+    // slot it scans, in one place.
+    struct SlotState {
+        uint64_t begin = 0;  // bytes [begin, end) in its heap, once placed
+        uint64_t end = 0;
+        uint32_t last = 0;     // the last position of its lifetime
+        uint32_t heap = kNone;  // kNone while not placed
+    };
+
+    [[nodiscard]] std::span<const Busy> busy() const { return {busy_.data(), busy_count_}; }
+
     // Below this many members a heap's list is searched without looking at the index.
     static constexpr uint32_t kListedMembers = 16;
 
@@ -352,7 +376,6 @@ private:
     // lifetime in `slot`, by offset: from the heap's list when it is shorter than the index's
     // runs, else from the runs.
     void collect_busy(uint32_t h, uint32_t slot) {
-        busy_.clear();
         const HeapState& heap = heaps_[h];
         const Lifetime& life = index_.life(slot);
         bool listed = heap.members <= kListedMembers;
@@ -363,27 +386,34 @@ private:
             }
             listed = heap.members <= runs_length_;
         }
+        // Every candidate is written and the end advances past those that overlap: no branch
+        // to mispredict on the test.
+        if (busy_.size() < (listed ? heap.members : runs_length_)) busy_.resize(listed ? heap.members : runs_length_);
+        Busy* end = busy_.data();
         if (listed) {
             for (uint32_t other = heap.last_member; other != kNone; other = earlier_member_[other]) {
-                if (index_.life(other).overlaps(life)) busy_.push_back(Busy{range_[other].begin, range_[other].end, other});
+                const SlotState& state = slots_[other];
+                *end = Busy{state.begin, state.end, other};
+                end += index_.life(other).overlaps(life) ? 1 : 0;
             }
         } else {
             // A run's lifetimes start no later than life.last: they overlap when they last until life.first.
             for (const LifetimeIndex::Run& run : runs_) {
                 for (uint32_t other = run.begin; other < run.end; ++other) {
-                    if (heap_of_[other] == h && index_.life(other).last >= life.first) {
-                        busy_.push_back(Busy{range_[other].begin, range_[other].end, other});
-                    }
+                    const SlotState& state = slots_[other];
+                    *end = Busy{state.begin, state.end, other};
+                    end += (state.heap == h) & (state.last >= life.first) ? 1 : 0;
                 }
             }
         }
-        std::sort(busy_.begin(), busy_.end(), [](const Busy& a, const Busy& b) { return a.begin < b.begin; });
+        busy_count_ = static_cast<std::size_t>(end - busy_.data());
+        std::sort(busy_.data(), end, [](const Busy& a, const Busy& b) { return a.begin < b.begin; });
     }
 
-    std::optional<uint64_t> find_offset(uint32_t h, uint32_t slot, const AllocationResource& resource) {
-        collect_busy(h, slot);
+    std::optional<uint64_t> find_offset(uint32_t h, const Request& request) {
+        collect_busy(h, request.slot);
 
-        const uint64_t align = std::max<uint64_t>(resource.alignment, 1);
+        const uint64_t align = request.alignment;
         // Alignments are powers of two but for odd buffers; those round up by a mask.
         const bool power_of_two = std::has_single_bit(align);
         auto align_up = [&](uint64_t value) -> std::optional<uint64_t> {
@@ -395,7 +425,7 @@ private:
         uint64_t best_gap = UINT64_MAX;
         uint64_t candidate = 0;
         auto consider = [&](uint64_t gap_end) {  // the free gap [candidate, gap_end)
-            const auto end = checked::add(candidate, resource.bytes);
+            const auto end = checked::add(candidate, request.bytes);
             if (!end || *end > gap_end) return false;
             const uint64_t gap = gap_end - candidate;
             if (!best || (fit_ == Fit::Best && gap < best_gap)) {
@@ -404,7 +434,7 @@ private:
             }
             return fit_ == Fit::Lowest;  // the lowest offset is final
         };
-        for (const Busy& range : busy_) {
+        for (const Busy& range : busy()) {
             if (range.begin > candidate && consider(range.begin)) return best;
             const auto next = align_up(range.end);
             if (!next) return best;  // no aligned offset after this range
@@ -424,7 +454,7 @@ private:
         if (smallest_ == 0) return;
         covering_.clear();
         covering_.push_back(ByteRange{begin, end});
-        for (const Busy& range : busy_) {  // the resource's overlapping members, from find_offset
+        for (const Busy& range : busy()) {  // the resource's overlapping members, from find_offset
             const Lifetime& other = index_.life(range.slot);
             if (other.first <= life.first && life.last <= other.last) covering_.push_back(ByteRange{range.begin, range.end});
         }
@@ -451,10 +481,10 @@ private:
     const LifetimeIndex& index_;
     Fit fit_ = Fit::Lowest;
     std::vector<HeapState> heaps_;
-    std::vector<uint32_t> heap_of_;         // per slot: its heap, kNone while not placed
-    std::vector<ByteRange> range_;          // per placed slot
+    std::vector<SlotState> slots_;          // per slot
     std::vector<uint32_t> earlier_member_;  // per placed slot: the member of its heap placed before it
-    std::vector<Busy> busy_;
+    std::vector<Busy> busy_;                // the first busy_count_ are in use
+    std::size_t busy_count_ = 0;
     std::vector<ByteRange> covering_;
     std::vector<LifetimeIndex::Run> runs_;  // of the resource being placed, once looked up
     uint32_t runs_length_ = 0;
@@ -501,7 +531,9 @@ struct OrderKey {
     uint32_t resource = 0;
 
     friend bool operator<(const OrderKey& a, const OrderKey& b) {
-        if (a.key != b.key) return a.key > b.key;
+        for (std::size_t i = 0; i < a.key.size(); ++i) {
+            if (a.key[i] != b.key[i]) return a.key[i] > b.key[i];
+        }
         return a.resource < b.resource;
     }
 };
@@ -523,7 +555,7 @@ public:
         const LifetimeIndex index(problem);
         Placer placer(problem, index);
         std::vector<OrderKey> keys(count);
-        std::vector<uint32_t> order(count);
+        std::vector<Request> order(count);
         Placement best;
         Placement placement;
         bool found = false;
@@ -543,7 +575,10 @@ public:
         auto try_order = [&](auto&& key_of) -> Status {
             for (uint32_t r = 0; r < count; ++r) keys[r] = OrderKey{key_of(r), r};
             std::sort(keys.begin(), keys.end());
-            for (uint32_t i = 0; i < count; ++i) order[i] = keys[i].resource;
+            for (uint32_t i = 0; i < count; ++i) {
+                const uint32_t r = keys[i].resource;
+                order[i] = Request{res[r].bytes, std::max<uint64_t>(res[r].alignment, 1), res[r].lifetime, r, index.slot_of(r)};
+            }
             for (Fit fit : {Fit::Lowest, Fit::Best}) {
                 const uint64_t give_up = found && may_give_up ? best.total : UINT64_MAX;
                 auto complete = placer.place(order, fit, give_up, placement);
