@@ -524,18 +524,59 @@ std::optional<Peak> peak_live_bytes(const AllocationProblem& problem) {
     return peak;
 }
 
-// An order's sort key: resources by descending key, ties by ascending number (what a stable
-// sort of the resource numbers gives).
-struct OrderKey {
-    std::array<uint64_t, 4> key{};
-    uint32_t resource = 0;
+// Sorts the resources by descending key (four words, the first the most significant), ties by
+// ascending number: what a stable sort of the resource numbers by those keys gives. A radix
+// sort from the least significant byte up that skips the bytes in which all keys agree: keys
+// here are sizes, lengths and alignments, which differ in a few bytes, so an order costs a few
+// passes over the resources instead of n log n comparisons.
+class OrderSorter {
+public:
+    using Key = std::array<uint64_t, 4>;
 
-    friend bool operator<(const OrderKey& a, const OrderKey& b) {
-        for (std::size_t i = 0; i < a.key.size(); ++i) {
-            if (a.key[i] != b.key[i]) return a.key[i] > b.key[i];
+    /// `keys` per resource; `order` receives the resource numbers in order.
+    void sort(const std::vector<Key>& keys, std::vector<uint32_t>& order) {
+        const std::size_t count = keys.size();
+        order.resize(count);
+        std::iota(order.begin(), order.end(), 0u);
+        Key any{};
+        Key all{};
+        all.fill(UINT64_MAX);
+        for (const Key& key : keys) {
+            for (std::size_t w = 0; w < key.size(); ++w) {
+                any[w] |= key[w];
+                all[w] &= key[w];
+            }
         }
-        return a.resource < b.resource;
+        for (std::size_t w = Key{}.size(); w-- > 0;) {
+            const uint64_t varying = any[w] ^ all[w];
+            if (varying == 0) continue;
+            // The word of each resource, beside it, in the current order: the passes below
+            // read them one after the other.
+            entries_.resize(count);
+            for (std::size_t i = 0; i < count; ++i) entries_[i] = Entry{keys[order[i]][w], order[i]};
+            scratch_.resize(count);
+            for (uint32_t shift = 0; shift < 64; shift += 8) {
+                if (((varying >> shift) & 0xff) == 0) continue;
+                // Descending: the byte's complement ascends.
+                auto digit = [shift](const Entry& e) { return 0xff - ((e.word >> shift) & 0xff); };
+                std::array<uint32_t, 256> start{};
+                for (const Entry& e : entries_) ++start[digit(e)];
+                uint32_t sum = 0;
+                for (uint32_t& s : start) sum += std::exchange(s, sum);
+                for (const Entry& e : entries_) scratch_[start[digit(e)]++] = e;
+                entries_.swap(scratch_);
+            }
+            for (std::size_t i = 0; i < count; ++i) order[i] = entries_[i].resource;
+        }
     }
+
+private:
+    struct Entry {
+        uint64_t word = 0;
+        uint32_t resource = 0;
+    };
+    std::vector<Entry> entries_;
+    std::vector<Entry> scratch_;
 };
 
 class HeapAllocator final : public Allocator {
@@ -554,7 +595,10 @@ public:
 
         const LifetimeIndex index(problem);
         Placer placer(problem, index);
-        std::vector<OrderKey> keys(count);
+        using Key = OrderSorter::Key;
+        OrderSorter sorter;
+        std::vector<Key> keys(count);
+        std::vector<uint32_t> sorted;
         std::vector<Request> order(count);
         Placement best;
         Placement placement;
@@ -573,10 +617,10 @@ public:
         }
         const bool may_give_up = most < UINT64_MAX;
         auto try_order = [&](auto&& key_of) -> Status {
-            for (uint32_t r = 0; r < count; ++r) keys[r] = OrderKey{key_of(r), r};
-            std::sort(keys.begin(), keys.end());
+            for (uint32_t r = 0; r < count; ++r) keys[r] = key_of(r);
+            sorter.sort(keys, sorted);
             for (uint32_t i = 0; i < count; ++i) {
-                const uint32_t r = keys[i].resource;
+                const uint32_t r = sorted[i];
                 order[i] = Request{res[r].bytes, std::max<uint64_t>(res[r].alignment, 1), res[r].lifetime, r, index.slot_of(r)};
             }
             for (Fit fit : {Fit::Lowest, Fit::Best}) {
@@ -591,7 +635,6 @@ public:
             }
             return {};
         };
-        using Key = std::array<uint64_t, 4>;
         LOOM_TRY(try_order([&](uint32_t r) { return Key{res[r].bytes, length(r), 0, 0}; }));
         if (!optimal()) LOOM_TRY(try_order([&](uint32_t r) { return Key{length(r), res[r].bytes, 0, 0}; }));
         if (!optimal()) {
