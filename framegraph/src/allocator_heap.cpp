@@ -423,18 +423,33 @@ private:
                       [](const Busy& a, const Busy& b) { return a.begin < b.begin; });
             return;
         }
-        std::array<uint64_t, kRankedBusy> begins{};
-        for (std::size_t i = 0; i < count; ++i) begins[i] = busy_[i].begin;
         std::array<Busy, kRankedBusy> sorted;
+        uint64_t highest = 0;
+        for (std::size_t i = 0; i < count; ++i) highest = std::max(highest, busy_[i].begin);
+        if (highest <= UINT32_MAX) {
+            // Heaps under 4 GiB: 32-bit offsets, which the compiler compares four at a time.
+            rank_by<uint32_t>(sorted);
+        } else {
+            rank_by<uint64_t>(sorted);
+        }
+        std::copy(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(count), busy_.begin());
+    }
+
+    // Writes each of the first busy_count_ ranges to `sorted` at its rank by offset, the
+    // offsets compared as T (which holds them all).
+    template <class T>
+    void rank_by(std::array<Busy, kRankedBusy>& sorted) const {
+        const std::size_t count = busy_count_;
+        std::array<T, kRankedBusy> begins;
+        for (std::size_t i = 0; i < count; ++i) begins[i] = static_cast<T>(busy_[i].begin);
         for (std::size_t i = 0; i < count; ++i) {
-            const uint64_t begin = begins[i];
-            std::size_t rank = 0;
+            const T begin = begins[i];
+            uint32_t rank = 0;
             // Equal offsets keep their order, so that every range has its own rank.
             for (std::size_t j = 0; j < i; ++j) rank += begins[j] <= begin ? 1 : 0;
             for (std::size_t j = i + 1; j < count; ++j) rank += begins[j] < begin ? 1 : 0;
             sorted[rank] = busy_[i];
         }
-        std::copy(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(count), busy_.begin());
     }
 
     std::optional<uint64_t> find_offset(uint32_t h, const Request& request) {
