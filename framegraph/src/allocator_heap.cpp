@@ -389,12 +389,15 @@ private:
         }
         // Every candidate is written and the end advances past those that overlap: no branch
         // to mispredict on the test.
-        if (busy_.size() < (listed ? heap.members : runs_length_)) busy_.resize(listed ? heap.members : runs_length_);
-        Busy* end = busy_.data();
+        const uint32_t most = listed ? heap.members : runs_length_;
+        if (found_.size() < most) {
+            found_.resize(most);
+            busy_.resize(most);
+        }
+        uint32_t* end = found_.data();
         if (listed) {
             for (uint32_t other = heap.last_member; other != kNone; other = earlier_member_[other]) {
-                const SlotState& state = slots_[other];
-                *end = Busy{state.begin, state.end, other};
+                *end = other;
                 end += index_.life(other).overlaps(life) ? 1 : 0;
             }
         } else {
@@ -402,53 +405,55 @@ private:
             for (const LifetimeIndex::Run& run : runs_) {
                 for (uint32_t other = run.begin; other < run.end; ++other) {
                     const SlotState& state = slots_[other];
-                    *end = Busy{state.begin, state.end, other};
+                    *end = other;
                     // last >= life.first as the sign of a 64-bit difference, so that GCC does not branch.
                     const uint64_t ended = (uint64_t{state.last} - life.first) >> 63;
                     end += static_cast<uint64_t>(state.heap == h) & (ended ^ 1);
                 }
             }
         }
-        busy_count_ = static_cast<std::size_t>(end - busy_.data());
+        busy_count_ = static_cast<std::size_t>(end - found_.data());
         sort_busy();
     }
 
-    // Sorts busy_ by offset. A query reports a few dozen ranges at most, usually: those are
-    // ordered by counting, for each, the ranges before it, which costs more comparisons than a
-    // comparison sort but no mispredicted branches, and is faster at that size.
+    // Fills busy_ with the ranges of the slots in found_, by offset. A query reports a few dozen
+    // ranges at most, usually: those are placed by counting, for each, the ranges below it,
+    // which costs more comparisons than a comparison sort but no mispredicted branches, and is
+    // faster at that size.
     void sort_busy() {
         const std::size_t count = busy_count_;
+        auto range_of = [&](uint32_t slot) { return Busy{slots_[slot].begin, slots_[slot].end, slot}; };
         if (count > kRankedBusy) {
+            std::transform(found_.begin(), found_.begin() + static_cast<std::ptrdiff_t>(count), busy_.begin(), range_of);
             std::sort(busy_.begin(), busy_.begin() + static_cast<std::ptrdiff_t>(count),
                       [](const Busy& a, const Busy& b) { return a.begin < b.begin; });
             return;
         }
-        std::array<Busy, kRankedBusy> sorted;
         uint64_t highest = 0;
-        for (std::size_t i = 0; i < count; ++i) highest = std::max(highest, busy_[i].begin);
+        for (std::size_t i = 0; i < count; ++i) highest = std::max(highest, slots_[found_[i]].begin);
         if (highest <= UINT32_MAX) {
             // Heaps under 4 GiB: 32-bit offsets, which the compiler compares four at a time.
-            rank_by<uint32_t>(sorted);
+            rank_by<uint32_t>();
         } else {
-            rank_by<uint64_t>(sorted);
+            rank_by<uint64_t>();
         }
-        std::copy(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(count), busy_.begin());
     }
 
-    // Writes each of the first busy_count_ ranges to `sorted` at its rank by offset, the
-    // offsets compared as T (which holds them all).
+    // Writes the range of each of the first busy_count_ slots of found_ to busy_ at its rank by
+    // offset, the offsets compared as T (which holds them all).
     template <class T>
-    void rank_by(std::array<Busy, kRankedBusy>& sorted) const {
+    void rank_by() {
         const std::size_t count = busy_count_;
         std::array<T, kRankedBusy> begins;
-        for (std::size_t i = 0; i < count; ++i) begins[i] = static_cast<T>(busy_[i].begin);
+        for (std::size_t i = 0; i < count; ++i) begins[i] = static_cast<T>(slots_[found_[i]].begin);
         for (std::size_t i = 0; i < count; ++i) {
             const T begin = begins[i];
             uint32_t rank = 0;
             // Equal offsets keep their order, so that every range has its own rank.
             for (std::size_t j = 0; j < i; ++j) rank += begins[j] <= begin ? 1 : 0;
             for (std::size_t j = i + 1; j < count; ++j) rank += begins[j] < begin ? 1 : 0;
-            sorted[rank] = busy_[i];
+            const SlotState& state = slots_[found_[i]];
+            busy_[rank] = Busy{state.begin, state.end, found_[i]};
         }
     }
 
@@ -525,7 +530,8 @@ private:
     std::vector<HeapState> heaps_;
     std::vector<SlotState> slots_;          // per slot
     std::vector<uint32_t> earlier_member_;  // per placed slot: the member of its heap placed before it
-    std::vector<Busy> busy_;                // the first busy_count_ are in use
+    std::vector<uint32_t> found_;           // the slots of the query's ranges, as found
+    std::vector<Busy> busy_;                // their ranges by offset; the first busy_count_ are in use
     std::size_t busy_count_ = 0;
     std::vector<ByteRange> covering_;
     std::vector<LifetimeIndex::Run> runs_;  // of the resource being placed, once looked up
