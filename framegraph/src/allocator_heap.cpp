@@ -340,10 +340,6 @@ public:
     }
 
 private:
-    struct ByteRange {
-        uint64_t begin = 0;
-        uint64_t end = 0;
-    };
     struct Busy {
         uint64_t begin = 0;
         uint64_t end = 0;
@@ -499,18 +495,25 @@ private:
         HeapState& heap = heaps_[h];
         const Lifetime& life = index_.life(slot);
         if (smallest_ == 0) return;
-        covering_.clear();
-        covering_.push_back(ByteRange{begin, end});
+        // The resource's range and those of the members alive during all of its lifetime, by
+        // offset: busy_ is by offset already, and the resource's range goes where it belongs.
+        uint64_t reached = 0;
+        auto gap_below = [&](uint64_t range_begin, uint64_t range_end) {
+            if (range_begin > reached && range_begin - reached >= smallest_) return true;
+            reached = std::max(reached, range_end);
+            return false;
+        };
+        bool own = false;
         for (const Busy& range : busy()) {  // the resource's overlapping members, from find_offset
             const Lifetime& other = index_.life(range.slot);
-            if (other.first <= life.first && life.last <= other.last) covering_.push_back(ByteRange{range.begin, range.end});
+            if (!(other.first <= life.first && life.last <= other.last)) continue;
+            if (!own && begin <= range.begin) {
+                own = true;
+                if (gap_below(begin, end)) return;
+            }
+            if (gap_below(range.begin, range.end)) return;
         }
-        std::sort(covering_.begin(), covering_.end(), [](const ByteRange& a, const ByteRange& b) { return a.begin < b.begin; });
-        uint64_t reached = 0;
-        for (const ByteRange& range : covering_) {
-            if (range.begin > reached && range.begin - reached >= smallest_) return;
-            reached = std::max(reached, range.end);
-        }
+        if (!own && gap_below(begin, end)) return;
         if (heap.capacity > reached && heap.capacity - reached >= smallest_) return;
 
         FullSpan& full = heap.full;
@@ -533,7 +536,6 @@ private:
     std::vector<uint32_t> found_;           // the slots of the query's ranges, as found
     std::vector<Busy> busy_;                // their ranges by offset; the first busy_count_ are in use
     std::size_t busy_count_ = 0;
-    std::vector<ByteRange> covering_;
     std::vector<LifetimeIndex::Run> runs_;  // of the resource being placed, once looked up
     uint32_t runs_length_ = 0;
     bool runs_found_ = false;
