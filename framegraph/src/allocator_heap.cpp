@@ -583,15 +583,17 @@ class OrderSorter {
 public:
     using Key = std::array<uint64_t, 4>;
 
-    /// `keys` per resource; `order` receives the resource numbers in order.
-    void sort(const std::vector<Key>& keys, std::vector<uint32_t>& order) {
-        const std::size_t count = keys.size();
+    /// `order` receives the numbers of the `count` resources in order; key_of(r) is the key
+    /// of resource r (called a few times per resource: it should be cheap).
+    template <class KeyOf>
+    void sort(uint32_t count, KeyOf&& key_of, std::vector<uint32_t>& order) {
         order.resize(count);
         std::iota(order.begin(), order.end(), 0u);
         Key any{};
         Key all{};
         all.fill(UINT64_MAX);
-        for (const Key& key : keys) {
+        for (uint32_t r = 0; r < count; ++r) {
+            const Key key = key_of(r);
             for (std::size_t w = 0; w < key.size(); ++w) {
                 any[w] |= key[w];
                 all[w] &= key[w];
@@ -603,7 +605,7 @@ public:
             // The word of each resource, beside it, in the current order: the passes below
             // read them one after the other.
             entries_.resize(count);
-            for (std::size_t i = 0; i < count; ++i) entries_[i] = Entry{keys[order[i]][w], order[i]};
+            for (std::size_t i = 0; i < count; ++i) entries_[i] = Entry{key_of(order[i])[w], order[i]};
             scratch_.resize(count);
             for (uint32_t shift = 0; shift < 64; shift += 8) {
                 if (((varying >> shift) & 0xff) == 0) continue;
@@ -647,7 +649,6 @@ public:
         Placer placer(problem, index);
         using Key = OrderSorter::Key;
         OrderSorter sorter;
-        std::vector<Key> keys(count);
         std::vector<uint32_t> sorted;
         std::vector<Request> order(count);
         Placement best;
@@ -667,8 +668,7 @@ public:
         }
         const bool may_give_up = most < UINT64_MAX;
         auto try_order = [&](auto&& key_of) -> Status {
-            for (uint32_t r = 0; r < count; ++r) keys[r] = key_of(r);
-            sorter.sort(keys, sorted);
+            sorter.sort(count, key_of, sorted);
             for (uint32_t i = 0; i < count; ++i) {
                 const uint32_t r = sorted[i];
                 order[i] = Request{res[r].bytes, std::max<uint64_t>(res[r].alignment, 1), res[r].lifetime, r, index.slot_of(r)};
