@@ -4,9 +4,10 @@
 // skaarj1989/FrameGraph and acdemiralp/fg, in one process on a warm heap. Each benchmark reports
 // per_pass (seconds per pass; Google Benchmark prints it in the unit it chooses) and
 // allocs_per_pass (heap allocations per pass, counted by this program's operator new) and
-// peak_bytes (the most bytes the program's operator new had handed out at once during one
-// untimed run, above what was live before it: the graph, its plan and every scratch array). The
-// heap is kept warm for every library alike (warm_heap.hpp).
+// peak_bytes (the most bytes the program's operator new had handed out at once during the
+// untimed first run, less what the run freed of earlier memory: the graph, its plan and every
+// scratch array; for a reused graph, net of the previous frame's passes it frees). The heap is
+// kept warm for every library alike (warm_heap.hpp).
 // docs/BENCHMARKS.md, "Frame-graph compile vs peers", has the table and the command.
 //
 //   loom_framegraph_compile_bench [google benchmark flags]
@@ -27,16 +28,20 @@ namespace {
 // Every allocation of the program, counted (relaxed: the benchmark is single-threaded; the
 // counter only has to be exact between two reads on the benchmark's thread).
 std::atomic<uint64_t> g_allocations{0};
-// Bytes handed out and not yet freed (as malloc_usable_size counts them, so that frees, which
-// may not know the size, subtract what was added), and the most at once since the last reset.
-std::atomic<uint64_t> g_live_bytes{0};
-std::atomic<uint64_t> g_peak_bytes{0};
+// During the untimed run only (the calls cost about 8 ns an allocation, which would weigh on the
+// lightest library's timings most): bytes handed out less bytes freed since the run began (as
+// malloc_usable_size counts them, so that frees, which may not know the size, subtract what was
+// added), and the most at once.
+std::atomic<bool> g_tracking_bytes{false};
+std::atomic<int64_t> g_live_bytes{0};
+std::atomic<int64_t> g_peak_bytes{0};
 
 void* counted(void* p) {
     if (!p) throw std::bad_alloc();
     g_allocations.fetch_add(1, std::memory_order_relaxed);
-    const uint64_t bytes = malloc_usable_size(p);
-    const uint64_t live = g_live_bytes.fetch_add(bytes, std::memory_order_relaxed) + bytes;
+    if (!g_tracking_bytes.load(std::memory_order_relaxed)) return p;
+    const auto bytes = static_cast<int64_t>(malloc_usable_size(p));
+    const int64_t live = g_live_bytes.fetch_add(bytes, std::memory_order_relaxed) + bytes;
     if (live > g_peak_bytes.load(std::memory_order_relaxed)) g_peak_bytes.store(live, std::memory_order_relaxed);
     return p;
 }
@@ -49,7 +54,9 @@ void* counted_aligned_allocation(std::size_t size, std::align_val_t alignment) {
 }
 
 void release(void* p) noexcept {
-    if (p) g_live_bytes.fetch_sub(malloc_usable_size(p), std::memory_order_relaxed);
+    if (p && g_tracking_bytes.load(std::memory_order_relaxed)) {
+        g_live_bytes.fetch_sub(static_cast<int64_t>(malloc_usable_size(p)), std::memory_order_relaxed);
+    }
     std::free(p);
 }
 
@@ -85,10 +92,12 @@ void run_compile(benchmark::State& state, Compile compile) {
     const auto passes = static_cast<uint32_t>(state.range(0));
     const CompileGraph graph = make_compile_graph(passes);
     const CompileNames names = make_compile_names(graph);
-    const uint64_t live_before = g_live_bytes.load(std::memory_order_relaxed);
-    g_peak_bytes.store(live_before, std::memory_order_relaxed);
+    g_live_bytes.store(0, std::memory_order_relaxed);
+    g_peak_bytes.store(0, std::memory_order_relaxed);
+    g_tracking_bytes.store(true, std::memory_order_relaxed);
     benchmark::DoNotOptimize(compile(graph, names));
-    const uint64_t peak_bytes = g_peak_bytes.load(std::memory_order_relaxed) - live_before;
+    g_tracking_bytes.store(false, std::memory_order_relaxed);
+    const int64_t peak_bytes = g_peak_bytes.load(std::memory_order_relaxed);
     const uint64_t allocations_before = g_allocations.load(std::memory_order_relaxed);
     for (auto _ : state) benchmark::DoNotOptimize(compile(graph, names));
     const uint64_t allocations = g_allocations.load(std::memory_order_relaxed) - allocations_before;
