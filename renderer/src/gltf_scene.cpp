@@ -21,13 +21,15 @@ PipelineScene gltf_pipeline_scene(const std::shared_ptr<const renderer::GpuScene
         (object->alpha_mode() == scene::AlphaMode::Mask ? scene.masked_shadow_casters : scene.shadow_casters).push_back(object);
         scene.opaque.push_back(object);
     }
-    for (const auto& object : objects.blended) {
-        BlendedObject blended{object, object->world_bounds(), nullptr};
-        // The object reads the posed scene it keeps alive.
-        if (placements) blended.moving_bounds = [object] { return object->world_bounds(); };
-        scene.blended.push_back(std::move(blended));
-    }
+    // With placements, an object reads the posed scene it keeps alive.
+    for (const auto& object : objects.blended) scene.blended.push_back(blended_gltf_object(object, placements != nullptr));
     return scene;
+}
+
+BlendedObject blended_gltf_object(const std::shared_ptr<const GltfObject>& object, bool moves) {
+    BlendedObject blended{object, object->world_bounds(), nullptr};
+    if (moves) blended.moving_bounds = [object] { return object->world_bounds(); };
+    return blended;
 }
 
 PipelineScene gltf_view(const scene::Scene& scene, const renderer::SceneViewpoint& viewpoint, const scene::Bounds& bounds) {

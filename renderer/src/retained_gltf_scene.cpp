@@ -156,11 +156,7 @@ PipelineScene RetainedGltfScene::pipeline_scene(const SceneViewpoint& viewpoint)
     // The layer keeps this object (the GpuScene's textures, the posed scene) alive.
     pipeline.retained = std::shared_ptr<passes::RetainedScene>(shared_from_this(), retained_.get());
     pipeline.retained_masked_shadows = masked_;
-    for (const auto& object : blended_) {
-        BlendedObject blended{object, object->world_bounds(), nullptr};
-        blended.moving_bounds = [object] { return object->world_bounds(); };
-        pipeline.blended.push_back(std::move(blended));
-    }
+    for (const auto& object : blended_) pipeline.blended.push_back(blended_gltf_object(object, true));
     return pipeline;
 }
 

@@ -39,6 +39,10 @@ PipelineScene gltf_pipeline_scene(const std::shared_ptr<const renderer::GpuScene
 /// shadow map.
 PipelineScene gltf_view(const scene::Scene& scene, const renderer::SceneViewpoint& viewpoint, const scene::Bounds& bounds);
 
+/// A blended glTF object for the transparent pass, sorted by its bounds now or, when it `moves`
+/// (it reads a scene that is posed again), by the bounds it has at every frame.
+BlendedObject blended_gltf_object(const std::shared_ptr<const GltfObject>& object, bool moves);
+
 /// "3 opaque and 1 blended draw item(s), 2 material(s), 4 image(s); camera 0 'name'": what
 /// `content` (made from `scene`) draws and from where.
 std::string describe_gltf_scene(const scene::Scene& scene, const PipelineScene& content,
