@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "json_structure.hpp"
+#include "text.hpp"
 
 namespace loom::fg::detail {
 namespace {
@@ -543,9 +544,7 @@ bool JsonParser::close_container() {
             for (std::size_t a = 1; a < count && !repeated; ++a) {
                 const std::string_view key = document_.view(members[a].key());
                 for (std::size_t b = 0; b < a; ++b) {
-                    // Most keys differ in length: no call to memcmp for them.
-                    if (members[b].key_length != key.size()) continue;
-                    if (document_.view(members[b].key()) == key) {
+                    if (same_name(document_.view(members[b].key()), key)) {
                         repeated = true;
                         break;
                     }
@@ -734,14 +733,11 @@ std::string_view JsonValue::key(std::size_t i) const {
 std::optional<JsonValue> JsonValue::find(std::string_view key) const {
     const auto& node = document_->nodes_[index_];
     if (node.type != JsonType::Object) return std::nullopt;
-    // Graph readers ask for many keys of small objects, most of them absent: the length and the
-    // first byte settle nearly every comparison without a call to memcmp.
+    // Graph readers ask for many keys of small objects, most of them absent.
     for (std::size_t i = 0; i < node.count; ++i) {
-        const JsonDocument::Span span = document_->nodes_[node.first + i].key();
-        if (span.length != key.size()) continue;
-        const std::string_view candidate = document_->view(span);
-        if (!key.empty() && candidate.front() != key.front()) continue;
-        if (candidate == key) return JsonValue(document_, node.first + i);
+        if (same_name(document_->view(document_->nodes_[node.first + i].key()), key)) {
+            return JsonValue(document_, node.first + i);
+        }
     }
     return std::nullopt;
 }

@@ -244,12 +244,8 @@ const Port* Pass::find_port(std::string_view name) const {
 
 std::optional<uint32_t> Pass::port_index(std::string_view name) const {
     if (port_indices_.empty()) {
-        // Port names are short and mostly differ in length or first byte: those settle the
-        // comparison without a call to memcmp.
         for (uint32_t i = 0; i < ports_.size(); ++i) {
-            const std::string& candidate = ports_[i].name;
-            if (candidate.size() != name.size() || (!name.empty() && candidate.front() != name.front())) continue;
-            if (candidate == name) return i;
+            if (detail::same_name(ports_[i].name, name)) return i;
         }
         return std::nullopt;
     }

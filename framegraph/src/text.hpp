@@ -1,6 +1,7 @@
 #pragma once
-// Internal: building strings by appending. GCC 12 at -O3 warns falsely (-Wrestrict, GCC bug
-// 105651) about `"literal" + std::to_string(n)`; appending to one string avoids the pattern.
+// Internal: text helpers. Strings are built by appending: GCC 12 at -O3 warns falsely
+// (-Wrestrict, GCC bug 105651) about `"literal" + std::to_string(n)`; appending to one string
+// avoids the pattern. Names are compared by same_name.
 
 #include <concepts>
 #include <string>
@@ -19,6 +20,13 @@ void append(std::string& out, const Parts&... parts) {
         }
     };
     (one(parts), ...);
+}
+
+/// a == b for the short names and keys compared by the thousand while graphs are read and
+/// declared: most differ in length or first byte, which settle it without a call to memcmp.
+inline bool same_name(std::string_view a, std::string_view b) {
+    if (a.size() != b.size()) return false;
+    return a.empty() || (a.front() == b.front() && a == b);
 }
 
 /// The concatenation of the parts (see append).
