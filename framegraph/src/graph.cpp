@@ -71,6 +71,8 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
     const auto index = static_cast<uint32_t>(passes_.size());
     const auto first_port = static_cast<uint32_t>(sources_.size());
     port_offset_.push_back(first_port);
+    port_data_.push_back(pass->ports().data());
+    for (const Port& port : pass->ports()) port_facts_.push_back(PortFacts::of(port, pass->kind()));
     sources_.resize(first_port + pass->ports().size());
     consumer_lists_.resize(first_port + pass->ports().size());
     marked_output_.resize(first_port + pass->ports().size());
@@ -86,6 +88,8 @@ void FrameGraph::reserve(uint32_t passes, uint32_t ports) {
     name_hashes_.reserve(passes);
     if (std::size_t{passes} * 2 > name_slots_.size()) grow_name_index(std::size_t{passes} * 2);
     port_offset_.reserve(passes);
+    port_data_.reserve(passes);
+    port_facts_.reserve(ports);
     sources_.reserve(ports);
     consumer_lists_.reserve(ports);
     // Each list starts with room for two (see link).
@@ -99,6 +103,8 @@ void FrameGraph::clear() {
     std::fill(name_slots_.begin(), name_slots_.end(), 0u);
     name_hashes_.clear();
     port_offset_.clear();
+    port_data_.clear();
+    port_facts_.clear();
     sources_.clear();
     consumer_lists_.clear();
     consumer_pool_.clear();
@@ -176,7 +182,22 @@ void FrameGraph::grow_name_index(std::size_t slots) {
     }
 }
 
-const Port& FrameGraph::port_at(PortAddress address) const { return passes_[address.pass]->ports()[address.port]; }
+PortFacts PortFacts::of(const Port& port, PassKind pass_kind) {
+    PortFacts facts;
+    facts.requested_usage = port.spec.usage;
+    facts.kind = port.kind;
+    facts.type = port.type;
+    facts.pass_kind = pass_kind;
+    facts.optional = port.optional;
+    if (port.type == ResourceType::Buffer) {
+        facts.unconstrained = port.buffer == BufferSpec{};
+        facts.whole = port.bytes == BufferRange{};
+    } else {
+        facts.unconstrained = port.spec.unconstrained();
+        facts.whole = port.range == SubresourceRange{};
+    }
+    return facts;
+}
 
 std::optional<PortAddress> FrameGraph::source(PortAddress address) const { return sources_[flat(address)]; }
 

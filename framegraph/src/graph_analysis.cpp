@@ -185,9 +185,10 @@ Result<Dependencies> analyze(const FrameGraph& graph) {
             error.subjects = {pass.name()};
             return error;
         }
-        for (uint32_t port_index = 0; port_index < pass.ports().size(); ++port_index) {
+        const std::span<const PortFacts> ports = graph.port_facts(pass_index);
+        for (uint32_t port_index = 0; port_index < ports.size(); ++port_index) {
             const PortAddress address{pass_index, port_index};
-            const Port& port = pass.ports()[port_index];
+            const PortFacts& port = ports[port_index];
             if (!port_reads(port.kind)) continue;
             auto source = graph.source(address);
             if (!source) {
@@ -207,8 +208,9 @@ Result<Dependencies> analyze(const FrameGraph& graph) {
                     // Reading one part of a texture while writing another (mip k-1 into mip k,
                     // one cube face into the next) is no hazard.
                     const Port& read = graph.port_at(reader);
-                    const bool disjoint = port.type == ResourceType::Buffer ? !overlaps(read.bytes, port.bytes)
-                                                                            : !overlaps(read.range, port.range);
+                    const Port& written = graph.port_at(address);
+                    const bool disjoint = port.type == ResourceType::Buffer ? !overlaps(read.bytes, written.bytes)
+                                                                            : !overlaps(read.range, written.range);
                     if (disjoint) continue;
                     Error error = graph_error("pass '" + pass.name() + "' reads " + graph.port_name(*source) +
                                               " through " + graph.port_name(reader) +

@@ -79,6 +79,8 @@ struct JoinedGroup {
 /// storage access) and samples; a compute pass writes storage images and samples; a copy pass
 /// writes copy destinations and reads copy sources.
 rhi::TextureUsage port_texture_usage(const Port& port, PassKind pass_kind, rhi::Format format);
+/// port_texture_usage of the port whose facts are `port` (the kind of its pass among them).
+rhi::TextureUsage port_texture_usage(const PortFacts& port, rhi::Format format);
 
 /// `range` with concrete counts for a texture of `mips` levels and `layers` layers; nullopt
 /// when it reaches past them or is empty.

@@ -17,7 +17,7 @@ namespace {
 using rhi::TextureUsage;
 
 // True when the port at `address` starts a group: an output, or an inout nothing feeds.
-bool starts_group(const FrameGraph& graph, const Port& port, PortAddress address) {
+bool starts_group(const FrameGraph& graph, const PortFacts& port, PortAddress address) {
     return port.kind == PortKind::Output || (port.kind == PortKind::InOut && !graph.source(address));
 }
 
@@ -40,7 +40,7 @@ template <class Visit>
 Status for_each_group(const FrameGraph& graph, Visit visit) {
     std::vector<PortAddress> group;
     for (uint32_t p = 0; p < graph.pass_count(); ++p) {
-        const std::vector<Port>& ports = graph.pass(PassId{p}).ports();
+        const std::span<const PortFacts> ports = graph.port_facts(p);
         for (uint32_t i = 0; i < ports.size(); ++i) {
             const PortAddress start{p, i};
             if (!starts_group(graph, ports[i], start)) continue;
@@ -64,12 +64,6 @@ TextureSpec only_property(const TextureSpec& spec, std::size_t property) {
     return out;
 }
 
-// TextureSpec::unconstrained() without building an empty spec to compare with.
-bool spec_is_unconstrained(const TextureSpec& spec) {
-    return !spec.format && !spec.size && !spec.samples && !spec.mips && !spec.layers &&
-           spec.usage == TextureUsage::None && !spec.cube;
-}
-
 // Joins the specs of a group's ports in group order. On a conflict the error names the port
 // that first constrained the conflicting property and the port that contradicts it.
 Result<TextureSpec> join_group(const FrameGraph& graph, std::span<const PortAddress> group, Extent2D frame) {
@@ -78,14 +72,15 @@ Result<TextureSpec> join_group(const FrameGraph& graph, std::span<const PortAddr
     std::array<std::optional<PortAddress>, 5> origin{};
     bool first = true;
     for (const PortAddress& address : group) {
-        const TextureSpec& spec = graph.port_at(address).spec;
         // Joining with an unconstrained spec changes nothing, and the first spec joined with the
         // empty start is itself: most ports of a graph (reads) constrain nothing, so most joins
-        // need not run. No property is constrained by such a port, so `origin` stays as it is.
-        if (spec_is_unconstrained(spec)) {
+        // need not run, and their Port is not read. No property is constrained by such a port,
+        // so `origin` stays as it is.
+        if (graph.facts(address).unconstrained) {
             first = false;
             continue;
         }
+        const TextureSpec& spec = graph.port_at(address).spec;
         if (first) {
             first = false;
             joined = spec;
@@ -242,12 +237,11 @@ Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Exten
         return error;
     }
     TextureUsage usage = TextureUsage::None;
-    for (const PortAddress& address : item.kept_ports) {
-        usage |= port_texture_usage(graph.port_at(address), graph.pass(PassId{address.pass}).kind(), resolved->format);
-    }
+    for (const PortAddress& address : item.kept_ports) usage |= port_texture_usage(graph.facts(address), resolved->format);
     if (r.graph_output) usage |= TextureUsage::CopySrc;
     resolved->usage = usage;
     for (const PortAddress& address : item.kept_ports) {
+        if (graph.facts(address).whole) continue;  // the default range fits any texture
         const SubresourceRange& range = graph.port_at(address).range;
         if (!resolve_range(range, resolved->mips, resolved->layers)) {
             Error error = make_error(ErrorCode::Graph, "port " + graph.port_name(address) + " uses " + describe_range(range) +
@@ -307,7 +301,7 @@ public:
         running_part(graph_, group, schedule_, kept_, resource);
         const std::span<const PortAddress> kept_ports(kept_.data() + first, kept_.size() - first);
         // An optional output nobody reads gets no texture.
-        if (kept_ports.size() == 1 && !resource.graph_output && graph_.port_at(start).optional) {
+        if (kept_ports.size() == 1 && !resource.graph_output && graph_.facts(start).optional) {
             resources_.pop_back();
             kept_.resize(first);
             return {};
@@ -386,7 +380,7 @@ PortTable::PortTable(const FrameGraph& graph, uint32_t value) {
     first_.reserve(graph.pass_count() + 1);
     first_.push_back(0);
     for (uint32_t p = 0; p < graph.pass_count(); ++p) {
-        first_.push_back(first_.back() + static_cast<uint32_t>(graph.pass(PassId{p}).ports().size()));
+        first_.push_back(first_.back() + static_cast<uint32_t>(graph.port_facts(p).size()));
     }
     values_.assign(first_.back(), value);
 }
@@ -426,15 +420,19 @@ Status JoinedGroup::status() const {
 }
 
 TextureUsage port_texture_usage(const Port& port, PassKind pass_kind, rhi::Format format) {
-    TextureUsage usage = port.spec.usage;
-    switch (pass_kind) {
+    return port_texture_usage(PortFacts::of(port, pass_kind), format);
+}
+
+TextureUsage port_texture_usage(const PortFacts& port, rhi::Format format) {
+    TextureUsage usage = port.requested_usage;
+    switch (port.pass_kind) {
         case PassKind::Copy:
             return usage | (port_writes(port.kind) ? TextureUsage::CopyDst : TextureUsage::CopySrc);
         case PassKind::Compute:
             return usage | (port_writes(port.kind) ? TextureUsage::Storage : TextureUsage::Sampled);
         case PassKind::Graphics: break;
     }
-    if (rhi::has_all(port.spec.usage, TextureUsage::Storage)) return usage;
+    if (rhi::has_all(port.requested_usage, TextureUsage::Storage)) return usage;
     if (port_writes(port.kind)) {
         usage |= rhi::format_info(format).is_depth_stencil() ? TextureUsage::DepthStencilAttachment
                                                              : TextureUsage::ColorAttachment;
@@ -477,7 +475,7 @@ std::vector<JoinedGroup> join_port_groups(const FrameGraph& graph, Extent2D fram
     // Join errors are kept in their groups, so visiting never stops.
     (void)for_each_group(graph, [&](std::span<const PortAddress> group) -> Status {
         std::vector<PortAddress> ports(group.begin(), group.end());
-        if (graph.port_at(group.front()).type == ResourceType::Buffer) {
+        if (graph.facts(group.front()).type == ResourceType::Buffer) {
             Result<BufferSpec> buffer = join_buffer_group(graph, group, frame);
             joined.push_back(JoinedGroup{std::move(ports), TextureSpec{}, ResourceType::Buffer, std::move(buffer)});
         } else {
@@ -506,14 +504,14 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const Sched
                                             MemoryModel& memory) {
     std::size_t group_count = 0;
     for (uint32_t p = 0; p < graph.pass_count(); ++p) {
-        const std::vector<Port>& ports = graph.pass(PassId{p}).ports();
+        const std::span<const PortFacts> ports = graph.port_facts(p);
         for (uint32_t i = 0; i < ports.size(); ++i) group_count += starts_group(graph, ports[i], {p, i}) ? 1 : 0;
     }
     ResourceBuilder builder(graph, schedule, frame, memory, group_count);
     // Each group joined and resolved before the next is collected: the first group at fault
     // gives the error, as when every group is joined first (join_port_groups).
     LOOM_TRY(for_each_group(graph, [&](std::span<const PortAddress> group) -> Status {
-        if (graph.port_at(group.front()).type == ResourceType::Buffer) {
+        if (graph.facts(group.front()).type == ResourceType::Buffer) {
             Result<BufferSpec> buffer = join_buffer_group(graph, group, frame);
             if (!buffer) return buffer.take_error();
             return builder.add(group, ResourceType::Buffer, TextureSpec{}, *buffer);
@@ -601,9 +599,11 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
                 if (port.type == ResourceType::Buffer) {
                     planned_port.bytes = resolve_bytes(port.bytes, resource.buffer_spec.size).value_or(BufferRange{});
                 } else {
-                    planned_port.usage = port_texture_usage(port, pass.kind(), resource.spec.format);
-                    planned_port.range =
-                        resolve_range(port.range, resource.spec.mips, resource.spec.layers).value_or(SubresourceRange{});
+                    const PortFacts& facts = graph.facts({p, i});
+                    planned_port.usage = port_texture_usage(facts, resource.spec.format);
+                    planned_port.range = facts.whole ? SubresourceRange{0, resource.spec.mips, 0, resource.spec.layers}
+                                                     : resolve_range(port.range, resource.spec.mips, resource.spec.layers)
+                                                           .value_or(SubresourceRange{});
                 }
             }
             planned.ports.push_back(std::move(planned_port));

@@ -130,6 +130,57 @@ TEST(TypedGraph, AClearedGraphIsDeclaredAgainAndPlannedAfresh) {
     EXPECT_EQ(plan_hash(**first), plan_hash(**second));
 }
 
+// The flat facts the planner reads instead of each Port say what the ports say: kind, type,
+// the kind of their pass, optional, requested usage, whether the spec constrains anything and
+// whether the range or bytes are the whole resource.
+TEST(TypedGraph, PortFactsSayWhatThePortsSay) {
+    FrameGraph graph;
+    ASSERT_TRUE(graph.add_pass(Pass("make")
+                                   .output("plain")
+                                   .output("storage", TextureSpec::any().with_usage(rhi::TextureUsage::Storage))
+                                   .buffer_output("sized", BufferSpec::of_size(256))
+                                   .optional_output("spare"))
+                    .ok());
+    ASSERT_TRUE(graph.add_pass(Pass("mips")
+                                   .set_kind(PassKind::Compute)
+                                   .input("level", {}, SubresourceRange{1, 1, 0, rhi::kRemainingSubresources})
+                                   .buffer_input("part", {}, BufferRange{0, 64})
+                                   .inout("all"))
+                    .ok());
+    const std::span<const PortFacts> make = graph.port_facts(0);
+    ASSERT_EQ(make.size(), 4u);
+    EXPECT_EQ(make[0].kind, PortKind::Output);
+    EXPECT_TRUE(make[0].unconstrained);
+    EXPECT_TRUE(make[0].whole);
+    EXPECT_FALSE(make[0].optional);
+    EXPECT_EQ(make[1].requested_usage, rhi::TextureUsage::Storage);
+    EXPECT_FALSE(make[1].unconstrained);
+    EXPECT_EQ(make[2].type, ResourceType::Buffer);
+    EXPECT_FALSE(make[2].unconstrained);
+    EXPECT_TRUE(make[2].whole);
+    EXPECT_TRUE(make[3].optional);
+    for (const PortFacts& facts : make) EXPECT_EQ(facts.pass_kind, PassKind::Graphics);
+
+    const std::span<const PortFacts> mips = graph.port_facts(1);
+    ASSERT_EQ(mips.size(), 3u);
+    EXPECT_EQ(mips[0].kind, PortKind::Input);
+    EXPECT_FALSE(mips[0].whole);
+    EXPECT_TRUE(mips[0].unconstrained);
+    EXPECT_EQ(mips[1].type, ResourceType::Buffer);
+    EXPECT_TRUE(mips[1].unconstrained);
+    EXPECT_FALSE(mips[1].whole);
+    EXPECT_EQ(mips[2].kind, PortKind::InOut);
+    EXPECT_TRUE(mips[2].whole);
+    for (const PortFacts& facts : mips) EXPECT_EQ(facts.pass_kind, PassKind::Compute);
+    EXPECT_EQ(&graph.facts(port_of(PassId{1}, 2)), &mips[2]);
+    EXPECT_EQ(&graph.port_at(port_of(PassId{1}, 2)), &graph.pass(PassId{1}).ports()[2]);
+
+    graph.clear();
+    ASSERT_TRUE(graph.add_pass(Pass("again").input("in").output("out")).ok());
+    ASSERT_EQ(graph.port_facts(0).size(), 2u);
+    EXPECT_EQ(graph.port_facts(0)[1].kind, PortKind::Output);
+}
+
 // The pass-name index (open addressing, grown as passes come): every name is found after it grew
 // many times, with and without reserve, a taken name is refused, and after clear() no old name is
 // found while the same names can be added again.

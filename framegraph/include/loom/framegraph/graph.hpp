@@ -55,6 +55,26 @@ struct Connection {
     friend bool operator==(const Connection&, const Connection&) = default;
 };
 
+/// What planning reads of most ports, kept by the graph in one flat array (FrameGraph::port_facts)
+/// so that the planner reads 12 bytes per port instead of walking to each Pass and its Port.
+/// Written when the pass is added; its ports are fixed from then on.
+struct PortFacts {
+    rhi::TextureUsage requested_usage = rhi::TextureUsage::None;  ///< the texture spec's usage
+    PortKind kind = PortKind::Input;
+    ResourceType type = ResourceType::Texture;
+    PassKind pass_kind = PassKind::Graphics;  ///< the kind of the port's pass
+    bool optional = false;
+    /// The port's spec (Port::spec of a texture port, Port::buffer of a buffer port) constrains
+    /// nothing: joining it changes nothing.
+    bool unconstrained = true;
+    /// The port uses the whole resource: Port::range (textures) or Port::bytes (buffers) is the
+    /// default.
+    bool whole = true;
+
+    /// The facts of `port`, a port of a pass of kind `pass_kind`.
+    static PortFacts of(const Port& port, PassKind pass_kind);
+};
+
 /// Passes and their connections, with the graph outputs: what is planned (plan()) and executed (Executor).
 class FrameGraph {
 public:
@@ -129,7 +149,15 @@ public:
     /// True when the port at `address` is marked as a graph output (one of outputs()).
     [[nodiscard]] bool is_output(PortAddress address) const { return marked_output_[flat(address)]; }
     /// The port at `address`.
-    [[nodiscard]] const Port& port_at(PortAddress address) const;
+    [[nodiscard]] const Port& port_at(PortAddress address) const { return port_data_[address.pass][address.port]; }
+    /// The facts of the port at `address`.
+    [[nodiscard]] const PortFacts& facts(PortAddress address) const { return port_facts_[flat(address)]; }
+    /// The facts of every port of pass `pass`, in port order.
+    [[nodiscard]] std::span<const PortFacts> port_facts(uint32_t pass) const {
+        const uint32_t first = port_offset_[pass];
+        const uint32_t end = pass + 1 < port_offset_.size() ? port_offset_[pass + 1] : static_cast<uint32_t>(port_facts_.size());
+        return {port_facts_.data() + first, end - first};
+    }
     /// The port feeding `address` (an input or inout), if connected.
     [[nodiscard]] std::optional<PortAddress> source(PortAddress address) const;
     /// The ports `address` feeds, in connection order (valid until the graph changes).
@@ -171,6 +199,10 @@ private:
     std::vector<uint32_t> name_slots_;
     std::vector<std::size_t> name_hashes_;  // per pass
     std::vector<uint32_t> port_offset_;                 // first flat port index of each pass
+    // Each pass's ports (Pass::ports().data(), fixed once added): port_at without a walk
+    // through the Pass.
+    std::vector<const Port*> port_data_;
+    std::vector<PortFacts> port_facts_;                 // per flat port
     std::vector<std::optional<PortAddress>> sources_;   // per flat port
     // The ports each flat port feeds: a range of consumer_pool_ per port, so that no port
     // allocates a list of its own.
