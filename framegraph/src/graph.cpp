@@ -29,6 +29,23 @@ std::optional<PortRef> parse_port_ref(std::string_view text) {
     return PortRef{std::string(text.substr(0, dot)), std::string(text.substr(dot + 1))};
 }
 
+// A pass of the previous graph as planning saw it.
+struct PreviousPass {
+    std::string name;
+    std::vector<Port> ports;
+    PassKind kind = PassKind::Graphics;
+    Queue queue = Queue::Graphics;
+    bool side_effect = false;
+    bool keep_declared_order = false;
+};
+
+struct FrameGraph::PreviousGraph {
+    std::vector<PreviousPass> passes;
+    std::vector<Connection> connections;
+    std::vector<PortAddress> outputs;
+    std::vector<std::pair<PassId, PassId>> order_requirements;
+};
+
 FrameGraph::FrameGraph() = default;
 FrameGraph::~FrameGraph() = default;
 FrameGraph::FrameGraph(FrameGraph&&) noexcept = default;
@@ -79,6 +96,16 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
     passes_.push_back(std::move(pass));
     index_name(index);
     for (const auto& [input, source] : passes_.back()->reads()) link(source, PortAddress{index, input});
+    if (same_as_previous_) {
+        if (matches_previous(index)) {
+            if (passes_[index]->side_effect() != previous_->passes[index].side_effect) ++side_effect_differences_;
+            // Compared: the previous pass's ports are not needed again, and the passes declared
+            // next reuse their memory while it is warm.
+            std::vector<Port>().swap(previous_->passes[index].ports);
+        } else {
+            release_previous();
+        }
+    }
     ++revision_;
     return PassId{index};
 }
@@ -99,6 +126,63 @@ void FrameGraph::reserve(uint32_t passes, uint32_t ports) {
 }
 
 void FrameGraph::clear() {
+    remove_declarations();
+    cached_plan_.reset();
+    release_previous();
+    ++revision_;
+}
+
+void FrameGraph::redeclare() {
+    // Only a graph that the cached plan was made from is worth comparing with: the one planned
+    // last, or one declared again as it was and not planned since.
+    if (cached_plan_ && cached_revision_ != revision_ && is_previous_graph()) cached_revision_ = revision_;
+    if (!cached_plan_ || cached_revision_ != revision_) {
+        clear();
+        return;
+    }
+    if (!previous_) previous_ = std::make_unique<PreviousGraph>();
+    PreviousGraph& previous = *previous_;
+    previous.passes.clear();
+    previous.passes.reserve(passes_.size());
+    for (const std::unique_ptr<Pass>& pass : passes_) {
+        previous.passes.push_back({pass->name_, std::move(pass->ports_), pass->kind_, pass->queue_,
+                                   pass->side_effect_, pass->keep_declared_order_});
+    }
+    // The arrays trade places, so that neither graph allocates them anew.
+    previous.connections.swap(connections_);
+    previous.outputs.swap(outputs_);
+    previous.order_requirements.swap(order_requirements_);
+    remove_declarations();
+    same_as_previous_ = true;
+    side_effect_differences_ = 0;
+    ++revision_;
+}
+
+bool FrameGraph::matches_previous(uint32_t index) const {
+    if (index >= previous_->passes.size()) return false;
+    const PreviousPass& before = previous_->passes[index];
+    const Pass& pass = *passes_[index];
+    return pass.name() == before.name && pass.kind() == before.kind && pass.queue() == before.queue &&
+           pass.keeps_declared_order() == before.keep_declared_order && pass.ports() == before.ports;
+}
+
+bool FrameGraph::is_previous_graph() const {
+    return previous_ && same_as_previous_ && side_effect_differences_ == 0 &&
+           passes_.size() == previous_->passes.size() &&
+           connections_ == previous_->connections && outputs_ == previous_->outputs &&
+           order_requirements_ == previous_->order_requirements;
+}
+
+void FrameGraph::release_previous() {
+    same_as_previous_ = false;
+    if (!previous_) return;
+    previous_->passes.clear();
+    previous_->connections.clear();
+    previous_->outputs.clear();
+    previous_->order_requirements.clear();
+}
+
+void FrameGraph::remove_declarations() {
     passes_.clear();
     std::fill(name_slots_.begin(), name_slots_.end(), 0u);
     name_hashes_.clear();
@@ -112,8 +196,6 @@ void FrameGraph::clear() {
     outputs_.clear();
     marked_output_.clear();
     order_requirements_.clear();
-    cached_plan_.reset();
-    ++revision_;
 }
 
 std::optional<std::string> FrameGraph::address_problem(PortAddress address) const {
@@ -315,6 +397,16 @@ Status FrameGraph::set_side_effect(PassId id, bool side_effect) {
     }
     if (passes_[id.index]->side_effect() != side_effect) {
         passes_[id.index]->set_side_effect(side_effect);
+        // While every pass so far matches the previous graph's but for side effects, this pass
+        // now differs from its previous one where it did not, or the other way round.
+        if (same_as_previous_) {
+            const bool now_differs = side_effect != previous_->passes[id.index].side_effect;
+            if (now_differs) {
+                ++side_effect_differences_;
+            } else {
+                --side_effect_differences_;
+            }
+        }
         ++revision_;
     }
     return {};
@@ -342,7 +434,15 @@ Status FrameGraph::validate() const {
 }
 
 Result<std::shared_ptr<const Plan>> FrameGraph::plan(const PlanOptions& options) {
-    if (cached_plan_ && cached_revision_ == revision_ && cached_options_ == options) return cached_plan_;
+    if (cached_plan_ && cached_options_ == options) {
+        if (cached_revision_ == revision_) return cached_plan_;
+        if (is_previous_graph()) {
+            release_previous();
+            cached_revision_ = revision_;
+            return cached_plan_;
+        }
+    }
+    release_previous();
     auto fresh = build_plan(*this, options);
     if (!fresh) return fresh.take_error();
     ++plans_built_;

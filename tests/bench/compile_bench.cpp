@@ -112,9 +112,9 @@ void BM_CompileLoomByName(benchmark::State& state, LoomAllocatorUnderTest alloca
     run_compile(state, [allocator](const CompileGraph& g, const CompileNames& n) { return compile_in_loom_by_name(g, n, allocator); });
 }
 
-void BM_CompileLoomTyped(benchmark::State& state, LoomAllocatorUnderTest allocator, bool reuse) {
-    run_compile(state, [allocator, reuse](const CompileGraph& g, const CompileNames& n) {
-        return compile_in_loom_typed(g, n, allocator, reuse);
+void BM_CompileLoomTyped(benchmark::State& state, LoomAllocatorUnderTest allocator, LoomGraphUse use) {
+    run_compile(state, [allocator, use](const CompileGraph& g, const CompileNames& n) {
+        return compile_in_loom_typed(g, n, allocator, use);
     });
 }
 
@@ -130,9 +130,17 @@ void sizes(benchmark::internal::Benchmark* b) { b->RangeMultiplier(10)->Range(10
 
 BENCHMARK_CAPTURE(BM_CompileLoomByName, interval, LoomAllocatorUnderTest::Interval)->Apply(sizes);
 BENCHMARK_CAPTURE(BM_CompileLoomByName, heap, LoomAllocatorUnderTest::Heap)->Apply(sizes);
-BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval, LoomAllocatorUnderTest::Interval, false)->Apply(sizes);
-BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_reused, LoomAllocatorUnderTest::Interval, true)->Apply(sizes);
-BENCHMARK_CAPTURE(BM_CompileLoomTyped, heap, LoomAllocatorUnderTest::Heap, false)->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval, LoomAllocatorUnderTest::Interval, LoomGraphUse::Fresh)->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_reused, LoomAllocatorUnderTest::Interval, LoomGraphUse::Cleared)->Apply(sizes);
+// Not side by side with the peers, which plan every graph afresh: what an engine that declares
+// its graph every frame pays in loom when the graph stays the same (redeclared) and when one
+// pass of it changes every other frame (redeclared_changing), against interval_reused.
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_redeclared, LoomAllocatorUnderTest::Interval, LoomGraphUse::Redeclared)
+    ->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_redeclared_changing, LoomAllocatorUnderTest::Interval,
+                  LoomGraphUse::RedeclaredChanging)
+    ->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, heap, LoomAllocatorUnderTest::Heap, LoomGraphUse::Fresh)->Apply(sizes);
 #ifdef LOOM_BENCH_SKAARJ
 BENCHMARK(BM_CompileSkaarj)->Apply(sizes);
 #endif

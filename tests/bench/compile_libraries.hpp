@@ -26,11 +26,22 @@ enum class LoomAllocatorUnderTest { Interval, Heap };
 /// loom through its string API: ports declared by name, connected by "pass.port" names.
 uint64_t compile_in_loom_by_name(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator);
 
+/// Which graph compile_in_loom_typed declares into, and how it plans.
+enum class LoomGraphUse {
+    Fresh,      ///< a new graph every call, planned by build_plan
+    Cleared,    ///< one graph cleared and declared again every call (an engine frame after frame)
+    /// One graph redeclared (FrameGraph::redeclare) and planned by FrameGraph::plan every call:
+    /// the same graph every time, which plan() answers with the previous plan...
+    Redeclared,
+    /// ... or, every other call, one output of the middle pass in another format, which it
+    /// plans afresh after comparing the graph up to that pass.
+    RedeclaredChanging,
+};
+
 /// loom through its typed API: reads by the handle of the write (Pass::read), outputs by
-/// port_of, the graph reserved up front. With `reuse`, one graph is cleared and declared again
-/// on every call, as an engine does frame after frame.
+/// port_of, the graph reserved up front.
 uint64_t compile_in_loom_typed(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator,
-                               bool reuse);
+                               LoomGraphUse use);
 
 #ifdef LOOM_BENCH_SKAARJ
 /// skaarj1989/FrameGraph: addCallbackPass, create + write, read, compile().

@@ -75,26 +75,48 @@ uint64_t compile_in_loom_by_name(const CompileGraph& graph, const CompileNames& 
 }
 
 uint64_t compile_in_loom_typed(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator,
-                               bool reuse) {
-    static FrameGraph reused;
+                               LoomGraphUse use) {
+    // One graph per kind of reuse, kept from call to call.
+    static FrameGraph cleared;
+    static FrameGraph redeclared;
+    static FrameGraph changing;
+    static uint64_t changing_calls = 0;
     FrameGraph fresh;
-    FrameGraph& frame_graph = reuse ? reused : fresh;
-    frame_graph.clear();
+    FrameGraph& frame_graph = use == LoomGraphUse::Fresh       ? fresh
+                              : use == LoomGraphUse::Cleared    ? cleared
+                              : use == LoomGraphUse::Redeclared ? redeclared
+                                                                : changing;
+    const bool redeclare = use == LoomGraphUse::Redeclared || use == LoomGraphUse::RedeclaredChanging;
+    if (redeclare) {
+        frame_graph.redeclare();
+    } else {
+        frame_graph.clear();
+    }
     frame_graph.reserve(static_cast<uint32_t>(graph.passes.size()),
                         static_cast<uint32_t>(graph.reads.size() + graph.textures.size()));
+    // The changing graph's middle pass declares its first output in the next format every other call.
+    const std::size_t changed_pass =
+        use == LoomGraphUse::RedeclaredChanging && changing_calls++ % 2 == 1 ? graph.passes.size() / 2 : SIZE_MAX;
     std::vector<PortAddress> handles(graph.textures.size());
     for (std::size_t index = 0; index < graph.passes.size(); ++index) {
         const CompilePass& pass = graph.passes[index];
         Pass declared(names.passes[index]);
         for (uint32_t r = 0; r < pass.read_count; ++r) declared.read(handles[graph.reads[pass.first_read + r]]);
-        for (uint32_t o = 0; o < pass.create_count; ++o) declared.output(kOutputNames[o], spec_of(graph.textures[pass.first_texture + o]));
+        for (uint32_t o = 0; o < pass.create_count; ++o) {
+            CompileTexture texture = graph.textures[pass.first_texture + o];
+            if (index == changed_pass && o == 0) texture.format = (texture.format + 1) % kFormats;
+            declared.output(kOutputNames[o], spec_of(texture));
+        }
         declared.set_side_effect(pass.side_effect);
         auto id = frame_graph.add_pass(std::move(declared));
         if (!id) std::abort();
         // Reads come first among the pass's ports, then the outputs in declaration order.
         for (uint32_t o = 0; o < pass.create_count; ++o) handles[pass.first_texture + o] = port_of(*id, pass.read_count + o);
     }
-    return result_of(build_plan(frame_graph, plan_options(allocator)));
+    if (!redeclare) return result_of(build_plan(frame_graph, plan_options(allocator)));
+    auto plan = frame_graph.plan(plan_options(allocator));
+    if (!plan) std::abort();
+    return (*plan)->summary.bytes;
 }
 
 }  // namespace loom::bench

@@ -130,6 +130,152 @@ TEST(TypedGraph, AClearedGraphIsDeclaredAgainAndPlannedAfresh) {
     EXPECT_EQ(plan_hash(**first), plan_hash(**second));
 }
 
+// The graph of declare_by_handles, or one declaration of it changed (variant 1..12).
+void declare_variant(FrameGraph& graph, int variant) {
+    Pass geometry("geometry");
+    geometry.output("albedo", TextureSpec::of(variant == 1 ? Format::RGBA16Float : Format::RGBA8Unorm))
+        .output("depth", TextureSpec::of(Format::Depth32F));
+    if (variant == 2) geometry.set_side_effect();
+    if (variant == 3) geometry.keep_declared_order();
+    Pass blur(variant == 4 ? "blur2" : "blur");
+    blur.input("color").output("out", TextureSpec::of(Format::RGBA8Unorm).with_scale(variant == 5 ? 0.25f : 0.5f));
+    if (variant == 6) blur.set_kind(PassKind::Compute);
+    if (variant == 7) blur.set_kind(PassKind::Compute).set_queue(Queue::AsyncCompute);
+    if (variant == 8) blur.add(PortSet("extra").input("color"));
+    Pass composite("composite");
+    composite.input("color").input("blurred").input("depth").output("final");
+    const PassId g = *graph.add_pass(std::move(geometry));
+    const PassId b = *graph.add_pass(std::move(blur));
+    const PassId c = *graph.add_pass(std::move(composite));
+    if (variant == 9) {  // the same connections in another order
+        EXPECT_TRUE(graph.connect(port_of(g, 0), port_of(c, 0)).ok());
+        EXPECT_TRUE(graph.connect(port_of(g, 0), port_of(b, 0)).ok());
+    } else {
+        EXPECT_TRUE(graph.connect(port_of(g, 0), port_of(b, 0)).ok());
+        EXPECT_TRUE(graph.connect(port_of(g, 0), port_of(c, 0)).ok());
+    }
+    EXPECT_TRUE(graph.connect(port_of(b, 1), port_of(c, 1)).ok());
+    EXPECT_TRUE(graph.connect(port_of(g, 1), port_of(c, 2)).ok());
+    EXPECT_TRUE(graph.mark_output(port_of(c, 3)).ok());
+    if (variant == 10) {
+        EXPECT_TRUE(graph.mark_output(port_of(g, 1)).ok());
+    }
+    if (variant == 11) {
+        EXPECT_TRUE(graph.require_order("blur", "composite").ok());
+    }
+    if (variant == 12) {
+        EXPECT_TRUE(graph.set_side_effect(b).ok());
+    }
+}
+
+// An engine declaring the same graph every frame after redeclare() gets the plan of the first
+// frame back, the same object, planned once; redeclaring without planning in between keeps it.
+TEST(TypedGraph, RedeclaringTheSameGraphReturnsThePreviousPlan) {
+    FrameGraph graph;
+    declare_variant(graph, 0);
+    auto first = graph.plan();
+    ASSERT_TRUE(first);
+    for (int frame = 0; frame < 3; ++frame) {
+        graph.redeclare();
+        EXPECT_EQ(graph.pass_count(), 0u);
+        EXPECT_TRUE(graph.connections().empty());
+        EXPECT_FALSE(graph.find_pass("geometry"));
+        declare_variant(graph, 0);
+        if (frame == 1) {  // a frame that declares but does not plan
+            graph.redeclare();
+            declare_variant(graph, 0);
+        }
+        if (frame == 2) {  // a side effect set and cleared again leaves the graph as it was
+            ASSERT_TRUE(graph.set_side_effect("blur").ok());
+            ASSERT_TRUE(graph.set_side_effect("blur", false).ok());
+        }
+        auto again = graph.plan();
+        ASSERT_TRUE(again);
+        EXPECT_EQ(again->get(), first->get());
+    }
+    EXPECT_EQ(graph.plans_built(), 1u);
+    // The plan of the graph by names is the same plan.
+    FrameGraph named = by_names();
+    EXPECT_EQ(**named.plan(), **first);
+}
+
+// Any difference from the planned graph plans afresh, and the plan is the one a new graph gets;
+// declared again as it now is, that new plan is kept.
+TEST(TypedGraph, RedeclaringAnotherGraphPlansAfresh) {
+    for (int variant = 1; variant <= 12; ++variant) {
+        SCOPED_TRACE("variant " + std::to_string(variant));
+        FrameGraph graph;
+        declare_variant(graph, 0);
+        auto first = graph.plan();
+        ASSERT_TRUE(first);
+        graph.redeclare();
+        declare_variant(graph, variant);
+        auto changed = graph.plan();
+        ASSERT_TRUE(changed) << changed.error().message;
+        EXPECT_NE(changed->get(), first->get());
+        EXPECT_EQ(graph.plans_built(), 2u);
+        FrameGraph fresh;
+        declare_variant(fresh, variant);
+        EXPECT_EQ(**fresh.plan(), **changed);
+
+        graph.redeclare();
+        declare_variant(graph, variant);
+        auto kept = graph.plan();
+        ASSERT_TRUE(kept);
+        EXPECT_EQ(kept->get(), changed->get());
+        EXPECT_EQ(graph.plans_built(), 2u);
+    }
+}
+
+// A pass fewer or more, other options, and redeclare() with no plan to compare with all plan
+// afresh; clear() forgets the previous graph.
+TEST(TypedGraph, RedeclaringPlansAfreshWhenNothingCanBeReused) {
+    FrameGraph graph;
+    declare_variant(graph, 0);
+    auto first = graph.plan();
+    ASSERT_TRUE(first);
+
+    graph.redeclare();
+    declare_variant(graph, 0);
+    ASSERT_TRUE(graph.add_pass(Pass("late").output("out").set_side_effect()).ok());
+    auto more = graph.plan();
+    ASSERT_TRUE(more);
+    EXPECT_EQ(more->get()->order.size(), 4u);
+    EXPECT_EQ(graph.plans_built(), 2u);
+
+    graph.redeclare();
+    declare_variant(graph, 0);
+    auto fewer = graph.plan();
+    ASSERT_TRUE(fewer);
+    EXPECT_EQ(**fewer, **first);
+    EXPECT_EQ(graph.plans_built(), 3u);
+
+    graph.redeclare();
+    declare_variant(graph, 0);
+    PlanOptions wider;
+    wider.frame = {2560, 1440};
+    auto resized = graph.plan(wider);
+    ASSERT_TRUE(resized);
+    EXPECT_EQ(resized->get()->frame.width, 2560u);
+    EXPECT_EQ(graph.plans_built(), 4u);
+
+    graph.clear();
+    declare_variant(graph, 0);
+    graph.redeclare();  // no plan of this graph: as clear()
+    declare_variant(graph, 0);
+    ASSERT_TRUE(graph.plan(wider));
+    EXPECT_EQ(graph.plans_built(), 5u);
+
+    // A graph that fails to plan keeps no plan to return.
+    graph.redeclare();
+    ASSERT_TRUE(graph.add_pass(Pass("lonely").input("in").output("out").set_side_effect()).ok());
+    EXPECT_FALSE(graph.plan(wider));
+    graph.redeclare();
+    declare_variant(graph, 0);
+    ASSERT_TRUE(graph.plan(wider));
+    EXPECT_EQ(graph.plans_built(), 6u);
+}
+
 // The flat facts the planner reads instead of each Port say what the ports say: kind, type,
 // the kind of their pass, optional, requested usage, whether the spec constrains anything and
 // whether the range or bytes are the whole resource.

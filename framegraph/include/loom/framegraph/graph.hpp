@@ -123,6 +123,15 @@ public:
     /// memory: a graph declared anew every frame reuses it (reserve once, clear every frame).
     /// The next plan() plans afresh.
     void clear();
+    /// Removes every pass, connection, graph output and order requirement as clear() does, for a
+    /// graph declared anew every frame: when what is declared next equals the graph the current
+    /// plan was made from (the same passes with the same ports, kinds, queues and side effects,
+    /// the same connections, graph outputs and order requirements, each in the same order), the
+    /// next plan() with the same options returns that plan again, the same object, without
+    /// planning. Each pass is compared as it is added; any difference (a side effect set after
+    /// add_pass included) makes the next plan() plan afresh. Until that plan() the graph keeps
+    /// the ports of the passes removed here.
+    void redeclare();
 
     /// Requires `earlier` to run before `later` in every order although no texture connects
     /// them (both write what the application presents, say). It orders them like a connection
@@ -217,6 +226,24 @@ private:
     std::vector<PortAddress> outputs_;
     std::vector<bool> marked_output_;                  // per flat port: in outputs_
     std::vector<std::pair<PassId, PassId>> order_requirements_;  // (earlier, later)
+
+    // Empties every declaration, keeping the arrays' memory (clear, redeclare).
+    void remove_declarations();
+    // Whether pass `index` (just added) is declared as the previous graph's pass `index` was,
+    // side effects aside (they may change after add_pass; side_effect_differences_ counts them).
+    [[nodiscard]] bool matches_previous(uint32_t index) const;
+    // Whether the graph now declared is the previous graph (redeclare).
+    [[nodiscard]] bool is_previous_graph() const;
+    // Forgets the previous graph, keeping its arrays' memory for the next redeclare.
+    void release_previous();
+
+    // What redeclare() keeps of the graph the cached plan was made from (graph.cpp).
+    struct PreviousGraph;
+    std::unique_ptr<PreviousGraph> previous_;
+    // Every pass added since redeclare() matched the previous graph's pass at its index.
+    bool same_as_previous_ = false;
+    // How many passes added since redeclare() differ from the previous graph's in their side effect.
+    uint32_t side_effect_differences_ = 0;
 
     uint64_t revision_ = 0;
     uint64_t plans_built_ = 0;

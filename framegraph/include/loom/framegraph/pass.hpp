@@ -403,6 +403,10 @@ public:
     [[nodiscard]] Status status() const;
 
 private:
+    // FrameGraph::redeclare keeps the ports of the passes it removes (moved out just before
+    // they are destroyed) to compare the next declaration with.
+    friend class FrameGraph;
+
     void merge(Port declaration, const std::string& port_set);
     // Adds a port whose name the pass does not declare yet.
     void append_port(Port port);
