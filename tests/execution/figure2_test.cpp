@@ -49,8 +49,8 @@ struct Figure2Programs {
     rhi::SamplerHandle sampler;
 };
 
-fg::FrameGraph figure2(const Figure2Programs& p) {
-    fg::FrameGraph graph;
+// Declares the graph of figure 2 into `graph`.
+void declare_figure2(fg::FrameGraph& graph, const Figure2Programs& p) {
     // The shadow map: depth 0.25 in columns 0..7, 0.75 beyond.
     EXPECT_TRUE(graph.add_pass(fg::Pass("shadow").output("shadow_map", kShadow).on_execute([p](fg::PassContext& ctx) {
         ctx.begin_depth_pass("shadow_map");
@@ -97,6 +97,11 @@ fg::FrameGraph figure2(const Figure2Programs& p) {
     EXPECT_TRUE(graph.connect(fg::port("deferred", "color"), fg::port("composite", "color")).ok());
     EXPECT_TRUE(graph.connect(fg::port("blur", "color"), fg::port("composite", "bloom")).ok());
     EXPECT_TRUE(graph.mark_output(fg::port("composite", "final")).ok());
+}
+
+fg::FrameGraph figure2(const Figure2Programs& p) {
+    fg::FrameGraph graph;
+    declare_figure2(graph, p);
     return graph;
 }
 
@@ -263,6 +268,35 @@ TEST_P(Figure2Execution, GraphRebuiltEveryFrameReusesTheResources) {
         if (frame == 0) first = handles;
         EXPECT_EQ(handles, first) << "frame " << frame;
     }
+    EXPECT_EQ(executor.stats().realisations, 1u);
+}
+
+TEST_P(Figure2Execution, GraphRedeclaredEveryFrameIsPlannedOnceAndRunsEachFramesPasses) {
+    // An engine's frame loop: one graph, redeclared every frame with new execute functions. The
+    // graph is planned once, the executor keeps its plan and textures, and each frame runs the
+    // passes declared for it.
+    fg::Executor executor(device());
+    fg::PlanOptions options;
+    options.frame = {16, 8};
+    fg::FrameGraph graph;
+    std::vector<int> counted;
+    const fg::Plan* first = nullptr;
+    for (int frame = 0; frame < 3; ++frame) {
+        graph.redeclare();
+        declare_figure2(graph, p_);
+        // A pass that records nothing, only which frame declared it.
+        ASSERT_TRUE(graph.add_pass(fg::Pass("count").input("final").set_side_effect().on_execute([&counted, frame](fg::PassContext&) {
+            counted.push_back(frame);
+            return Status{};
+        })).ok());
+        ASSERT_TRUE(graph.connect(fg::port("composite", "final"), fg::port("count", "final")).ok());
+        LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        expect_final_picture(executor.texture("composite", "final"), 16, 8, "frame " + std::to_string(frame));
+        if (frame == 0) first = executor.plan().get();
+        EXPECT_EQ(executor.plan().get(), first) << "frame " << frame;
+    }
+    EXPECT_EQ(counted, (std::vector<int>{0, 1, 2}));
+    EXPECT_EQ(graph.plans_built(), 1u);
     EXPECT_EQ(executor.stats().realisations, 1u);
 }
 
