@@ -142,7 +142,7 @@ Status plan_framegraph_examples() {
         LOOM_TRY(graph.mark_output(port_of(composite, 2)));
         LOOM_TRY(graph.set_side_effect(blur));                                  // by PassId
         auto plan = graph.plan(options);
-        // Next frame: graph.clear() keeps the memory; declare again.
+        // Next frame: graph.redeclare() keeps the memory (and the plan, if the same graph comes again).
         // [/docs:typed]
         if (!plan) return plan.take_error();
         LOOM_TRY(fail_unless((*plan)->order.size() == 3, "the typed graph schedules its three passes"));

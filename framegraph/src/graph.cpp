@@ -443,6 +443,9 @@ Result<std::shared_ptr<const Plan>> FrameGraph::plan(const PlanOptions& options)
         }
     }
     release_previous();
+    // The cached plan is replaced either way: when nobody else holds it, its memory is free for
+    // the new one (a large plan's allocations are otherwise served around it).
+    cached_plan_.reset();
     auto fresh = build_plan(*this, options);
     if (!fresh) return fresh.take_error();
     ++plans_built_;

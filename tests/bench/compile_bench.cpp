@@ -134,7 +134,11 @@ BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval, LoomAllocatorUnderTest::Interva
 BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_reused, LoomAllocatorUnderTest::Interval, LoomGraphUse::Cleared)->Apply(sizes);
 // Not side by side with the peers, which plan every graph afresh: what an engine that declares
 // its graph every frame pays in loom when the graph stays the same (redeclared) and when one
-// pass of it changes every other frame (redeclared_changing), against interval_reused.
+// pass of it differs from the frame before (redeclared_changing), against a graph cleared and
+// planned by FrameGraph::plan (cleared_planned), which holds its plan as they do.
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_cleared_planned, LoomAllocatorUnderTest::Interval,
+                  LoomGraphUse::ClearedPlanned)
+    ->Apply(sizes);
 BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_redeclared, LoomAllocatorUnderTest::Interval, LoomGraphUse::Redeclared)
     ->Apply(sizes);
 BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_redeclared_changing, LoomAllocatorUnderTest::Interval,

@@ -30,11 +30,15 @@ uint64_t compile_in_loom_by_name(const CompileGraph& graph, const CompileNames& 
 enum class LoomGraphUse {
     Fresh,      ///< a new graph every call, planned by build_plan
     Cleared,    ///< one graph cleared and declared again every call (an engine frame after frame)
+    /// As Cleared, planned by FrameGraph::plan, which keeps the plan until the next (what the
+    /// redeclared graphs below compare with).
+    ClearedPlanned,
     /// One graph redeclared (FrameGraph::redeclare) and planned by FrameGraph::plan every call:
     /// the same graph every time, which plan() answers with the previous plan...
     Redeclared,
-    /// ... or, every other call, one output of the middle pass in another format, which it
-    /// plans afresh after comparing the graph up to that pass.
+    /// ... or with one output of the middle pass in another format every other call, so that
+    /// every call differs from the one before in that pass: plan() plans afresh after the
+    /// passes before it compared equal.
     RedeclaredChanging,
 };
 

@@ -78,14 +78,16 @@ uint64_t compile_in_loom_typed(const CompileGraph& graph, const CompileNames& na
                                LoomGraphUse use) {
     // One graph per kind of reuse, kept from call to call.
     static FrameGraph cleared;
+    static FrameGraph cleared_planned;
     static FrameGraph redeclared;
     static FrameGraph changing;
     static uint64_t changing_calls = 0;
     FrameGraph fresh;
-    FrameGraph& frame_graph = use == LoomGraphUse::Fresh       ? fresh
-                              : use == LoomGraphUse::Cleared    ? cleared
-                              : use == LoomGraphUse::Redeclared ? redeclared
-                                                                : changing;
+    FrameGraph& frame_graph = use == LoomGraphUse::Fresh            ? fresh
+                              : use == LoomGraphUse::Cleared        ? cleared
+                              : use == LoomGraphUse::ClearedPlanned ? cleared_planned
+                              : use == LoomGraphUse::Redeclared     ? redeclared
+                                                                     : changing;
     const bool redeclare = use == LoomGraphUse::Redeclared || use == LoomGraphUse::RedeclaredChanging;
     if (redeclare) {
         frame_graph.redeclare();
@@ -113,7 +115,9 @@ uint64_t compile_in_loom_typed(const CompileGraph& graph, const CompileNames& na
         // Reads come first among the pass's ports, then the outputs in declaration order.
         for (uint32_t o = 0; o < pass.create_count; ++o) handles[pass.first_texture + o] = port_of(*id, pass.read_count + o);
     }
-    if (!redeclare) return result_of(build_plan(frame_graph, plan_options(allocator)));
+    if (use == LoomGraphUse::Fresh || use == LoomGraphUse::Cleared) {
+        return result_of(build_plan(frame_graph, plan_options(allocator)));
+    }
     auto plan = frame_graph.plan(plan_options(allocator));
     if (!plan) std::abort();
     return (*plan)->summary.bytes;
