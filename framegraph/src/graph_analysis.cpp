@@ -185,7 +185,7 @@ Result<Dependencies> analyze(const FrameGraph& graph) {
             error.subjects = {pass.name()};
             return error;
         }
-        const std::span<const PortFacts> ports = graph.port_facts(pass_index);
+        const std::span<const PortFacts> ports = graph.port_facts(PassId{pass_index});
         for (uint32_t port_index = 0; port_index < ports.size(); ++port_index) {
             const PortAddress address{pass_index, port_index};
             const PortFacts& port = ports[port_index];

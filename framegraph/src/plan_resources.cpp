@@ -40,7 +40,7 @@ template <class Visit>
 Status for_each_group(const FrameGraph& graph, Visit visit) {
     std::vector<PortAddress> group;
     for (uint32_t p = 0; p < graph.pass_count(); ++p) {
-        const std::span<const PortFacts> ports = graph.port_facts(p);
+        const std::span<const PortFacts> ports = graph.port_facts(PassId{p});
         for (uint32_t i = 0; i < ports.size(); ++i) {
             const PortAddress start{p, i};
             if (!starts_group(graph, ports[i], start)) continue;
@@ -380,7 +380,7 @@ PortTable::PortTable(const FrameGraph& graph, uint32_t value) {
     first_.reserve(graph.pass_count() + 1);
     first_.push_back(0);
     for (uint32_t p = 0; p < graph.pass_count(); ++p) {
-        first_.push_back(first_.back() + static_cast<uint32_t>(graph.port_facts(p).size()));
+        first_.push_back(first_.back() + static_cast<uint32_t>(graph.port_facts(PassId{p}).size()));
     }
     values_.assign(first_.back(), value);
 }
@@ -504,7 +504,7 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const Sched
                                             MemoryModel& memory) {
     std::size_t group_count = 0;
     for (uint32_t p = 0; p < graph.pass_count(); ++p) {
-        const std::span<const PortFacts> ports = graph.port_facts(p);
+        const std::span<const PortFacts> ports = graph.port_facts(PassId{p});
         for (uint32_t i = 0; i < ports.size(); ++i) group_count += starts_group(graph, ports[i], {p, i}) ? 1 : 0;
     }
     ResourceBuilder builder(graph, schedule, frame, memory, group_count);

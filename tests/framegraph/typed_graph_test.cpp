@@ -293,7 +293,7 @@ TEST(TypedGraph, PortFactsSayWhatThePortsSay) {
                                    .buffer_input("part", {}, BufferRange{0, 64})
                                    .inout("all"))
                     .ok());
-    const std::span<const PortFacts> make = graph.port_facts(0);
+    const std::span<const PortFacts> make = graph.port_facts(PassId{0});
     ASSERT_EQ(make.size(), 4u);
     EXPECT_EQ(make[0].kind, PortKind::Output);
     EXPECT_TRUE(make[0].unconstrained);
@@ -307,7 +307,7 @@ TEST(TypedGraph, PortFactsSayWhatThePortsSay) {
     EXPECT_TRUE(make[3].optional);
     for (const PortFacts& facts : make) EXPECT_EQ(facts.pass_kind, PassKind::Graphics);
 
-    const std::span<const PortFacts> mips = graph.port_facts(1);
+    const std::span<const PortFacts> mips = graph.port_facts(PassId{1});
     ASSERT_EQ(mips.size(), 3u);
     EXPECT_EQ(mips[0].kind, PortKind::Input);
     EXPECT_FALSE(mips[0].whole);
@@ -323,8 +323,8 @@ TEST(TypedGraph, PortFactsSayWhatThePortsSay) {
 
     graph.clear();
     ASSERT_TRUE(graph.add_pass(Pass("again").input("in").output("out")).ok());
-    ASSERT_EQ(graph.port_facts(0).size(), 2u);
-    EXPECT_EQ(graph.port_facts(0)[1].kind, PortKind::Output);
+    ASSERT_EQ(graph.port_facts(PassId{0}).size(), 2u);
+    EXPECT_EQ(graph.port_facts(PassId{0})[1].kind, PortKind::Output);
 }
 
 // The pass-name index (open addressing, grown as passes come): every name is found after it grew

@@ -161,10 +161,11 @@ public:
     [[nodiscard]] const Port& port_at(PortAddress address) const { return port_data_[address.pass][address.port]; }
     /// The facts of the port at `address`.
     [[nodiscard]] const PortFacts& facts(PortAddress address) const { return port_facts_[flat(address)]; }
-    /// The facts of every port of pass `pass`, in port order.
-    [[nodiscard]] std::span<const PortFacts> port_facts(uint32_t pass) const {
-        const uint32_t first = port_offset_[pass];
-        const uint32_t end = pass + 1 < port_offset_.size() ? port_offset_[pass + 1] : static_cast<uint32_t>(port_facts_.size());
+    /// The facts of every port of `pass`, in port order.
+    [[nodiscard]] std::span<const PortFacts> port_facts(PassId pass) const {
+        const uint32_t first = port_offset_[pass.index];
+        const uint32_t end = pass.index + 1 < port_offset_.size() ? port_offset_[pass.index + 1]
+                                                                  : static_cast<uint32_t>(port_facts_.size());
         return {port_facts_.data() + first, end - first};
     }
     /// The port feeding `address` (an input or inout), if connected.
