@@ -161,6 +161,11 @@ void VulkanDevice::destroy_everything() {
         (void)flush_setup();
         (void)submissions_->wait_all();
     }
+    // The fences cover the submissions, not the last presents, which wait on the swapchain's
+    // render-finished semaphores destroyed below: only an idle device has finished them (as in
+    // recreate_swapchain; VUID-vkDestroySemaphore-semaphore-01137, seen once under load in
+    // VulkanWindow.UnderXvfb).
+    if (device != VK_NULL_HANDLE) (void)vkDeviceWaitIdle(device);
     backbuffers_.clear();
     textures_.clear([&](rhi::TextureHandle, Texture& t) { release_texture(t); });
     buffers_.clear([&](rhi::BufferHandle, Buffer& b) { release_buffer(b); });
