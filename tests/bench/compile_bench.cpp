@@ -144,6 +144,18 @@ BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_redeclared, LoomAllocatorUnderTe
 BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_redeclared_changing, LoomAllocatorUnderTest::Interval,
                   LoomGraphUse::RedeclaredChanging)
     ->Apply(sizes);
+// The same two with the default pass order (PassOrder::Memory), whose search a redeclared graph
+// that repeats skips too; 1k and 10k passes.
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, memory_order_cleared_planned, LoomAllocatorUnderTest::IntervalMemoryOrder,
+                  LoomGraphUse::ClearedPlanned)
+    ->RangeMultiplier(10)
+    ->Range(1000, 10000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, memory_order_redeclared, LoomAllocatorUnderTest::IntervalMemoryOrder,
+                  LoomGraphUse::Redeclared)
+    ->RangeMultiplier(10)
+    ->Range(1000, 10000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_CompileLoomTyped, heap, LoomAllocatorUnderTest::Heap, LoomGraphUse::Fresh)->Apply(sizes);
 #ifdef LOOM_BENCH_SKAARJ
 BENCHMARK(BM_CompileSkaarj)->Apply(sizes);

@@ -21,7 +21,13 @@ struct CompileNames {
 CompileNames make_compile_names(const CompileGraph& graph);
 
 /// The loom allocators the benchmark compares.
-enum class LoomAllocatorUnderTest { Interval, Heap };
+enum class LoomAllocatorUnderTest {
+    Interval,
+    Heap,
+    /// The interval allocator in the pass order an application gets when it sets none
+    /// (PassOrder::Memory, with its search for a lower peak); the others keep the declared order.
+    IntervalMemoryOrder,
+};
 
 /// loom through its string API: ports declared by name, connected by "pass.port" names.
 uint64_t compile_in_loom_by_name(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator);

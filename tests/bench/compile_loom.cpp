@@ -26,7 +26,7 @@ PlanOptions plan_options(LoomAllocatorUnderTest allocator) {
     options.allocator = allocator == LoomAllocatorUnderTest::Heap ? AllocatorKind::Heap : AllocatorKind::Interval;
     // The declared order, as the peers keep theirs: the memory order (the default) adds its
     // search, which BM_PlanOrder measures (docs/BENCHMARKS.md, "Pass order").
-    options.order = PassOrder::Declared;
+    options.order = allocator == LoomAllocatorUnderTest::IntervalMemoryOrder ? PassOrder::Memory : PassOrder::Declared;
     return options;
 }
 
