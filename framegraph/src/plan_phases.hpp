@@ -74,12 +74,10 @@ struct JoinedGroup {
     [[nodiscard]] Status status() const;
 };
 
-/// How a port uses its texture given its role and its pass's kind: a graphics pass writes
-/// attachments (an explicit Storage request turns an attachment write or a sampled read into a
-/// storage access) and samples; a compute pass writes storage images and samples; a copy pass
-/// writes copy destinations and reads copy sources.
-rhi::TextureUsage port_texture_usage(const Port& port, PassKind pass_kind, rhi::Format format);
-/// port_texture_usage of the port whose facts are `port` (the kind of its pass among them).
+/// How a port uses its texture given its role and its pass's kind (both in its facts): a
+/// graphics pass writes attachments (an explicit Storage request turns an attachment write or a
+/// sampled read into a storage access) and samples; a compute pass writes storage images and
+/// samples; a copy pass writes copy destinations and reads copy sources.
 rhi::TextureUsage port_texture_usage(const PortFacts& port, rhi::Format format);
 
 /// `range` with concrete counts for a texture of `mips` levels and `layers` layers; nullopt

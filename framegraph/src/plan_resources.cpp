@@ -419,10 +419,6 @@ Status JoinedGroup::status() const {
     return {};
 }
 
-TextureUsage port_texture_usage(const Port& port, PassKind pass_kind, rhi::Format format) {
-    return port_texture_usage(PortFacts::of(port, pass_kind), format);
-}
-
 TextureUsage port_texture_usage(const PortFacts& port, rhi::Format format) {
     TextureUsage usage = port.requested_usage;
     switch (port.pass_kind) {
@@ -599,11 +595,9 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
                 if (port.type == ResourceType::Buffer) {
                     planned_port.bytes = resolve_bytes(port.bytes, resource.buffer_spec.size).value_or(BufferRange{});
                 } else {
-                    const PortFacts& facts = graph.facts({p, i});
-                    planned_port.usage = port_texture_usage(facts, resource.spec.format);
-                    planned_port.range = facts.whole ? SubresourceRange{0, resource.spec.mips, 0, resource.spec.layers}
-                                                     : resolve_range(port.range, resource.spec.mips, resource.spec.layers)
-                                                           .value_or(SubresourceRange{});
+                    planned_port.usage = port_texture_usage(graph.facts({p, i}), resource.spec.format);
+                    planned_port.range =
+                        resolve_range(port.range, resource.spec.mips, resource.spec.layers).value_or(SubresourceRange{});
                 }
             }
             planned.ports.push_back(std::move(planned_port));
