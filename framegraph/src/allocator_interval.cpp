@@ -18,8 +18,9 @@ namespace {
 class IntervalAllocator final : public Allocator {
 public:
     [[nodiscard]] std::string_view name() const override { return "interval"; }
-    // Lifetimes are all it needs.
+    // Lifetimes and classes are all it needs.
     [[nodiscard]] bool reads_pass_lists() const override { return false; }
+    [[nodiscard]] bool reads_bytes() const override { return false; }
 
     [[nodiscard]] Result<Allocation> allocate(const AllocationProblem& problem) const override {
         const auto resource_count = static_cast<uint32_t>(problem.resources.size());

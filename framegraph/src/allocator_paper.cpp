@@ -54,6 +54,8 @@ private:
 class PaperAllocator final : public Allocator {
 public:
     [[nodiscard]] std::string_view name() const override { return "paper"; }
+    // It colours the ports of each class pass by pass; sizes play no part.
+    [[nodiscard]] bool reads_bytes() const override { return false; }
 
     [[nodiscard]] Result<Allocation> allocate(const AllocationProblem& problem) const override {
         const auto resource_count = static_cast<uint32_t>(problem.resources.size());

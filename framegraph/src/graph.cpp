@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "graph_analysis.hpp"
+#include "plan_resize.hpp"
 #include "quoted_name.hpp"
 
 namespace loom::fg {
@@ -128,6 +129,7 @@ void FrameGraph::reserve(uint32_t passes, uint32_t ports) {
 void FrameGraph::clear() {
     remove_declarations();
     cached_plan_.reset();
+    resize_basis_.reset();
     release_previous();
     ++revision_;
 }
@@ -434,25 +436,38 @@ Status FrameGraph::validate() const {
 }
 
 Result<std::shared_ptr<const Plan>> FrameGraph::plan(const PlanOptions& options) {
-    if (cached_plan_ && cached_options_ == options) {
-        if (cached_revision_ == revision_) return cached_plan_;
-        if (is_previous_graph()) {
-            release_previous();
-            cached_revision_ = revision_;
-            return cached_plan_;
-        }
-    }
+    const bool same_graph = cached_plan_ && (cached_revision_ == revision_ || is_previous_graph());
     release_previous();
+    if (same_graph) {
+        cached_revision_ = revision_;
+        if (cached_options_ == options) return cached_plan_;
+        PlanOptions resized = cached_options_;
+        resized.frame = options.frame;
+        if (resize_basis_ && resized == options && resize_cached_plan(options)) return cached_plan_;
+    }
     // The cached plan is replaced either way: when nobody else holds it, its memory is free for
     // the new one (a large plan's allocations are otherwise served around it).
     cached_plan_.reset();
-    auto fresh = build_plan(*this, options);
+    auto fresh = detail::build_plan(*this, options, resize_basis_);
     if (!fresh) return fresh.take_error();
     ++plans_built_;
-    cached_plan_ = std::make_shared<const Plan>(std::move(*fresh));
+    cached_plan_ = std::make_shared<Plan>(std::move(*fresh));
     cached_revision_ = revision_;
     cached_options_ = options;
     return cached_plan_;
+}
+
+bool FrameGraph::resize_cached_plan(const PlanOptions& options) {
+    // Nobody else can see a plan only the graph holds: it is changed in place, which saves
+    // copying its passes, ports and names.
+    std::shared_ptr<Plan> next = cached_plan_.use_count() == 1 ? std::const_pointer_cast<Plan>(cached_plan_)
+                                                                : std::make_shared<Plan>(*cached_plan_);
+    cached_plan_.reset();
+    if (!detail::resize_plan(*this, *resize_basis_, options, *next)) return false;
+    ++plans_resized_;
+    cached_plan_ = std::move(next);
+    cached_options_ = options;
+    return true;
 }
 
 }  // namespace loom::fg

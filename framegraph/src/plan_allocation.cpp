@@ -4,6 +4,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <set>
 #include <tuple>
 
 #include "loom/framegraph/join.hpp"
@@ -84,7 +85,52 @@ Peaks measure_peaks(const std::vector<PlanResource>& resources, const std::vecto
     return peaks;
 }
 
+// The most bytes of resources alive at one position (Peaks::bytes without the classes' peaks):
+// each resource adds its bytes at its first position and takes them away after its last.
+uint64_t peak_live_bytes(const std::vector<PlanResource>& resources, uint32_t position_count) {
+    std::vector<uint64_t> change(position_count + 1, 0);
+    std::vector<uint64_t> ending(position_count + 1, 0);
+    for (const PlanResource& resource : resources) {
+        change[resource.occupancy.first] += resource.bytes;
+        ending[resource.occupancy.last + 1] += resource.bytes;
+    }
+    uint64_t live = 0;
+    uint64_t peak = 0;
+    for (uint32_t position = 0; position < position_count; ++position) {
+        live = live + change[position] - ending[position];
+        peak = std::max(peak, live);
+    }
+    return peak;
+}
+
 constexpr uint32_t kNoClass = UINT32_MAX;
+
+// What equal sharing puts in one class: textures of one shape (format, extent, samples, mips,
+// layers, cube), buffers of one size and alignment.
+using ShapeKey = std::tuple<rhi::Format, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, bool>;
+ShapeKey shape_key(const ResolvedSpec& spec) {
+    return ShapeKey{spec.format, spec.extent.width, spec.extent.height, spec.samples, spec.mips, spec.layers, spec.cube};
+}
+std::pair<uint64_t, uint64_t> buffer_key(const ResolvedBufferSpec& spec) { return {spec.size, spec.alignment}; }
+
+// Whether equal sharing makes of `plan`'s resources, whose sizes may have changed since its
+// classes were assigned, the classes it has: every member has the shape of its class's first
+// member, and no two classes have one shape.
+bool classes_still_hold(const Plan& plan) {
+    std::set<ShapeKey> texture_shapes;
+    std::set<std::pair<uint64_t, uint64_t>> buffer_shapes;
+    for (const SpecClass& spec_class : plan.spec_classes) {
+        const PlanResource& first = plan.resources[spec_class.resources.front()];
+        const bool distinct = first.type == ResourceType::Buffer ? buffer_shapes.insert(buffer_key(first.buffer_spec)).second
+                                                                 : texture_shapes.insert(shape_key(first.spec)).second;
+        if (!distinct) return false;
+    }
+    return std::all_of(plan.resources.begin(), plan.resources.end(), [&](const PlanResource& resource) {
+        const PlanResource& first = plan.resources[plan.spec_classes[resource.spec_class].resources.front()];
+        return resource.type == ResourceType::Buffer ? buffer_key(resource.buffer_spec) == buffer_key(first.buffer_spec)
+                                                     : shape_key(resource.spec) == shape_key(first.spec);
+    });
+}
 
 // An allocator's answer can be trusted only this far: a texture below the count for every
 // resource, and a placement for every texture when it places any.
@@ -219,10 +265,6 @@ SpecClassAssignment assign_spec_classes(const std::vector<PlanResource>& resourc
     std::vector<SpecClass>& classes = out.classes;
     // Equal sharing: a class per texture shape (its shape never changes, only its usage
     // grows), found by key rather than by trying every class.
-    using ShapeKey = std::tuple<rhi::Format, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, bool>;
-    auto shape_key = [](const ResolvedSpec& spec) {
-        return ShapeKey{spec.format, spec.extent.width, spec.extent.height, spec.samples, spec.mips, spec.layers, spec.cube};
-    };
     std::map<ShapeKey, uint32_t> class_of_shape;
     // Buffers share only with buffers of the same size and alignment, under either sharing.
     std::map<std::pair<uint64_t, uint64_t>, uint32_t> class_of_buffer_shape;
@@ -230,8 +272,8 @@ SpecClassAssignment assign_spec_classes(const std::vector<PlanResource>& resourc
         const PlanResource& resource = resources[r];
         uint32_t chosen = kNoClass;
         if (resource.type == ResourceType::Buffer) {
-            const std::pair key{resource.buffer_spec.size, resource.buffer_spec.alignment};
-            auto [it, inserted] = class_of_buffer_shape.try_emplace(key, static_cast<uint32_t>(classes.size()));
+            auto [it, inserted] =
+                class_of_buffer_shape.try_emplace(buffer_key(resource.buffer_spec), static_cast<uint32_t>(classes.size()));
             if (inserted) {
                 SpecClass fresh;
                 fresh.type = ResourceType::Buffer;
@@ -328,6 +370,66 @@ Result<TextureAssignment> allocate_textures(const Allocator& allocator, const Al
     if (!assignment) return assignment.take_error();
     LOOM_TRY(describe_objects(name, resources, frame, memory, *assignment));
     return std::move(*assignment);
+}
+
+Status allocate_plan(Plan& plan, const PlanOptions& options, const Allocator& allocator, MemoryModel& memory,
+                     std::vector<uint32_t> graph_output_resources) {
+    SpecClassAssignment classes = assign_spec_classes(plan.resources, options.sharing, options.frame,
+                                                      static_cast<uint32_t>(plan.order.size()));
+    for (uint32_t r = 0; r < plan.resources.size(); ++r) plan.resources[r].spec_class = classes.class_of_resource[r];
+    plan.spec_classes = std::move(classes.classes);
+    const AllocationProblem problem =
+        make_allocation_problem(plan.order, plan.resources, std::move(graph_output_resources),
+                                static_cast<uint32_t>(plan.spec_classes.size()), options.max_heap_bytes,
+                                allocator.reads_pass_lists());
+    auto textures = allocate_textures(allocator, problem, plan.resources, options.frame, memory);
+    if (!textures) return textures.take_error();
+    for (uint32_t r = 0; r < plan.resources.size(); ++r) {
+        plan.resources[r].texture = textures->texture_of_resource[r];
+        plan.resources[r].buffer = textures->buffer_of_resource[r];
+    }
+    plan.textures = std::move(textures->textures);
+    plan.buffers = std::move(textures->buffers);
+    plan.heaps = std::move(textures->heaps);
+    plan.summary = summarize_plan(plan, classes.peak_live_bytes);
+    return {};
+}
+
+Status allocate_resized_plan(Plan& plan, const PlanOptions& options, const Allocator& allocator, MemoryModel& memory,
+                             std::vector<uint32_t> graph_output_resources) {
+    if (allocator.reads_bytes() || options.sharing != SpecSharing::Equal || !classes_still_hold(plan)) {
+        return allocate_plan(plan, options, allocator, memory, std::move(graph_output_resources));
+    }
+    // The same classes with the same members and lifetimes: the same peaks of live members, and
+    // the allocator's answer as before. What changed is each class's, texture's and buffer's size.
+    for (SpecClass& spec_class : plan.spec_classes) {
+        const PlanResource& first = plan.resources[spec_class.resources.front()];
+        if (spec_class.type == ResourceType::Buffer) {
+            spec_class.buffer_spec.size = first.buffer_spec.size;
+        } else {
+            spec_class.spec.extent = first.spec.extent;
+        }
+    }
+    TextureAssignment assignment;
+    assignment.textures = std::move(plan.textures);
+    assignment.buffers = std::move(plan.buffers);
+    for (PlanTexture& texture : assignment.textures) texture.resources.clear();
+    for (PlanBuffer& buffer : assignment.buffers) {
+        buffer.resources.clear();
+        buffer.bytes = 0;
+        buffer.alignment = 0;
+    }
+    assignment.texture_of_resource.reserve(plan.resources.size());
+    assignment.buffer_of_resource.reserve(plan.resources.size());
+    for (const PlanResource& resource : plan.resources) {
+        assignment.texture_of_resource.push_back(resource.texture);
+        assignment.buffer_of_resource.push_back(resource.buffer);
+    }
+    LOOM_TRY(describe_objects(plan.allocator, plan.resources, options.frame, memory, assignment));
+    plan.textures = std::move(assignment.textures);
+    plan.buffers = std::move(assignment.buffers);
+    plan.summary = summarize_plan(plan, peak_live_bytes(plan.resources, static_cast<uint32_t>(plan.order.size())));
+    return {};
 }
 
 PlanSummary summarize_plan(const Plan& plan, uint64_t peak_live_bytes) {

@@ -19,8 +19,10 @@
 // derives them from a finished plan, once per plan and set of bindings.
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "graph_analysis.hpp"
@@ -28,6 +30,7 @@
 #include "loom/framegraph/graph.hpp"
 #include "loom/framegraph/memory_model.hpp"
 #include "loom/framegraph/plan.hpp"
+#include "loom/framegraph/planner.hpp"
 #include "loom/rhi/result.hpp"
 
 namespace loom::fg::detail {
@@ -69,6 +72,9 @@ struct JoinedGroup {
     ResourceType type = ResourceType::Texture;
     /// A buffer group's join, as `spec` is a texture group's; the empty spec for textures.
     Result<BufferSpec> buffer = BufferSpec{};
+    /// Two of its ports declare sizes differently (an absolute and a relative one), which only
+    /// a frame size can compare: the join holds for this frame size only.
+    bool sizes_compared = false;
 
     /// The group's join error, if any.
     [[nodiscard]] Status status() const;
@@ -146,6 +152,15 @@ struct ResolvedResources {
     /// reordered copy then moves no strings.
     std::vector<PortAddress> running_ports;
     std::vector<uint32_t> first_running_port{0};
+    /// Per resource, the size its ports joined to: what re-planning for another frame size
+    /// evaluates again (plan_resize.hpp). Nullopt for buffers and for textures no port sized
+    /// (the frame's size).
+    std::vector<std::optional<SizeSpec>> joined_sizes;
+    /// The buffer resources' joined sizes, by resource index.
+    std::vector<std::pair<uint32_t, BufferSize>> joined_buffer_sizes;
+    /// Some group's join, a culled one's included, compared differently declared sizes against
+    /// the frame (JoinedGroup::sizes_compared).
+    bool joins_compared_sizes = false;
 
     [[nodiscard]] std::span<const PortAddress> running_ports_of(uint32_t r) const {
         return {running_ports.data() + first_running_port[r], running_ports.data() + first_running_port[r + 1]};
@@ -160,6 +175,11 @@ struct ResolvedResources {
 /// resolve error naming its running ports, or the memory model's.
 Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::vector<JoinedGroup>& groups,
                                             const Schedule& schedule, Extent2D frame, MemoryModel& memory);
+/// The bytes and alignment of `resource`, a texture (its `spec`) or a buffer (its
+/// `buffer_spec`), from `memory`. Errors: the memory model's, or ErrorCode::Graph for a buffer
+/// whose size overflows when aligned.
+Status measure_resource(PlanResource& resource, MemoryModel& memory);
+
 /// Join and resolve in one: the same resources and the same first error as
 /// resolve_resources(graph, join_port_groups(graph, frame), ...), with each group joined and
 /// resolved as it is collected, so that no group's ports or join are kept (what build_plan runs).
@@ -243,6 +263,20 @@ struct TextureAssignment {
 Result<TextureAssignment> allocate_textures(const Allocator& allocator, const AllocationProblem& problem,
                                             const std::vector<PlanResource>& resources, Extent2D frame,
                                             MemoryModel& memory);
+
+/// Spec classes, allocate and summary for `plan`, whose order and resources (occupancies
+/// included) are final: fills in the resources' classes, textures and buffers, and the plan's
+/// spec classes, textures, buffers, heaps and summary.
+Status allocate_plan(Plan& plan, const PlanOptions& options, const Allocator& allocator, MemoryModel& memory,
+                     std::vector<uint32_t> graph_output_resources);
+
+/// allocate_plan for `plan`, allocated before, whose resources changed in size only (extents,
+/// buffer sizes; FrameGraph::plan for another frame size): when `allocator` does not read bytes
+/// (Allocator::reads_bytes) and equal sharing keeps the classes as they are, the allocation is
+/// the one the plan has, and only the sizes of its classes, textures and buffers and its
+/// summary are made anew; else allocate_plan.
+Status allocate_resized_plan(Plan& plan, const PlanOptions& options, const Allocator& allocator, MemoryModel& memory,
+                             std::vector<uint32_t> graph_output_resources);
 
 /// Summary: the figures of a plan whose other fields are filled (Plan::summary); the lower bound
 /// of bytes is `peak_live_bytes` (SpecClassAssignment).

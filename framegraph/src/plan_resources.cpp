@@ -65,8 +65,11 @@ TextureSpec only_property(const TextureSpec& spec, std::size_t property) {
 }
 
 // Joins the specs of a group's ports in group order. On a conflict the error names the port
-// that first constrained the conflicting property and the port that contradicts it.
-Result<TextureSpec> join_group(const FrameGraph& graph, std::span<const PortAddress> group, Extent2D frame) {
+// that first constrained the conflicting property and the port that contradicts it. Sets
+// `sizes_compared` when two ports declare sizes differently (an absolute and a relative one):
+// the join then holds for this frame size only.
+Result<TextureSpec> join_group(const FrameGraph& graph, std::span<const PortAddress> group, Extent2D frame,
+                               bool& sizes_compared) {
     TextureSpec joined;
     // First port to constrain each property: format, size, samples, mips, layers.
     std::array<std::optional<PortAddress>, 5> origin{};
@@ -91,6 +94,7 @@ Result<TextureSpec> join_group(const FrameGraph& graph, std::span<const PortAddr
             if (spec.layers) origin[4] = address;
             continue;
         }
+        if (joined.size && spec.size && *joined.size != *spec.size) sizes_compared = true;
         JoinContext context;
         context.frame = frame;
         auto result = join(joined, spec, context);
@@ -126,14 +130,17 @@ Result<TextureSpec> join_group(const FrameGraph& graph, std::span<const PortAddr
 }
 
 // A buffer group's join in group order; on a size conflict the error names the port that first
-// gave a size and the port that contradicts it. Names are written only for the error.
-Result<BufferSpec> join_buffer_group(const FrameGraph& graph, std::span<const PortAddress> group, Extent2D frame) {
+// gave a size and the port that contradicts it. Names are written only for the error. Sets
+// `sizes_compared` as join_group does.
+Result<BufferSpec> join_buffer_group(const FrameGraph& graph, std::span<const PortAddress> group, Extent2D frame,
+                                     bool& sizes_compared) {
     BufferSpec joined;
     std::optional<PortAddress> sized;
     JoinContext context;
     context.frame = frame;
     for (const PortAddress& address : group) {
         const BufferSpec& spec = graph.port_at(address).buffer;
+        if (joined.size && spec.size && *joined.size != *spec.size) sizes_compared = true;
         auto result = join_buffer_specs(joined, spec, context);
         if (!result) {
             // Only sizes conflict, so a port gave one before: name it and this port.
@@ -215,12 +222,8 @@ Status resolve_pending_buffer(const FrameGraph& graph, const BufferSpec& joined,
         }
     }
     r.buffer_spec = *resolved;
-    auto requirements = memory.buffer_requirements(to_buffer_desc(r.buffer_spec, r.name));
-    if (!requirements) return requirements.take_error();
-    r.alignment = std::max({requirements->alignment, r.buffer_spec.alignment, uint64_t{1}});
-    auto bytes = checked::align_up(std::max(requirements->size, r.buffer_spec.size), r.alignment);
-    if (!bytes) return subjects(make_error(ErrorCode::Graph, "buffer " + r.name + ": its size overflows when aligned"));
-    r.bytes = *bytes;
+    Status measured = measure_resource(r, memory);
+    if (!measured) return subjects(measured.error());
     return {};
 }
 
@@ -255,11 +258,7 @@ Status resolve_pending(const FrameGraph& graph, const TextureSpec& joined, Exten
 
     r.requested_format = joined.format;
     r.spec = *resolved;
-    auto requirements = memory.requirements(to_texture_desc(r.spec, r.name));
-    if (!requirements) return requirements.take_error();
-    r.bytes = requirements->size;
-    r.alignment = std::max<uint64_t>(requirements->alignment, 1);
-    return {};
+    return measure_resource(r, memory);
 }
 
 // The running ports of resources put in another order into `out`: its resource k's are
@@ -276,6 +275,20 @@ void permute_running_ports(std::span<const uint32_t> by, const std::vector<uint3
     }
 }
 
+// The buffers' joined sizes of resources put in another order: resource by[k]'s becomes
+// resource k's; by resource index.
+std::vector<std::pair<uint32_t, BufferSize>> renumber_buffer_sizes(
+    const std::vector<std::pair<uint32_t, BufferSize>>& sizes, std::span<const uint32_t> by) {
+    if (sizes.empty()) return {};
+    std::vector<uint32_t> renumbered(by.size());
+    for (uint32_t k = 0; k < by.size(); ++k) renumbered[by[k]] = k;
+    std::vector<std::pair<uint32_t, BufferSize>> out;
+    out.reserve(sizes.size());
+    for (const auto& [r, size] : sizes) out.emplace_back(renumbered[r], size);
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    return out;
+}
+
 // The resources of the groups given one by one in group order (resolve_resources): each made
 // in place in one array, with its starting port and its running ports one after another in
 // `kept_` (resource i's are kept_[first_kept_[i], first_kept_[i + 1])), then numbered in order
@@ -286,6 +299,7 @@ public:
                     std::size_t group_count)
         : graph_(graph), schedule_(schedule), frame_(frame), memory_(memory) {
         resources_.reserve(group_count);
+        joined_sizes_.reserve(group_count);
         starts_.reserve(group_count);
         first_kept_.reserve(group_count + 1);
         first_kept_.push_back(0);
@@ -309,13 +323,21 @@ public:
         PendingResource item{resource, start, kept_ports};
         if (type == ResourceType::Buffer) {
             LOOM_TRY(resolve_pending_buffer(graph_, buffer, frame_, memory_, item));
+            // A buffer resolves only with a size.
+            joined_buffer_sizes_.emplace_back(static_cast<uint32_t>(resources_.size() - 1), *buffer.size);
+            joined_sizes_.emplace_back();
         } else {
             LOOM_TRY(resolve_pending(graph_, spec, frame_, memory_, item));
+            joined_sizes_.push_back(spec.size);
         }
         starts_.push_back(start);
         first_kept_.push_back(static_cast<uint32_t>(kept_.size()));
         return {};
     }
+
+    // Set by the joins of the groups (a culled one's included) when one compared differently
+    // declared sizes against the frame (ResolvedResources::joins_compared_sizes).
+    bool joins_compared_sizes = false;
 
     // The resources in order of their producers' positions, then by port. Groups come in
     // declaration order, which is mostly that order already: then no resource moves.
@@ -333,19 +355,25 @@ public:
 
         ResolvedResources resolved;
         resolved.resource_of_port = PortTable(graph_, kNoResource);
+        resolved.joins_compared_sizes = joins_compared_sizes;
         if (in_order) {
             resolved.resources = std::move(resources_);
+            resolved.joined_sizes = std::move(joined_sizes_);
+            resolved.joined_buffer_sizes = std::move(joined_buffer_sizes_);
             resolved.starts = std::move(starts_);
             resolved.running_ports = std::move(kept_);
             resolved.first_running_port = std::move(first_kept_);
         } else {
             resolved.resources.reserve(count);
+            resolved.joined_sizes.reserve(count);
             resolved.starts.reserve(count);
             for (uint32_t i : by_start) {
                 resolved.resources.push_back(std::move(resources_[i]));
+                resolved.joined_sizes.push_back(joined_sizes_[i]);
                 resolved.starts.push_back(starts_[i]);
             }
             permute_running_ports(by_start, first_kept_, kept_, resolved);
+            resolved.joined_buffer_sizes = renumber_buffer_sizes(joined_buffer_sizes_, by_start);
         }
         for (uint32_t r = 0; r < count; ++r) {
             for (const PortAddress& address : resolved.running_ports_of(r)) {
@@ -369,12 +397,32 @@ private:
     Extent2D frame_;
     MemoryModel& memory_;
     std::vector<PlanResource> resources_;
+    std::vector<std::optional<SizeSpec>> joined_sizes_;
+    std::vector<std::pair<uint32_t, BufferSize>> joined_buffer_sizes_;
     std::vector<PortAddress> starts_;
     std::vector<PortAddress> kept_;
     std::vector<uint32_t> first_kept_;
 };
 
 }  // namespace
+
+Status measure_resource(PlanResource& resource, MemoryModel& memory) {
+    if (resource.type == ResourceType::Texture) {
+        auto requirements = memory.requirements(to_texture_desc(resource.spec, resource.name));
+        if (!requirements) return requirements.take_error();
+        resource.bytes = requirements->size;
+        resource.alignment = std::max<uint64_t>(requirements->alignment, 1);
+        return {};
+    }
+    const ResolvedBufferSpec& spec = resource.buffer_spec;
+    auto requirements = memory.buffer_requirements(to_buffer_desc(spec, resource.name));
+    if (!requirements) return requirements.take_error();
+    resource.alignment = std::max({requirements->alignment, spec.alignment, uint64_t{1}});
+    auto bytes = checked::align_up(std::max(requirements->size, spec.size), resource.alignment);
+    if (!bytes) return make_error(ErrorCode::Graph, "buffer " + resource.name + ": its size overflows when aligned");
+    resource.bytes = *bytes;
+    return {};
+}
 
 PortTable::PortTable(const FrameGraph& graph, uint32_t value) {
     first_.reserve(graph.pass_count() + 1);
@@ -471,12 +519,15 @@ std::vector<JoinedGroup> join_port_groups(const FrameGraph& graph, Extent2D fram
     // Join errors are kept in their groups, so visiting never stops.
     (void)for_each_group(graph, [&](std::span<const PortAddress> group) -> Status {
         std::vector<PortAddress> ports(group.begin(), group.end());
+        bool sizes_compared = false;
         if (graph.facts(group.front()).type == ResourceType::Buffer) {
-            Result<BufferSpec> buffer = join_buffer_group(graph, group, frame);
-            joined.push_back(JoinedGroup{std::move(ports), TextureSpec{}, ResourceType::Buffer, std::move(buffer)});
+            Result<BufferSpec> buffer = join_buffer_group(graph, group, frame, sizes_compared);
+            joined.push_back(
+                JoinedGroup{std::move(ports), TextureSpec{}, ResourceType::Buffer, std::move(buffer), sizes_compared});
         } else {
-            Result<TextureSpec> spec = join_group(graph, group, frame);
-            joined.push_back(JoinedGroup{std::move(ports), std::move(spec)});
+            Result<TextureSpec> spec = join_group(graph, group, frame, sizes_compared);
+            joined.push_back(JoinedGroup{std::move(ports), std::move(spec), ResourceType::Texture, BufferSpec{},
+                                         sizes_compared});
         }
         return {};
     });
@@ -491,6 +542,7 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const std::
         // declaration order) gives the error, whether its ports do not join or its spec does not
         // resolve.
         LOOM_TRY(group.status());
+        builder.joins_compared_sizes = builder.joins_compared_sizes || group.sizes_compared;
         LOOM_TRY(builder.add(group.ports, group.type, *group.spec, *group.buffer));
     }
     return builder.finish();
@@ -508,11 +560,11 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const Sched
     // gives the error, as when every group is joined first (join_port_groups).
     LOOM_TRY(for_each_group(graph, [&](std::span<const PortAddress> group) -> Status {
         if (graph.facts(group.front()).type == ResourceType::Buffer) {
-            Result<BufferSpec> buffer = join_buffer_group(graph, group, frame);
+            Result<BufferSpec> buffer = join_buffer_group(graph, group, frame, builder.joins_compared_sizes);
             if (!buffer) return buffer.take_error();
             return builder.add(group, ResourceType::Buffer, TextureSpec{}, *buffer);
         }
-        Result<TextureSpec> spec = join_group(graph, group, frame);
+        Result<TextureSpec> spec = join_group(graph, group, frame, builder.joins_compared_sizes);
         if (!spec) return spec.take_error();
         return builder.add(group, ResourceType::Texture, *spec, BufferSpec{});
     }));
@@ -552,16 +604,20 @@ ResolvedResources reorder_resources(const ResolvedResources& resolved, const Sch
     const uint32_t last_position = position_count - 1;
     ResolvedResources out;
     out.resources.reserve(resource_count);
+    out.joined_sizes.reserve(resource_count);
     out.starts.reserve(resource_count);
+    out.joins_compared_sizes = resolved.joins_compared_sizes;
     for (uint32_t r : by_start) {
         // PlanResource::ports is not named yet (name_resource_ports), so no string but the
         // resource's name is copied.
         PlanResource& resource = out.resources.emplace_back(resolved.resources[r]);
         resource.lifetime = {position[resolved.starts[r].pass], resource.graph_output ? last_position : last[r]};
         resource.occupancy = resource.lifetime;
+        out.joined_sizes.push_back(resolved.joined_sizes[r]);
         out.starts.push_back(resolved.starts[r]);
     }
     permute_running_ports(by_start, resolved.first_running_port, resolved.running_ports, out);
+    out.joined_buffer_sizes = renumber_buffer_sizes(resolved.joined_buffer_sizes, by_start);
     out.resource_of_port = resolved.resource_of_port;
     for (uint32_t& r : out.resource_of_port.values()) {
         if (r != kNoResource) r = renumbered[r];

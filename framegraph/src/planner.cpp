@@ -9,6 +9,7 @@
 #include "loom/framegraph/graph.hpp"
 #include "plan_order.hpp"
 #include "plan_phases.hpp"
+#include "plan_resize.hpp"
 
 namespace loom::fg {
 namespace {
@@ -77,7 +78,6 @@ Result<Plan> plan_in_order(const FrameGraph& graph, const PlanOptions& options, 
                            MemoryModel& memory, const detail::Dependencies& dependencies,
                            const std::vector<bool>& kept, const detail::Schedule& schedule,
                            detail::ResolvedResources resolved) {
-    const auto positions = static_cast<uint32_t>(schedule.order.size());
     Plan plan;
     plan.allocator = std::string(allocator.name());
     plan.frame = options.frame;
@@ -99,30 +99,12 @@ Result<Plan> plan_in_order(const FrameGraph& graph, const PlanOptions& options, 
     }
     plan.queue_syncs = std::move(queues.syncs);
     plan.ownership_transfers = std::move(queues.transfers);
-    detail::SpecClassAssignment classes =
-        detail::assign_spec_classes(resolved.resources, options.sharing, options.frame, positions);
     plan.culled = detail::culled_pass_names(graph, kept);
     plan.edges = detail::plan_edges(graph, schedule, resolved.resource_of_port);
     for (const PortAddress& out : graph.outputs()) plan.graph_outputs.push_back(graph.port_name(out));
     detail::name_resource_ports(graph, resolved);
     plan.resources = std::move(resolved.resources);
-    for (uint32_t r = 0; r < plan.resources.size(); ++r) plan.resources[r].spec_class = classes.class_of_resource[r];
-    plan.spec_classes = std::move(classes.classes);
-
-    const AllocationProblem problem =
-        detail::make_allocation_problem(plan.order, plan.resources, std::move(resolved.graph_output_resources),
-                                        static_cast<uint32_t>(plan.spec_classes.size()), options.max_heap_bytes,
-                                        allocator.reads_pass_lists());
-    auto textures = detail::allocate_textures(allocator, problem, plan.resources, options.frame, memory);
-    if (!textures) return textures.take_error();
-    for (uint32_t r = 0; r < plan.resources.size(); ++r) {
-        plan.resources[r].texture = textures->texture_of_resource[r];
-        plan.resources[r].buffer = textures->buffer_of_resource[r];
-    }
-    plan.textures = std::move(textures->textures);
-    plan.buffers = std::move(textures->buffers);
-    plan.heaps = std::move(textures->heaps);
-    plan.summary = detail::summarize_plan(plan, classes.peak_live_bytes);
+    LOOM_TRY(detail::allocate_plan(plan, options, allocator, memory, resolved.graph_output_resources));
     return plan;
 }
 
@@ -149,7 +131,12 @@ Result<OrderProblem> order_problem_of(const FrameGraph& graph, const PlanOptions
 // is kept when its allocation is no bigger than the declared order's, as the chosen allocator
 // places them: the declared order is planned too only when the memory order's bytes exceed a
 // lower bound of the declared order's (below it no allocation of the declared order can be).
-Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
+// With `basis`, what re-planning for another frame size needs is kept there (plan_resize.hpp).
+namespace {
+
+Result<Plan> plan_graph(const FrameGraph& graph, const PlanOptions& options,
+                        std::unique_ptr<detail::ResizeBasis>* basis) {
+    if (basis) basis->reset();
     if (options.frame.width == 0 || options.frame.height == 0) {
         return make_error(ErrorCode::InvalidArgument, "plan: frame size " + std::to_string(options.frame.width) + "x" +
                                                           std::to_string(options.frame.height) + " is empty");
@@ -171,6 +158,11 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
     auto resolved = detail::resolve_resources(graph, schedule, options.frame, *memory);
     if (!resolved) return resolved.take_error();
     if (options.order != PassOrder::Memory) {
+        if (basis && !resolved->joins_compared_sizes) {
+            *basis = std::make_unique<detail::ResizeBasis>(detail::ResizeBasis{std::move(resolved->joined_sizes),
+                                                               std::move(resolved->joined_buffer_sizes),
+                                                               resolved->graph_output_resources});
+        }
         return plan_in_order(graph, options, *allocator, *memory, *dependencies, *kept, schedule, std::move(*resolved));
     }
     uint64_t declared_peak = 0;
@@ -197,5 +189,17 @@ Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) {
     const auto size = [](const Plan& plan) { return std::pair(plan.summary.bytes, plan.summary.textures); };
     return size(*declared) < size(*reordered) ? std::move(declared) : std::move(reordered);
 }
+
+}  // namespace
+
+namespace detail {
+
+Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options, std::unique_ptr<ResizeBasis>& basis) {
+    return plan_graph(graph, options, &basis);
+}
+
+}  // namespace detail
+
+Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options) { return plan_graph(graph, options, nullptr); }
 
 }  // namespace loom::fg

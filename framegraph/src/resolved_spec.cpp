@@ -79,12 +79,20 @@ Result<ResolvedSpec> resolve(const TextureSpec& spec, Extent2D frame, std::strin
     ResolvedSpec out;
     out.format = format->format;
     out.format_match = format->match;
-    out.extent = spec.size ? spec.size->evaluate(frame) : frame;
     out.samples = spec.samples.value_or(1);
     out.mips = spec.mips.value_or(1);
     out.layers = spec.layers.value_or(spec.cube ? 6 : 1);
     out.usage = spec.usage;
     out.cube = spec.cube;
+    return resolve_for_frame(out, spec.size, frame, what);
+}
+
+// Every check of resolve() is here, after the extent: a count that is wrong at any size (3
+// samples) is reported by resolve as it always was, and re-resolving for another frame runs the
+// checks that a smaller or larger extent may now fail (mips, a cube's square faces, the limit).
+Result<ResolvedSpec> resolve_for_frame(ResolvedSpec out, const std::optional<SizeSpec>& size, Extent2D frame,
+                                       std::string_view what) {
+    out.extent = size ? size->evaluate(frame) : frame;
 
     auto fail = [&](const std::string& problem) {
         return make_error(ErrorCode::Graph, std::string(what) + ": " + problem);
@@ -92,17 +100,17 @@ Result<ResolvedSpec> resolve(const TextureSpec& spec, Extent2D frame, std::strin
     // The size as asked (a scale times the frame, exactly), so that a size past the limit is
     // reported as written, not as a value that overflowed on its way.
     const auto asked = [&](uint32_t frame_side, float scale, uint32_t evaluated) -> double {
-        if (!spec.size || spec.size->kind == SizeSpec::Kind::Absolute) return evaluated;
+        if (!size || size->kind == SizeSpec::Kind::Absolute) return evaluated;
         return std::round(static_cast<double>(frame_side) * static_cast<double>(scale));
     };
-    const double asked_width = asked(frame.width, spec.size ? spec.size->scale_x : 1.0f, out.extent.width);
-    const double asked_height = asked(frame.height, spec.size ? spec.size->scale_y : 1.0f, out.extent.height);
+    const double asked_width = asked(frame.width, size ? size->scale_x : 1.0f, out.extent.width);
+    const double asked_height = asked(frame.height, size ? size->scale_y : 1.0f, out.extent.height);
     if (asked_width > kMaxTextureExtent || asked_height > kMaxTextureExtent) {
-        char size[64];
-        std::snprintf(size, sizeof size, "%.0fx%.0f", asked_width, asked_height);
-        std::string problem = std::string("size ") + size;
-        if (spec.size && spec.size->kind == SizeSpec::Kind::Relative) {
-            problem += " (" + describe_size(*spec.size) + " of " + std::to_string(frame.width) + "x" +
+        char asked_size[64];
+        std::snprintf(asked_size, sizeof asked_size, "%.0fx%.0f", asked_width, asked_height);
+        std::string problem = std::string("size ") + asked_size;
+        if (size && size->kind == SizeSpec::Kind::Relative) {
+            problem += " (" + describe_size(*size) + " of " + std::to_string(frame.width) + "x" +
                        std::to_string(frame.height) + ")";
         }
         return fail(problem + " is beyond the limit of " + std::to_string(kMaxTextureExtent) + " texels per side");

@@ -88,6 +88,11 @@ public:
     /// planning then leaves the lists empty (passes still has one entry per position), which
     /// saves three lists per pass.
     [[nodiscard]] virtual bool reads_pass_lists() const { return true; }
+    /// True when allocate() reads the resources' bytes or alignments. An allocator that says
+    /// false answers a problem that differs only in them as it answered before: re-planning for
+    /// another frame size (FrameGraph::plan) then keeps its allocation when the spec classes
+    /// stay as they were.
+    [[nodiscard]] virtual bool reads_bytes() const { return true; }
 };
 
 /// "paper", "interval", "heap".

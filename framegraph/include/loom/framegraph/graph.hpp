@@ -30,6 +30,10 @@
 
 namespace loom::fg {
 
+namespace detail {
+struct ResizeBasis;
+}  // namespace detail
+
 /// Names a port by pass name and port name, as `connect` and `mark_output` take it.
 struct PortRef {
     std::string pass;
@@ -182,10 +186,16 @@ public:
     [[nodiscard]] Status validate() const;
 
     /// Plans the graph (build_plan), or returns the previous plan when neither the graph nor
-    /// the options changed since: the same shared object, not a copy.
+    /// the options changed since: the same shared object, not a copy. When only the frame size
+    /// changed and the previous plan is in the declared order (PassOrder::Declared), the new plan
+    /// is made from the previous one: its sizes resolved again and its resources allocated again,
+    /// the rest kept (the same plan build_plan gives, for a fraction of the time). The previous
+    /// plan is changed in place when nothing else holds it, else copied.
     Result<std::shared_ptr<const Plan>> plan(const PlanOptions& options = {});
-    /// How many times plan() actually planned (for tests of the reuse).
+    /// How many times plan() planned from scratch (for tests of the reuse).
     [[nodiscard]] uint64_t plans_built() const { return plans_built_; }
+    /// How many times plan() made the plan of another frame size from the previous plan.
+    [[nodiscard]] uint64_t plans_resized() const { return plans_resized_; }
     /// Increases with every change to the graph.
     [[nodiscard]] uint64_t revision() const { return revision_; }
 
@@ -246,9 +256,16 @@ private:
     // How many passes added since redeclare() differ from the previous graph's in their side effect.
     uint32_t side_effect_differences_ = 0;
 
+    // The cached plan for another frame size (plan_resize.cpp): true when made.
+    bool resize_cached_plan(const PlanOptions& options);
+
     uint64_t revision_ = 0;
     uint64_t plans_built_ = 0;
+    uint64_t plans_resized_ = 0;
+    // Made as a (non-const) Plan, so that resize_cached_plan may change it when nobody else holds it.
     std::shared_ptr<const Plan> cached_plan_;
+    // What re-planning the cached plan for another frame size needs; null when it cannot be.
+    std::unique_ptr<detail::ResizeBasis> resize_basis_;
     uint64_t cached_revision_ = 0;
     PlanOptions cached_options_;
 };

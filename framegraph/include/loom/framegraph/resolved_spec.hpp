@@ -66,6 +66,12 @@ struct ResolvedSpec {
 /// name `what`.
 Result<ResolvedSpec> resolve(const TextureSpec& spec, Extent2D frame, std::string_view what);
 
+/// `spec` (made by resolve from a spec whose size was `size`) made concrete for a frame of size
+/// `frame` instead: the extent evaluated for it and every check of resolve run again, the
+/// format, counts and usage kept. Errors as resolve's.
+Result<ResolvedSpec> resolve_for_frame(ResolvedSpec spec, const std::optional<SizeSpec>& size, Extent2D frame,
+                                       std::string_view what);
+
 /// True when two resolved specs can hold each other's contents without any change: same
 /// format, extent, samples, mips and layers (usage is not compared: it is a union).
 bool same_texture_shape(const ResolvedSpec& a, const ResolvedSpec& b);

@@ -1,0 +1,309 @@
+// Re-planning an unchanged graph for another frame size (FrameGraph::plan, plan_resize.hpp): in
+// the declared order the plan is made from the previous one, and must equal what build_plan
+// gives for the new size (every field, Plan::operator==), or fail with build_plan's error.
+#include <memory>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "loom/framegraph/framegraph.hpp"
+#include "random_graph.hpp"
+
+namespace loom::fg {
+namespace {
+
+using rhi::Format;
+
+PlanOptions declared_at(Extent2D frame, AllocatorKind allocator = AllocatorKind::Interval,
+                        SpecSharing sharing = SpecSharing::Equal) {
+    PlanOptions options;
+    options.frame = frame;
+    options.allocator = allocator;
+    options.sharing = sharing;
+    options.order = PassOrder::Declared;
+    return options;
+}
+
+// Plans `graph` through FrameGraph::plan and checks the result against build_plan: the same plan,
+// or the same error. Returns the plan (null on an error).
+std::shared_ptr<const Plan> plan_as_build_plan_does(FrameGraph& graph, const PlanOptions& options) {
+    auto planned = graph.plan(options);
+    auto fresh = build_plan(graph, options);
+    EXPECT_EQ(planned.ok(), fresh.ok());
+    if (!fresh) {
+        if (!planned) {
+            EXPECT_EQ(planned.error().to_string(), fresh.error().to_string());
+        }
+        return nullptr;
+    }
+    if (!planned) {
+        ADD_FAILURE() << planned.error().to_string();
+        return nullptr;
+    }
+    EXPECT_TRUE(**planned == *fresh) << "at " << options.frame.width << "x" << options.frame.height;
+    return *planned;
+}
+
+enum class Corpus { Textures, Mixed, Async };
+
+testing::RandomGraphOptions corpus_options(uint64_t seed, Corpus corpus) {
+    testing::RandomGraphOptions options;
+    options.passes = 2 + static_cast<uint32_t>(seed % 29);
+    options.window = 2 + static_cast<uint32_t>(seed % 7);
+    if (corpus == Corpus::Mixed) {
+        options.buffer_percent = 25;
+        options.subresource_percent = 20;
+    }
+    if (corpus == Corpus::Async) options.async_percent = 33;
+    return options;
+}
+
+// Frame sizes a window goes through: smaller, larger, odd, tiny (where the mip chains of the
+// corpus no longer fit: build_plan's error), and back.
+const std::vector<Extent2D> kFrames{{1280, 720}, {3840, 2160}, {1001, 333}, {8, 8}, {1920, 1080}, {1280, 720}};
+
+void check_corpus(Corpus corpus, AllocatorKind allocator, SpecSharing sharing) {
+    uint64_t resized = 0;
+    uint64_t expected_resized = 0;
+    for (uint64_t seed = 1; seed <= 40; ++seed) {
+        FrameGraph graph = testing::random_graph(seed, corpus_options(seed, corpus));
+        std::shared_ptr<const Plan> previous = plan_as_build_plan_does(graph, declared_at({1920, 1080}, allocator, sharing));
+        ASSERT_NE(previous, nullptr) << "seed " << seed;
+        for (std::size_t f = 0; f < kFrames.size(); ++f) {
+            // Every other step holds the previous plan, as an executor does: it is copied, and
+            // must stay as it was; else it is changed in place.
+            std::shared_ptr<const Plan> held;
+            Plan held_copy;
+            if (f % 2 == 0 && previous) {
+                held = previous;
+                held_copy = *previous;
+            }
+            const bool could_resize = previous != nullptr;
+            previous.reset();
+            const uint64_t built = graph.plans_built();
+            previous = plan_as_build_plan_does(graph, declared_at(kFrames[f], allocator, sharing));
+            if (held) {
+                EXPECT_TRUE(*held == held_copy) << "seed " << seed << ": a held plan changed";
+            }
+            // Every size build_plan plans is resized from a previous plan; after a size that
+            // fails there is no previous plan, and the next size is planned anew.
+            if (previous && could_resize) {
+                ++expected_resized;
+                EXPECT_EQ(graph.plans_built(), built) << "seed " << seed << ": planned anew";
+            }
+        }
+        resized += graph.plans_resized();
+    }
+    EXPECT_EQ(resized, expected_resized);
+    // Most graphs plan at every size (the tiny one fails where a mip chain no longer fits).
+    EXPECT_GT(resized, 150u);
+}
+
+TEST(PlanResize, RandomTextureGraphsResizeAsTheyPlan) {
+    for (AllocatorKind allocator : {AllocatorKind::Paper, AllocatorKind::Interval, AllocatorKind::Heap}) {
+        for (SpecSharing sharing : {SpecSharing::Equal, SpecSharing::Joinable}) {
+            SCOPED_TRACE(std::string(allocator_name(allocator)) + " " + std::string(spec_sharing_name(sharing)));
+            check_corpus(Corpus::Textures, allocator, sharing);
+        }
+    }
+}
+
+TEST(PlanResize, RandomGraphsWithBuffersAndSubresourcesResizeAsTheyPlan) {
+    for (AllocatorKind allocator : {AllocatorKind::Paper, AllocatorKind::Interval, AllocatorKind::Heap}) {
+        SCOPED_TRACE(allocator_name(allocator));
+        check_corpus(Corpus::Mixed, allocator, SpecSharing::Equal);
+    }
+}
+
+TEST(PlanResize, RandomGraphsWithAsyncComputeResizeAsTheyPlan) {
+    for (AllocatorKind allocator : {AllocatorKind::Interval, AllocatorKind::Heap}) {
+        SCOPED_TRACE(allocator_name(allocator));
+        check_corpus(Corpus::Async, allocator, SpecSharing::Equal);
+    }
+}
+
+// scene (full size, half size, absolute shadow map) -> post -> present.
+FrameGraph small_graph() {
+    FrameGraph graph;
+    const PassId scene = *graph.add_pass(Pass("scene")
+                                             .output("color", TextureSpec::of(Format::RGBA16Float))
+                                             .output("half", TextureSpec::of(Format::RGBA16Float).with_scale(0.5f))
+                                             .output("shadow", TextureSpec::of(Format::Depth32F).with_size(2048, 2048)));
+    const PassId post = *graph.add_pass(Pass("post")
+                                            .read(port_of(scene, 0))
+                                            .read(port_of(scene, 1))
+                                            .read(port_of(scene, 2))
+                                            .output("out", TextureSpec::of(Format::RGBA8Unorm)));
+    EXPECT_TRUE(graph.mark_output(port_of(post, 3)).ok());
+    return graph;
+}
+
+TEST(PlanResize, APlanNobodyHoldsIsChangedInPlaceAndAHeldOneIsCopied) {
+    FrameGraph graph = small_graph();
+    const Plan* first = plan_as_build_plan_does(graph, declared_at({1920, 1080})).get();
+    ASSERT_NE(first, nullptr);
+    // Nothing holds the plan any more: the same object becomes the 1280x720 plan.
+    std::shared_ptr<const Plan> resized = plan_as_build_plan_does(graph, declared_at({1280, 720}));
+    ASSERT_NE(resized, nullptr);
+    EXPECT_EQ(resized.get(), first);
+    EXPECT_EQ(resized->frame, (Extent2D{1280, 720}));
+    EXPECT_EQ(resized->resources[0].spec.extent, (Extent2D{1280, 720}));
+    EXPECT_EQ(resized->resources[1].spec.extent, (Extent2D{640, 360}));
+    EXPECT_EQ(resized->resources[2].spec.extent, (Extent2D{2048, 2048}));
+    // Held: a new plan, the held one unchanged.
+    std::shared_ptr<const Plan> larger = plan_as_build_plan_does(graph, declared_at({2560, 1440}));
+    ASSERT_NE(larger, nullptr);
+    EXPECT_NE(larger.get(), resized.get());
+    EXPECT_EQ(resized->frame, (Extent2D{1280, 720}));
+    EXPECT_EQ(resized->resources[1].spec.extent, (Extent2D{640, 360}));
+    EXPECT_EQ(larger->resources[1].spec.extent, (Extent2D{1280, 720}));
+    EXPECT_EQ(graph.plans_built(), 1u);
+    EXPECT_EQ(graph.plans_resized(), 2u);
+    // The same size again is the same plan, as ever.
+    auto again = graph.plan(declared_at({2560, 1440}));
+    ASSERT_TRUE(again.ok());
+    EXPECT_EQ(again->get(), larger.get());
+    EXPECT_EQ(graph.plans_resized(), 2u);
+}
+
+TEST(PlanResize, OtherOptionsAndTheMemoryOrderArePlannedAnew) {
+    FrameGraph graph = small_graph();
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    // Another allocator and another size: planned anew.
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1280, 720}, AllocatorKind::Heap)), nullptr);
+    EXPECT_EQ(graph.plans_built(), 2u);
+    EXPECT_EQ(graph.plans_resized(), 0u);
+    // The memory order weighs bytes, which a frame size changes: planned anew.
+    PlanOptions memory = declared_at({1920, 1080});
+    memory.order = PassOrder::Memory;
+    ASSERT_NE(plan_as_build_plan_does(graph, memory), nullptr);
+    memory.frame = {1280, 720};
+    ASSERT_NE(plan_as_build_plan_does(graph, memory), nullptr);
+    EXPECT_EQ(graph.plans_built(), 4u);
+    EXPECT_EQ(graph.plans_resized(), 0u);
+    // A changed graph: planned anew.
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    ASSERT_TRUE(graph.add_pass(Pass("debug").read(PortAddress{0, 0}).set_side_effect()).ok());
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1280, 720})), nullptr);
+    EXPECT_EQ(graph.plans_built(), 6u);
+    EXPECT_EQ(graph.plans_resized(), 0u);
+}
+
+TEST(PlanResize, ARedeclaredGraphIsResized) {
+    FrameGraph graph;
+    auto declare = [&] {
+        const PassId scene = *graph.add_pass(Pass("scene").output("color", TextureSpec::of(Format::RGBA16Float)));
+        const PassId post = *graph.add_pass(Pass("post").read(port_of(scene, 0)).output("out"));
+        EXPECT_TRUE(graph.mark_output(port_of(post, 1)).ok());
+    };
+    declare();
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    graph.redeclare();
+    declare();
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1280, 720})), nullptr);
+    EXPECT_EQ(graph.plans_built(), 1u);
+    EXPECT_EQ(graph.plans_resized(), 1u);
+}
+
+TEST(PlanResize, AJoinOnlyAFrameSizeComparesIsPlannedAnew) {
+    // An absolute 960x540 and half the frame join at 1920x1080 only.
+    FrameGraph graph;
+    const PassId scene = *graph.add_pass(Pass("scene").output("color", TextureSpec::of(Format::RGBA8Unorm).with_size(960, 540)));
+    const PassId post = *graph.add_pass(Pass("post").read(port_of(scene, 0), TextureSpec::any().with_scale(0.5f)).output("out"));
+    ASSERT_TRUE(graph.mark_output(port_of(post, 1)).ok());
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    // At 1280x720 the join fails, as build_plan says.
+    auto resized = graph.plan(declared_at({1280, 720}));
+    ASSERT_FALSE(resized.ok());
+    EXPECT_EQ(resized.error().code, ErrorCode::Join);
+    EXPECT_EQ(plan_as_build_plan_does(graph, declared_at({1280, 720})), nullptr);
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    EXPECT_EQ(graph.plans_resized(), 0u);
+
+    // A culled pass's join counts too (its groups are joined as well).
+    FrameGraph culled;
+    const PassId lit = *culled.add_pass(Pass("lit").output("color", TextureSpec::of(Format::RGBA8Unorm).with_size(960, 540)));
+    ASSERT_TRUE(culled.add_pass(Pass("unused").read(port_of(lit, 0), TextureSpec::any().with_scale(0.5f)).output("out")).ok());
+    ASSERT_TRUE(culled.add_pass(Pass("present").read(port_of(lit, 0)).set_side_effect()).ok());
+    ASSERT_NE(plan_as_build_plan_does(culled, declared_at({1920, 1080})), nullptr);
+    EXPECT_EQ(plan_as_build_plan_does(culled, declared_at({1280, 720})), nullptr);
+    EXPECT_EQ(culled.plans_resized(), 0u);
+}
+
+TEST(PlanResize, ASizeThatNoLongerResolvesGivesBuildPlansError) {
+    // Eleven mips fit 1920x1080 and 1024x1024, not 512x512.
+    FrameGraph graph;
+    const PassId pyramid = *graph.add_pass(Pass("pyramid").output("chain", TextureSpec::of(Format::RGBA16Float).with_mips(11)));
+    ASSERT_TRUE(graph.add_pass(Pass("use").read(port_of(pyramid, 0), {}, mip(10)).set_side_effect()).ok());
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1024, 1024})), nullptr);
+    EXPECT_EQ(graph.plans_resized(), 1u);
+    auto small = graph.plan(declared_at({512, 512}));
+    ASSERT_FALSE(small.ok());
+    EXPECT_NE(small.error().message.find("mips 11"), std::string::npos) << small.error().to_string();
+    EXPECT_EQ(plan_as_build_plan_does(graph, declared_at({512, 512})), nullptr);
+    // After the error there is no plan to resize: the next size is planned anew.
+    const uint64_t built = graph.plans_built();
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({2048, 2048})), nullptr);
+    EXPECT_EQ(graph.plans_built(), built + 1);
+}
+
+TEST(PlanResize, TexturesThatShareAtOneSizeAndNotAtAnotherAreAllocatedAgain) {
+    // Two textures one after the other, an absolute 960x540 and half the frame: one shape (and
+    // one texture) at 1920x1080, two at 1280x720. The interval and paper allocators read no
+    // bytes, so a resize keeps their allocation only while the classes stay as they are.
+    FrameGraph graph;
+    const PassId first = *graph.add_pass(Pass("first").output("a", TextureSpec::of(Format::RGBA8Unorm).with_size(960, 540)));
+    const PassId use_a = *graph.add_pass(Pass("use_a").read(port_of(first, 0)).output("x"));
+    const PassId second = *graph.add_pass(Pass("second").read(port_of(use_a, 1)).output("b", TextureSpec::of(Format::RGBA8Unorm).with_scale(0.5f)));
+    ASSERT_TRUE(graph.add_pass(Pass("use_b").read(port_of(second, 1)).set_side_effect()).ok());
+    for (AllocatorKind allocator : {AllocatorKind::Paper, AllocatorKind::Interval, AllocatorKind::Heap}) {
+        SCOPED_TRACE(allocator_name(allocator));
+        std::shared_ptr<const Plan> shared = plan_as_build_plan_does(graph, declared_at({1920, 1080}, allocator));
+        ASSERT_NE(shared, nullptr);
+        EXPECT_EQ(shared->spec_classes.size(), 2u);  // the 960x540s, the full-size "x"
+        const uint32_t textures_at_1080p = shared->summary.textures;
+        shared.reset();
+        std::shared_ptr<const Plan> apart = plan_as_build_plan_does(graph, declared_at({1280, 720}, allocator));
+        ASSERT_NE(apart, nullptr);
+        EXPECT_EQ(apart->spec_classes.size(), 3u);
+        if (allocator != AllocatorKind::Heap) {
+            EXPECT_EQ(apart->summary.textures, textures_at_1080p + 1);
+        }
+        apart.reset();
+        ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080}, allocator)), nullptr);
+        // And a resize that keeps the classes, for the allocators whose answer is kept.
+        ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1081}, allocator)), nullptr);
+    }
+    EXPECT_EQ(graph.plans_built(), 3u);
+    EXPECT_EQ(graph.plans_resized(), 9u);
+}
+
+TEST(PlanResize, BufferPortRangesFollowTheBufferSize) {
+    // A per-pixel buffer; one reader uses all of it from an offset, which a small frame leaves
+    // past the end.
+    FrameGraph graph;
+    const PassId cull = *graph.add_pass(
+        Pass("cull").set_kind(PassKind::Compute).buffer_output("lights", BufferSpec::sized(BufferSize::per_pixel(4))));
+    ASSERT_TRUE(graph.add_pass(Pass("shade")
+                                   .set_kind(PassKind::Compute)
+                                   .buffer_input("all")
+                                   .buffer_input("tail", {}, BufferRange{1'000'000, 0})
+                                   .set_side_effect())
+                    .ok());
+    ASSERT_TRUE(graph.connect(port_of(cull, 0), PortAddress{1, 0}).ok());
+    ASSERT_TRUE(graph.connect(port_of(cull, 0), PortAddress{1, 1}).ok());
+    std::shared_ptr<const Plan> full = plan_as_build_plan_does(graph, declared_at({1920, 1080}));
+    ASSERT_NE(full, nullptr);
+    EXPECT_EQ(full->order[1].ports[1].bytes, (BufferRange{1'000'000, 1920u * 1080u * 4u - 1'000'000}));
+    std::shared_ptr<const Plan> smaller = plan_as_build_plan_does(graph, declared_at({1280, 720}));
+    ASSERT_NE(smaller, nullptr);
+    EXPECT_EQ(smaller->order[1].ports[0].bytes, (BufferRange{0, 1280u * 720u * 4u}));
+    EXPECT_EQ(smaller->order[1].ports[1].bytes, (BufferRange{1'000'000, 1280u * 720u * 4u - 1'000'000}));
+    EXPECT_EQ(graph.plans_resized(), 1u);
+    // 320x240 holds 307200 bytes: the reader's offset is past the end.
+    EXPECT_EQ(plan_as_build_plan_does(graph, declared_at({320, 240})), nullptr);
+}
+
+}  // namespace
+}  // namespace loom::fg
