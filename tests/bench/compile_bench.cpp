@@ -156,6 +156,26 @@ BENCHMARK_CAPTURE(BM_CompileLoomTyped, memory_order_redeclared, LoomAllocatorUnd
     ->RangeMultiplier(10)
     ->Range(1000, 10000)
     ->Unit(benchmark::kMillisecond);
+// A graph declared once and planned for another frame size every call (a window resized, a
+// dynamic resolution): plan() makes the plan from the previous one (resized), also when the
+// previous plan is held and must be copied (resized_held), against planning it from scratch
+// (replanned); the declared order, in which a frame size changes no more than sizes and memory.
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_resized, LoomAllocatorUnderTest::Interval, LoomGraphUse::Resized)
+    ->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_resized_held, LoomAllocatorUnderTest::Interval,
+                  LoomGraphUse::ResizedHeld)
+    ->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_replanned, LoomAllocatorUnderTest::Interval, LoomGraphUse::Replanned)
+    ->Apply(sizes);
+// The heap allocator places by bytes, so a resize allocates again: 1k and 10k passes.
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, heap_resized, LoomAllocatorUnderTest::Heap, LoomGraphUse::Resized)
+    ->RangeMultiplier(10)
+    ->Range(1000, 10000)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, heap_replanned, LoomAllocatorUnderTest::Heap, LoomGraphUse::Replanned)
+    ->RangeMultiplier(10)
+    ->Range(1000, 10000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_CompileLoomTyped, heap, LoomAllocatorUnderTest::Heap, LoomGraphUse::Fresh)->Apply(sizes);
 #ifdef LOOM_BENCH_SKAARJ
 BENCHMARK(BM_CompileSkaarj)->Apply(sizes);

@@ -46,6 +46,16 @@ enum class LoomGraphUse {
     /// every call differs from the one before in that pass: plan() plans afresh after the
     /// passes before it compared equal.
     RedeclaredChanging,
+    /// One graph declared once and planned by FrameGraph::plan every call for another frame
+    /// size than the call before (1920x1080, 1280x720 in turn): no declaring, plan() makes the
+    /// plan from the previous one (the declared order only; it checks that it did). Nothing
+    /// else holds the previous plan, which plan() then changes in place...
+    Resized,
+    /// ... or the previous plan is held (as an executor holds it), which plan() then copies.
+    ResizedHeld,
+    /// The same graph declared once, planned from scratch by build_plan every call at the
+    /// sizes in turn: what Resized saves.
+    Replanned,
 };
 
 /// loom through its typed API: reads by the handle of the write (Pass::read), outputs by

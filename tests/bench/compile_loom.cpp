@@ -74,8 +74,77 @@ uint64_t compile_in_loom_by_name(const CompileGraph& graph, const CompileNames& 
     return result_of(build_plan(frame_graph, plan_options(allocator)));
 }
 
+namespace {
+
+// Declares `graph` into `frame_graph` (empty, reserved) by handles; pass `changed_pass` declares
+// its first output in the next format.
+void declare_typed(FrameGraph& frame_graph, const CompileGraph& graph, const CompileNames& names,
+                   std::size_t changed_pass) {
+    frame_graph.reserve(static_cast<uint32_t>(graph.passes.size()),
+                        static_cast<uint32_t>(graph.reads.size() + graph.textures.size()));
+    std::vector<PortAddress> handles(graph.textures.size());
+    for (std::size_t index = 0; index < graph.passes.size(); ++index) {
+        const CompilePass& pass = graph.passes[index];
+        Pass declared(names.passes[index]);
+        for (uint32_t r = 0; r < pass.read_count; ++r) declared.read(handles[graph.reads[pass.first_read + r]]);
+        for (uint32_t o = 0; o < pass.create_count; ++o) {
+            CompileTexture texture = graph.textures[pass.first_texture + o];
+            if (index == changed_pass && o == 0) texture.format = (texture.format + 1) % kFormats;
+            declared.output(kOutputNames[o], spec_of(texture));
+        }
+        declared.set_side_effect(pass.side_effect);
+        auto id = frame_graph.add_pass(std::move(declared));
+        if (!id) std::abort();
+        // Reads come first among the pass's ports, then the outputs in declaration order.
+        for (uint32_t o = 0; o < pass.create_count; ++o) handles[pass.first_texture + o] = port_of(*id, pass.read_count + o);
+    }
+}
+
+// The resize series: one graph declared once per graph size, planned at 1920x1080 and 1280x720
+// in turn.
+uint64_t plan_in_turn(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator,
+                      LoomGraphUse use) {
+    static FrameGraph declared;
+    static std::size_t declared_passes = 0;
+    // The frame size of the graph's plan (none yet, or one of another allocator: 0x0), and of
+    // the last build_plan.
+    static Extent2D planned_frame{};
+    static LoomAllocatorUnderTest planned_allocator = allocator;
+    static Extent2D replanned_frame{};
+    static std::shared_ptr<const Plan> held;
+    if (declared_passes != graph.passes.size()) {
+        declared.clear();
+        declare_typed(declared, graph, names, SIZE_MAX);
+        declared_passes = graph.passes.size();
+        planned_frame = {};
+    }
+    if (allocator != planned_allocator) planned_frame = {};
+    if (use != LoomGraphUse::ResizedHeld) held.reset();
+    auto other_than = [](Extent2D frame) { return frame == Extent2D{1920, 1080} ? Extent2D{1280, 720} : Extent2D{1920, 1080}; };
+    PlanOptions options = plan_options(allocator);
+    if (use == LoomGraphUse::Replanned) {
+        options.frame = replanned_frame = other_than(replanned_frame);
+        return result_of(build_plan(declared, options));
+    }
+    options.frame = other_than(planned_frame);
+    const uint64_t resized = declared.plans_resized();
+    auto plan = declared.plan(options);
+    if (!plan) std::abort();
+    // The series measures resizing: a graph that planned anew would make it meaningless.
+    if (planned_frame != Extent2D{} && declared.plans_resized() != resized + 1) std::abort();
+    planned_frame = options.frame;
+    planned_allocator = allocator;
+    if (use == LoomGraphUse::ResizedHeld) held = *plan;
+    return (*plan)->summary.bytes;
+}
+
+}  // namespace
+
 uint64_t compile_in_loom_typed(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator,
                                LoomGraphUse use) {
+    if (use == LoomGraphUse::Resized || use == LoomGraphUse::ResizedHeld || use == LoomGraphUse::Replanned) {
+        return plan_in_turn(graph, names, allocator, use);
+    }
     // One graph per kind of reuse, kept from call to call.
     static FrameGraph cleared;
     static FrameGraph cleared_planned;
@@ -94,27 +163,10 @@ uint64_t compile_in_loom_typed(const CompileGraph& graph, const CompileNames& na
     } else {
         frame_graph.clear();
     }
-    frame_graph.reserve(static_cast<uint32_t>(graph.passes.size()),
-                        static_cast<uint32_t>(graph.reads.size() + graph.textures.size()));
     // The changing graph's middle pass declares its first output in the next format every other call.
     const std::size_t changed_pass =
         use == LoomGraphUse::RedeclaredChanging && changing_calls++ % 2 == 1 ? graph.passes.size() / 2 : SIZE_MAX;
-    std::vector<PortAddress> handles(graph.textures.size());
-    for (std::size_t index = 0; index < graph.passes.size(); ++index) {
-        const CompilePass& pass = graph.passes[index];
-        Pass declared(names.passes[index]);
-        for (uint32_t r = 0; r < pass.read_count; ++r) declared.read(handles[graph.reads[pass.first_read + r]]);
-        for (uint32_t o = 0; o < pass.create_count; ++o) {
-            CompileTexture texture = graph.textures[pass.first_texture + o];
-            if (index == changed_pass && o == 0) texture.format = (texture.format + 1) % kFormats;
-            declared.output(kOutputNames[o], spec_of(texture));
-        }
-        declared.set_side_effect(pass.side_effect);
-        auto id = frame_graph.add_pass(std::move(declared));
-        if (!id) std::abort();
-        // Reads come first among the pass's ports, then the outputs in declaration order.
-        for (uint32_t o = 0; o < pass.create_count; ++o) handles[pass.first_texture + o] = port_of(*id, pass.read_count + o);
-    }
+    declare_typed(frame_graph, graph, names, changed_pass);
     if (use == LoomGraphUse::Fresh || use == LoomGraphUse::Cleared) {
         return result_of(build_plan(frame_graph, plan_options(allocator)));
     }

@@ -29,19 +29,7 @@ struct Combined {
     }
 };
 
-enum class Corpus { Textures, Mixed, Async };
-
-testing::RandomGraphOptions graph_options(uint64_t seed, Corpus corpus) {
-    testing::RandomGraphOptions options;
-    options.passes = 2 + static_cast<uint32_t>(seed % 39);
-    options.window = 2 + static_cast<uint32_t>(seed % 7);
-    if (corpus == Corpus::Mixed) {
-        options.buffer_percent = 25;
-        options.subresource_percent = 20;
-    }
-    if (corpus == Corpus::Async) options.async_percent = 33;
-    return options;
-}
+using testing::Corpus;
 
 uint64_t corpus_hash(Corpus corpus, AllocatorKind allocator, SpecSharing sharing, PassOrder order) {
     PlanOptions options;
@@ -51,7 +39,7 @@ uint64_t corpus_hash(Corpus corpus, AllocatorKind allocator, SpecSharing sharing
     options.order = order;
     Combined combined;
     for (uint64_t seed = 1; seed <= kGraphs; ++seed) {
-        const FrameGraph graph = testing::random_graph(seed, graph_options(seed, corpus));
+        const FrameGraph graph = testing::random_graph(seed, testing::corpus_options(seed, corpus));
         auto plan = build_plan(graph, options);
         if (!plan) {
             ADD_FAILURE() << "seed " << seed << " " << allocator_name(allocator) << ": " << plan.error().to_string();

@@ -44,19 +44,7 @@ std::shared_ptr<const Plan> plan_as_build_plan_does(FrameGraph& graph, const Pla
     return *planned;
 }
 
-enum class Corpus { Textures, Mixed, Async };
-
-testing::RandomGraphOptions corpus_options(uint64_t seed, Corpus corpus) {
-    testing::RandomGraphOptions options;
-    options.passes = 2 + static_cast<uint32_t>(seed % 29);
-    options.window = 2 + static_cast<uint32_t>(seed % 7);
-    if (corpus == Corpus::Mixed) {
-        options.buffer_percent = 25;
-        options.subresource_percent = 20;
-    }
-    if (corpus == Corpus::Async) options.async_percent = 33;
-    return options;
-}
+using testing::Corpus;
 
 // Frame sizes a window goes through: smaller, larger, odd, tiny (where the mip chains of the
 // corpus no longer fit: build_plan's error), and back.
@@ -66,7 +54,7 @@ void check_corpus(Corpus corpus, AllocatorKind allocator, SpecSharing sharing) {
     uint64_t resized = 0;
     uint64_t expected_resized = 0;
     for (uint64_t seed = 1; seed <= 40; ++seed) {
-        FrameGraph graph = testing::random_graph(seed, corpus_options(seed, corpus));
+        FrameGraph graph = testing::random_graph(seed, testing::corpus_options(seed, corpus));
         std::shared_ptr<const Plan> previous = plan_as_build_plan_does(graph, declared_at({1920, 1080}, allocator, sharing));
         ASSERT_NE(previous, nullptr) << "seed " << seed;
         for (std::size_t f = 0; f < kFrames.size(); ++f) {

@@ -73,6 +73,18 @@ struct Connection {
 
 }  // namespace
 
+RandomGraphOptions corpus_options(uint64_t seed, Corpus corpus) {
+    RandomGraphOptions options;
+    options.passes = 2 + static_cast<uint32_t>(seed % 39);
+    options.window = 2 + static_cast<uint32_t>(seed % 7);
+    if (corpus == Corpus::Mixed) {
+        options.buffer_percent = 25;
+        options.subresource_percent = 20;
+    }
+    if (corpus == Corpus::Async) options.async_percent = 33;
+    return options;
+}
+
 uint64_t SplitMix64::next() {
     state_ += 0x9e3779b97f4a7c15ull;
     uint64_t z = state_;

@@ -32,6 +32,14 @@ struct RandomGraphOptions {
     bool async_queue = true;
 };
 
+/// The seeded corpora the property tests plan: texture-only graphs, graphs with buffers and
+/// subresource ranges, graphs with async compute passes.
+enum class Corpus { Textures, Mixed, Async };
+
+/// The options of the corpus graph of `seed`: 2 to 40 passes and windows of 2 to 8 passes by
+/// seed, with the corpus's buffers, subresources or async passes.
+RandomGraphOptions corpus_options(uint64_t seed, Corpus corpus);
+
 /// A random DAG: passes named p0, p1, ... in generation (topological) order, each with inputs
 /// (i0, ...), outputs (o0, ...) and at most one inout (io); the last pass's first output is a
 /// graph output. Output specs come from a small palette of colour and depth formats at full,
