@@ -98,7 +98,9 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
     index_name(index);
     for (const auto& [input, source] : passes_.back()->reads()) link(source, PortAddress{index, input});
     if (same_as_previous_) {
-        if (matches_previous(index)) {
+        const bool same = matches_previous(index);
+        if (same || matches_previous_but_texture_specs(index)) {
+            if (!same) respecified_passes_.push_back(index);
             if (passes_[index]->side_effect() != previous_->passes[index].side_effect) ++side_effect_differences_;
             // Compared: the previous pass's ports are not needed again, and the passes declared
             // next reuse their memory while it is warm.
@@ -157,6 +159,7 @@ void FrameGraph::redeclare() {
     remove_declarations();
     same_as_previous_ = true;
     side_effect_differences_ = 0;
+    respecified_passes_.clear();
     ++revision_;
 }
 
@@ -168,7 +171,25 @@ bool FrameGraph::matches_previous(uint32_t index) const {
            pass.keeps_declared_order() == before.keep_declared_order && pass.ports() == before.ports;
 }
 
-bool FrameGraph::is_previous_graph() const {
+bool FrameGraph::matches_previous_but_texture_specs(uint32_t index) const {
+    if (index >= previous_->passes.size()) return false;
+    const PreviousPass& before = previous_->passes[index];
+    const Pass& pass = *passes_[index];
+    if (pass.name() != before.name || pass.kind() != before.kind || pass.queue() != before.queue ||
+        pass.keeps_declared_order() != before.keep_declared_order || pass.ports().size() != before.ports.size()) {
+        return false;
+    }
+    // Each port compared whole but for its spec, so that a field added to Port is compared too
+    // (a copy: only passes that differ get here).
+    for (std::size_t i = 0; i < before.ports.size(); ++i) {
+        Port port = pass.ports()[i];
+        port.spec = before.ports[i].spec;
+        if (!(port == before.ports[i])) return false;
+    }
+    return true;
+}
+
+bool FrameGraph::is_previous_structure() const {
     return previous_ && same_as_previous_ && side_effect_differences_ == 0 &&
            passes_.size() == previous_->passes.size() &&
            connections_ == previous_->connections && outputs_ == previous_->outputs &&
@@ -177,6 +198,7 @@ bool FrameGraph::is_previous_graph() const {
 
 void FrameGraph::release_previous() {
     same_as_previous_ = false;
+    respecified_passes_.clear();
     if (!previous_) return;
     previous_->passes.clear();
     previous_->connections.clear();
@@ -436,14 +458,17 @@ Status FrameGraph::validate() const {
 }
 
 Result<std::shared_ptr<const Plan>> FrameGraph::plan(const PlanOptions& options) {
-    const bool same_graph = cached_plan_ && (cached_revision_ == revision_ || is_previous_graph());
+    const bool same_structure = cached_plan_ && (cached_revision_ == revision_ || is_previous_structure());
+    // The passes declared again with other texture specs (none when the graph was not redeclared).
+    const std::vector<uint32_t> respecified =
+        same_structure && cached_revision_ != revision_ ? respecified_passes_ : std::vector<uint32_t>{};
     release_previous();
-    if (same_graph) {
+    if (same_structure) {
         cached_revision_ = revision_;
-        if (cached_options_ == options) return cached_plan_;
+        if (cached_options_ == options && respecified.empty()) return cached_plan_;
         PlanOptions resized = cached_options_;
         resized.frame = options.frame;
-        if (resize_basis_ && resized == options && resize_cached_plan(options)) return cached_plan_;
+        if (resize_basis_ && resized == options && replan_cached_plan(options, respecified)) return cached_plan_;
     }
     // The cached plan is replaced either way: when nobody else holds it, its memory is free for
     // the new one (a large plan's allocations are otherwise served around it).
@@ -457,13 +482,13 @@ Result<std::shared_ptr<const Plan>> FrameGraph::plan(const PlanOptions& options)
     return cached_plan_;
 }
 
-bool FrameGraph::resize_cached_plan(const PlanOptions& options) {
+bool FrameGraph::replan_cached_plan(const PlanOptions& options, std::span<const uint32_t> respecified) {
     // Nobody else can see a plan only the graph holds: it is changed in place, which saves
     // copying its passes, ports and names.
     std::shared_ptr<Plan> next = cached_plan_.use_count() == 1 ? std::const_pointer_cast<Plan>(cached_plan_)
                                                                 : std::make_shared<Plan>(*cached_plan_);
     cached_plan_.reset();
-    if (!detail::resize_plan(*this, *resize_basis_, options, *next)) return false;
+    if (!detail::replan(*this, *resize_basis_, options, respecified, *next)) return false;
     ++plans_resized_;
     cached_plan_ = std::move(next);
     cached_options_ = options;

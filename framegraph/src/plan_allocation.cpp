@@ -401,13 +401,16 @@ Status allocate_resized_plan(Plan& plan, const PlanOptions& options, const Alloc
         return allocate_plan(plan, options, allocator, memory, std::move(graph_output_resources));
     }
     // The same classes with the same members and lifetimes: the same peaks of live members, and
-    // the allocator's answer as before. What changed is each class's, texture's and buffer's size.
+    // the allocator's answer as before. What changed is each class's, texture's and buffer's
+    // shape (its first member's) and usage (the union of its members').
     for (SpecClass& spec_class : plan.spec_classes) {
         const PlanResource& first = plan.resources[spec_class.resources.front()];
         if (spec_class.type == ResourceType::Buffer) {
-            spec_class.buffer_spec.size = first.buffer_spec.size;
+            spec_class.buffer_spec = first.buffer_spec;
+            for (uint32_t r : spec_class.resources) spec_class.buffer_spec.usage |= plan.resources[r].buffer_spec.usage;
         } else {
-            spec_class.spec.extent = first.spec.extent;
+            spec_class.spec = first.spec;
+            for (uint32_t r : spec_class.resources) spec_class.spec.usage |= plan.resources[r].spec.usage;
         }
     }
     TextureAssignment assignment;

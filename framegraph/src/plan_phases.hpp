@@ -186,6 +186,15 @@ Status measure_resource(PlanResource& resource, MemoryModel& memory);
 Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const Schedule& schedule, Extent2D frame,
                                             MemoryModel& memory);
 
+/// Join and resolve again for one texture resource whose group starts at `start`, after texture
+/// specs of its ports changed (position: per pass, its position in the order or
+/// kNotScheduled): `resource`'s spec (usage: its running ports'), requested format and bytes,
+/// and the size its ports joined to. Errors: the join's or resolve's; also ErrorCode::Join when
+/// the join compared differently declared sizes against the frame (JoinedGroup::sizes_compared),
+/// which a plan made from the previous one cannot keep.
+Status rejoin_resource(const FrameGraph& graph, PortAddress start, std::span<const uint32_t> position, Extent2D frame,
+                       MemoryModel& memory, PlanResource& resource, std::optional<SizeSpec>& joined_size);
+
 /// Fills in every resource's PlanResource::ports: the names of its running ports.
 void name_resource_ports(const FrameGraph& graph, ResolvedResources& resolved);
 
@@ -270,11 +279,11 @@ Result<TextureAssignment> allocate_textures(const Allocator& allocator, const Al
 Status allocate_plan(Plan& plan, const PlanOptions& options, const Allocator& allocator, MemoryModel& memory,
                      std::vector<uint32_t> graph_output_resources);
 
-/// allocate_plan for `plan`, allocated before, whose resources changed in size only (extents,
-/// buffer sizes; FrameGraph::plan for another frame size): when `allocator` does not read bytes
-/// (Allocator::reads_bytes) and equal sharing keeps the classes as they are, the allocation is
-/// the one the plan has, and only the sizes of its classes, textures and buffers and its
-/// summary are made anew; else allocate_plan.
+/// allocate_plan for `plan`, allocated before, whose resources changed in shape or usage only
+/// (FrameGraph::plan for another frame size or other texture specs): when `allocator` does not
+/// read bytes (Allocator::reads_bytes) and equal sharing keeps the classes as they are, the
+/// allocation is the one the plan has, and only the shapes and usages of its classes, textures
+/// and buffers and its summary are made anew; else allocate_plan.
 Status allocate_resized_plan(Plan& plan, const PlanOptions& options, const Allocator& allocator, MemoryModel& memory,
                              std::vector<uint32_t> graph_output_resources);
 

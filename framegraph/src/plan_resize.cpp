@@ -1,4 +1,5 @@
-// Re-planning an unchanged graph for another frame size (plan_resize.hpp).
+// Re-planning from the previous plan for another frame size or other texture specs
+// (plan_resize.hpp).
 #include "plan_resize.hpp"
 
 #include <algorithm>
@@ -65,14 +66,60 @@ bool resize_buffers(const FrameGraph& graph, const ResizeBasis& basis, Extent2D 
     return true;
 }
 
+// The resources of the texture ports of the passes `respecified` joined and resolved again for
+// `frame`, and the usages and ranges of their ports; false where that fails or a respecified
+// pass reaches a pass that does not run.
+bool respecify(const FrameGraph& graph, ResizeBasis& basis, std::span<const uint32_t> respecified, Extent2D frame,
+               MemoryModel& memory, Plan& plan) {
+    std::vector<uint32_t> position(graph.pass_count(), kNotScheduled);
+    for (uint32_t k = 0; k < plan.order.size(); ++k) position[plan.order[k].declaration_index] = k;
+    std::vector<bool> affected(plan.resources.size(), false);
+    for (uint32_t pass : respecified) {
+        // The groups of a culled pass are joined too: whether they still join is build_plan's to say.
+        if (position[pass] == kNotScheduled) return false;
+        const std::vector<PlanPort>& ports = plan.order[position[pass]].ports;
+        for (uint32_t i = 0; i < ports.size(); ++i) {
+            if (ports[i].type != ResourceType::Texture) continue;
+            if (ports[i].resource) {
+                affected[*ports[i].resource] = true;
+            } else if (!graph.consumers({pass, i}).empty()) {
+                return false;  // an optional output only culled passes read: a group without a resource
+            }
+        }
+    }
+    for (uint32_t r = 0; r < plan.resources.size(); ++r) {
+        if (!affected[r]) continue;
+        if (!rejoin_resource(graph, basis.starts[r], position, frame, memory, plan.resources[r], basis.joined_sizes[r])) {
+            return false;
+        }
+    }
+    for (PlanPass& pass : plan.order) {
+        for (uint32_t i = 0; i < pass.ports.size(); ++i) {
+            PlanPort& port = pass.ports[i];
+            if (!port.resource || !affected[*port.resource]) continue;
+            const ResolvedSpec& spec = plan.resources[*port.resource].spec;
+            const PortAddress address{pass.declaration_index, i};
+            port.usage = port_texture_usage(graph.facts(address), spec.format);
+            // Checked by rejoin_resource.
+            port.range = resolve_range(graph.port_at(address).range, spec.mips, spec.layers).value_or(SubresourceRange{});
+        }
+    }
+    return true;
+}
+
 }  // namespace
 
-bool resize_plan(const FrameGraph& graph, const ResizeBasis& basis, const PlanOptions& options, Plan& plan) {
+bool replan(const FrameGraph& graph, ResizeBasis& basis, const PlanOptions& options,
+            std::span<const uint32_t> respecified, Plan& plan) {
     std::shared_ptr<MemoryModel> memory = options.memory_model;
     if (!memory) memory = std::make_shared<DefaultMemoryModel>();
-    if (!resize_textures(basis, options.frame, *memory, plan.resources)) return false;
-    if (!resize_buffers(graph, basis, options.frame, *memory, plan)) return false;
-    plan.frame = options.frame;
+    // Respecified resources first, for the new frame: resizing then finds them resolved.
+    if (!respecified.empty() && !respecify(graph, basis, respecified, options.frame, *memory, plan)) return false;
+    if (options.frame != plan.frame) {
+        if (!resize_textures(basis, options.frame, *memory, plan.resources)) return false;
+        if (!resize_buffers(graph, basis, options.frame, *memory, plan)) return false;
+        plan.frame = options.frame;
+    }
     const std::unique_ptr<Allocator> allocator = make_allocator(options.allocator);
     return allocate_resized_plan(plan, options, *allocator, *memory, basis.graph_output_resources).ok();
 }

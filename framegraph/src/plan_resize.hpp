@@ -1,17 +1,19 @@
 #pragma once
-// Internal: re-planning an unchanged graph for another frame size (FrameGraph::plan,
-// docs/framegraph.md "Planning"). In the declared order a frame size decides only the extents of
-// textures and the sizes of buffers: their bytes, which ones may share (spec classes), the
-// allocation and the summary. The passes that run, their order, the resources with their ports,
-// usages and lifetimes, the edges and the queues' semaphores are the same for every frame size.
-// So the previous plan becomes the new one by resolving its sizes again and allocating again,
-// and equals what build_plan gives (tests/framegraph/plan_resize_test.cpp compares the two over
-// random graphs). The memory order is searched with the bytes and may change with them: such
-// plans are planned anew.
+// Internal: re-planning from the previous plan (FrameGraph::plan, docs/framegraph.md
+// "Planning") a graph planned for another frame size, or declared again (redeclare) with other
+// texture specs on some ports. In the declared order neither changes the passes that run, their
+// order, the resources with their ports and lifetimes, the edges or the queues' semaphores: a
+// frame size decides the extents of textures and the sizes of buffers, a texture spec its
+// resource's join, and with them their bytes, usages, which ones may share (spec classes), the
+// allocation and the summary. So the previous plan becomes the new one by joining and resolving
+// what changed and allocating again, and equals what build_plan gives
+// (tests/framegraph/plan_resize_test.cpp compares the two over random graphs). The memory order
+// is searched with the bytes and may change with them: such plans are planned anew.
 
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -32,6 +34,8 @@ struct ResizeBasis {
     std::vector<std::pair<uint32_t, BufferSize>> joined_buffer_sizes;
     /// The resources of the graph outputs (ResolvedResources::graph_output_resources).
     std::vector<uint32_t> graph_output_resources;
+    /// Per resource, the port that starts its group (ResolvedResources::starts).
+    std::vector<PortAddress> starts;
 };
 
 /// build_plan, also setting `basis` to what resize_plan needs when the plan can be re-planned so:
@@ -39,11 +43,15 @@ struct ResizeBasis {
 /// (such a join may fail, or keep another size, at another frame size). Else `basis` is reset.
 Result<Plan> build_plan(const FrameGraph& graph, const PlanOptions& options, std::unique_ptr<ResizeBasis>& basis);
 
-/// Makes `plan`, which build_plan made for `graph` with `basis`, the plan of `options.frame`:
-/// `options` may differ from the plan's options in the frame size only, and `graph` must be the
-/// graph the plan was made from. False when a size no longer resolves, the memory model or the
-/// allocator fails at the new size: `plan` is then half changed and build_plan gives the plan
-/// or the error.
-bool resize_plan(const FrameGraph& graph, const ResizeBasis& basis, const PlanOptions& options, Plan& plan);
+/// Makes `plan`, which build_plan made with `basis`, the plan of `graph` for `options`, and
+/// `basis` its basis. `options` may differ from the plan's options in the frame size only, and
+/// `graph` must be the graph the plan was made from but for the texture specs of the ports of
+/// the passes `respecified` (declaration indices). False when the plan must be made anew: a
+/// respecified pass that does not run, or whose texture reaches passes that do not (their joins
+/// count too), a join that compares differently declared sizes against the frame, a size that no
+/// longer resolves, a join, the memory model or the allocator that fails. `plan` and `basis` are
+/// then half changed, and build_plan gives the plan or the error.
+bool replan(const FrameGraph& graph, ResizeBasis& basis, const PlanOptions& options,
+            std::span<const uint32_t> respecified, Plan& plan);
 
 }  // namespace loom::fg::detail

@@ -571,6 +571,27 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const Sched
     return builder.finish();
 }
 
+Status rejoin_resource(const FrameGraph& graph, PortAddress start, std::span<const uint32_t> position, Extent2D frame,
+                       MemoryModel& memory, PlanResource& resource, std::optional<SizeSpec>& joined_size) {
+    std::vector<PortAddress> group;
+    collect_group(graph, start, group);
+    bool sizes_compared = false;
+    Result<TextureSpec> joined = join_group(graph, group, frame, sizes_compared);
+    if (!joined) return joined.take_error();
+    if (sizes_compared) {
+        return make_error(ErrorCode::Join, "resource " + resource.name + ": its sizes join for this frame size only");
+    }
+    std::vector<PortAddress> kept;
+    kept.reserve(group.size());
+    for (const PortAddress& address : group) {
+        if (position[address.pass] != kNotScheduled) kept.push_back(address);
+    }
+    PendingResource item{resource, start, kept};
+    LOOM_TRY(resolve_pending(graph, *joined, frame, memory, item));
+    joined_size = joined->size;
+    return {};
+}
+
 void name_resource_ports(const FrameGraph& graph, ResolvedResources& resolved) {
     for (uint32_t r = 0; r < resolved.resources.size(); ++r) {
         std::vector<std::string>& ports = resolved.resources[r].ports;

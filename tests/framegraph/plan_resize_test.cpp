@@ -110,6 +110,56 @@ TEST(PlanResize, RandomGraphsWithAsyncComputeResizeAsTheyPlan) {
     }
 }
 
+// Each corpus graph planned, then redeclared three times with the outputs of one pass in other
+// specs (and the inputs that repeat them): plan() makes the plan from the previous one when the
+// passes that changed run, else plans anew; either way the plan (or the error) is build_plan's.
+void check_respecified_corpus(Corpus corpus, AllocatorKind allocator, SpecSharing sharing, Extent2D second_frame) {
+    uint64_t respecified = 0;
+    uint64_t redeclared = 0;
+    for (uint64_t seed = 1; seed <= 40; ++seed) {
+        testing::RandomGraphOptions options = testing::corpus_options(seed, corpus);
+        FrameGraph graph;
+        testing::declare_random_graph(graph, seed, options);
+        ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080}, allocator, sharing)), nullptr);
+        for (uint32_t changed : {options.passes - 1, options.passes / 2, 0u}) {
+            options.respecified_pass = changed;
+            graph.redeclare();
+            testing::declare_random_graph(graph, seed, options);
+            const uint64_t built = graph.plans_built();
+            const uint64_t resized = graph.plans_resized();
+            const Extent2D frame = changed == 0 ? second_frame : Extent2D{1920, 1080};
+            if (!plan_as_build_plan_does(graph, declared_at(frame, allocator, sharing))) break;
+            ++redeclared;
+            // Made from the previous plan, planned anew, or (the same specs as the declaration
+            // before, as when the changed pass draws no palette output) the previous plan itself.
+            if (graph.plans_resized() == resized + 1) {
+                ++respecified;
+                EXPECT_EQ(graph.plans_built(), built);
+            } else {
+                EXPECT_LE(graph.plans_built(), built + 1);
+            }
+        }
+    }
+    // Most redeclared graphs change passes that run.
+    EXPECT_GT(respecified, redeclared / 2) << respecified << " of " << redeclared;
+}
+
+TEST(PlanResize, RandomGraphsRedeclaredWithOtherTextureSpecsPlanAsTheyPlan) {
+    for (AllocatorKind allocator : {AllocatorKind::Paper, AllocatorKind::Interval, AllocatorKind::Heap}) {
+        for (SpecSharing sharing : {SpecSharing::Equal, SpecSharing::Joinable}) {
+            SCOPED_TRACE(std::string(allocator_name(allocator)) + " " + std::string(spec_sharing_name(sharing)));
+            check_respecified_corpus(Corpus::Textures, allocator, sharing, {1920, 1080});
+            // With the frame size changing at once.
+            check_respecified_corpus(Corpus::Textures, allocator, sharing, {1280, 720});
+        }
+    }
+    for (AllocatorKind allocator : {AllocatorKind::Interval, AllocatorKind::Heap}) {
+        SCOPED_TRACE(allocator_name(allocator));
+        check_respecified_corpus(Corpus::Mixed, allocator, SpecSharing::Equal, {1280, 720});
+        check_respecified_corpus(Corpus::Async, allocator, SpecSharing::Equal, {1280, 720});
+    }
+}
+
 // scene (full size, half size, absolute shadow map) -> post -> present.
 FrameGraph small_graph() {
     FrameGraph graph;
@@ -265,6 +315,101 @@ TEST(PlanResize, TexturesThatShareAtOneSizeAndNotAtAnotherAreAllocatedAgain) {
     }
     EXPECT_EQ(graph.plans_built(), 3u);
     EXPECT_EQ(graph.plans_resized(), 9u);
+}
+
+// scene -> post -> (culled) debug, with the scene's colour in `format` and `post` asking for
+// `read` of it.
+void declare_scene(FrameGraph& graph, TextureSpec color, TextureSpec read = {}, TextureSpec debug = {}) {
+    const PassId scene = *graph.add_pass(Pass("scene").output("color", color).output("depth", TextureSpec::of(Format::Depth32F)));
+    const PassId post = *graph.add_pass(Pass("post").read(port_of(scene, 0), read).read(port_of(scene, 1)).output("out"));
+    EXPECT_TRUE(graph.add_pass(Pass("debug").read(port_of(scene, 0), debug).output("view")).ok());
+    EXPECT_TRUE(graph.mark_output(port_of(post, 2)).ok());
+}
+
+TEST(PlanResize, ARedeclaredGraphWithOtherTextureSpecsIsPlannedFromThePreviousPlan) {
+    FrameGraph graph;
+    declare_scene(graph, TextureSpec::of(Format::RGBA16Float));
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    // Another format, then a depth format (the write becomes a depth attachment), then half size.
+    graph.redeclare();
+    declare_scene(graph, TextureSpec::of(Format::R11G11B10Float));
+    std::shared_ptr<const Plan> other = plan_as_build_plan_does(graph, declared_at({1920, 1080}));
+    ASSERT_NE(other, nullptr);
+    EXPECT_EQ(other->resources[0].spec.format, Format::R11G11B10Float);
+    graph.redeclare();
+    declare_scene(graph, TextureSpec::of(Format::Depth24Stencil8));
+    std::shared_ptr<const Plan> depth = plan_as_build_plan_does(graph, declared_at({1920, 1080}));
+    ASSERT_NE(depth, nullptr);
+    EXPECT_EQ(depth->order[0].ports[0].usage, rhi::TextureUsage::DepthStencilAttachment);
+    other.reset();
+    depth.reset();
+    graph.redeclare();
+    declare_scene(graph, TextureSpec::of(Format::RGBA16Float).with_scale(0.5f), TextureSpec::any().with_scale(0.5f));
+    std::shared_ptr<const Plan> half = plan_as_build_plan_does(graph, declared_at({1920, 1080}));
+    ASSERT_NE(half, nullptr);
+    EXPECT_EQ(half->resources[0].spec.extent, (Extent2D{960, 540}));
+    half.reset();
+    // ... and its size follows a resize.
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1280, 720})), nullptr);
+    EXPECT_EQ(graph.plans_built(), 1u);
+    EXPECT_EQ(graph.plans_resized(), 4u);
+    // The same specs again: the same plan.
+    graph.redeclare();
+    declare_scene(graph, TextureSpec::of(Format::RGBA16Float).with_scale(0.5f), TextureSpec::any().with_scale(0.5f));
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1280, 720})), nullptr);
+    EXPECT_EQ(graph.plans_resized(), 4u);
+}
+
+TEST(PlanResize, AnotherUsageKeepsTheClassesAndWidensTheirUsage) {
+    // The post pass reads the colour as a storage image instead of sampling it: the same shapes,
+    // the same classes and allocation, other usages for the resource, its class and its texture.
+    FrameGraph graph;
+    declare_scene(graph, TextureSpec::of(Format::RGBA16Float));
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    graph.redeclare();
+    TextureSpec storage;
+    storage.usage = rhi::TextureUsage::Storage;
+    declare_scene(graph, TextureSpec::of(Format::RGBA16Float), storage);
+    std::shared_ptr<const Plan> plan = plan_as_build_plan_does(graph, declared_at({1920, 1080}));
+    ASSERT_NE(plan, nullptr);
+    EXPECT_TRUE(rhi::has_all(plan->spec_classes[plan->resources[0].spec_class].spec.usage, rhi::TextureUsage::Storage));
+    EXPECT_EQ(graph.plans_resized(), 1u);
+}
+
+TEST(PlanResize, OtherTextureSpecsThatDoNotJoinGiveBuildPlansError) {
+    FrameGraph graph;
+    declare_scene(graph, TextureSpec::of(Format::RGBA16Float), TextureSpec::of(Format::RGBA16Float));
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    graph.redeclare();
+    declare_scene(graph, TextureSpec::of(Format::RGBA8Unorm), TextureSpec::of(Format::RGBA16Float));
+    auto conflict = graph.plan(declared_at({1920, 1080}));
+    ASSERT_FALSE(conflict.ok());
+    EXPECT_EQ(conflict.error().code, ErrorCode::Join);
+    EXPECT_EQ(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    EXPECT_EQ(graph.plans_resized(), 0u);
+}
+
+TEST(PlanResize, OtherSpecsOnPassesThatDoNotRunOrOtherPortsArePlannedAnew) {
+    FrameGraph graph;
+    declare_scene(graph, TextureSpec::of(Format::RGBA16Float));
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    // The culled debug pass asks for another spec (its group is joined all the same, and may no
+    // longer join): planned anew.
+    graph.redeclare();
+    declare_scene(graph, TextureSpec::of(Format::RGBA16Float), {}, TextureSpec::any().with_samples(1));
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    EXPECT_EQ(graph.plans_resized(), 0u);
+    // A port that differs in more than its spec (a range): planned anew.
+    graph.redeclare();
+    {
+        const PassId scene = *graph.add_pass(Pass("scene").output("color", TextureSpec::of(Format::RGBA16Float)).output("depth", TextureSpec::of(Format::Depth32F)));
+        const PassId post = *graph.add_pass(Pass("post").read(port_of(scene, 0), {}, mip(0)).read(port_of(scene, 1)).output("out"));
+        ASSERT_TRUE(graph.add_pass(Pass("debug").read(port_of(scene, 0), TextureSpec::any().with_samples(1)).output("view")).ok());
+        ASSERT_TRUE(graph.mark_output(port_of(post, 2)).ok());
+    }
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    EXPECT_EQ(graph.plans_built(), 3u);
+    EXPECT_EQ(graph.plans_resized(), 0u);
 }
 
 TEST(PlanResize, BufferPortRangesFollowTheBufferSize) {

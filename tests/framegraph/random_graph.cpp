@@ -94,6 +94,12 @@ uint64_t SplitMix64::next() {
 }
 
 FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options) {
+    FrameGraph graph;
+    declare_random_graph(graph, seed, options);
+    return graph;
+}
+
+void declare_random_graph(FrameGraph& graph, uint64_t seed, const RandomGraphOptions& options) {
     SplitMix64 rng(seed);
     std::vector<Pass> passes;
     std::vector<Connection> connections;
@@ -184,7 +190,9 @@ FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options) {
                              single(kSubresourceSpecBase + spec, 0));
                 producers.push_back({i, name, kSubresourceSpecBase + spec, false});
             } else {
-                const uint32_t spec = rng.below(kPaletteSize);
+                // Drawn as ever, then changed: the rest of the graph stays what the seed makes.
+                const uint32_t drawn = rng.below(kPaletteSize);
+                const uint32_t spec = i == options.respecified_pass ? (drawn + 1) % kPaletteSize : drawn;
                 pass.declare(name, PortKind::Output, palette(spec), rng.percent(options.optional_output_percent));
                 producers.push_back({i, name, spec, false});
             }
@@ -204,7 +212,6 @@ FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options) {
     if (options.shuffle_declarations) {
         for (uint32_t i = static_cast<uint32_t>(declaration.size()); i > 1; --i) std::swap(declaration[i - 1], declaration[rng.below(i)]);
     }
-    FrameGraph graph;
     for (uint32_t index : declaration) {
         [[maybe_unused]] auto added = graph.add_pass(std::move(passes[index]));
         assert(added.ok());
@@ -217,7 +224,6 @@ FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options) {
         [[maybe_unused]] auto marked = graph.mark_output(*parse_port_ref(output));
         assert(marked.ok());
     }
-    return graph;
 }
 
 }  // namespace loom::fg::testing

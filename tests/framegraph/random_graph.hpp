@@ -30,6 +30,10 @@ struct RandomGraphOptions {
     /// With async_percent: false keeps those passes compute passes on the graphics queue, so
     /// that the same graph can be planned with and without async compute.
     bool async_queue = true;
+    /// The pass (by generation order, p<n>) whose outputs drawn from the texture palette take
+    /// the next palette spec instead, inputs that repeat their source's spec with them: the
+    /// same graph but for texture specs. UINT32_MAX: none.
+    uint32_t respecified_pass = UINT32_MAX;
 };
 
 /// The seeded corpora the property tests plan: texture-only graphs, graphs with buffers and
@@ -48,6 +52,8 @@ RandomGraphOptions corpus_options(uint64_t seed, Corpus corpus);
 /// buffer inputs; with subresource_percent, some textures have mips or layers that ports use
 /// one at a time.
 FrameGraph random_graph(uint64_t seed, const RandomGraphOptions& options = {});
+/// random_graph declared into `graph` (empty: new, cleared or redeclared).
+void declare_random_graph(FrameGraph& graph, uint64_t seed, const RandomGraphOptions& options = {});
 
 /// SplitMix64: a tiny, portable, seeded generator.
 class SplitMix64 {

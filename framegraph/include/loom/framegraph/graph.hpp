@@ -132,9 +132,11 @@ public:
     /// plan was made from (the same passes with the same ports, kinds, queues and side effects,
     /// the same connections, graph outputs and order requirements, each in the same order), the
     /// next plan() with the same options returns that plan again, the same object, without
-    /// planning. Each pass is compared as it is added; any difference (a side effect set after
-    /// add_pass included) makes the next plan() plan afresh. Until that plan() the graph keeps
-    /// the ports of the passes removed here.
+    /// planning. Each pass is compared as it is added. When passes differ only in the texture
+    /// specs of their ports and the plan is in the declared order, the next plan() makes the new
+    /// plan from the previous one (see plan()); any other difference (a side effect set after
+    /// add_pass included) makes it plan afresh. Until that plan() the graph keeps the ports of
+    /// the passes removed here.
     void redeclare();
 
     /// Requires `earlier` to run before `later` in every order although no texture connects
@@ -186,15 +188,17 @@ public:
     [[nodiscard]] Status validate() const;
 
     /// Plans the graph (build_plan), or returns the previous plan when neither the graph nor
-    /// the options changed since: the same shared object, not a copy. When only the frame size
-    /// changed and the previous plan is in the declared order (PassOrder::Declared), the new plan
-    /// is made from the previous one: its sizes resolved again and its resources allocated again,
-    /// the rest kept (the same plan build_plan gives, for a fraction of the time). The previous
-    /// plan is changed in place when nothing else holds it, else copied.
+    /// the options changed since: the same shared object, not a copy. When the previous plan is
+    /// in the declared order (PassOrder::Declared) and only the frame size changed, or the graph
+    /// was redeclared with other texture specs on some ports of passes that run, the new plan is
+    /// made from the previous one: what changed joined and resolved again, the resources
+    /// allocated again, the rest kept (the same plan build_plan gives, for a fraction of the
+    /// time). The previous plan is changed in place when nothing else holds it, else copied.
     Result<std::shared_ptr<const Plan>> plan(const PlanOptions& options = {});
     /// How many times plan() planned from scratch (for tests of the reuse).
     [[nodiscard]] uint64_t plans_built() const { return plans_built_; }
-    /// How many times plan() made the plan of another frame size from the previous plan.
+    /// How many times plan() made the plan of another frame size, or of other texture specs,
+    /// from the previous plan.
     [[nodiscard]] uint64_t plans_resized() const { return plans_resized_; }
     /// Increases with every change to the graph.
     [[nodiscard]] uint64_t revision() const { return revision_; }
@@ -243,8 +247,14 @@ private:
     // Whether pass `index` (just added) is declared as the previous graph's pass `index` was,
     // side effects aside (they may change after add_pass; side_effect_differences_ counts them).
     [[nodiscard]] bool matches_previous(uint32_t index) const;
-    // Whether the graph now declared is the previous graph (redeclare).
-    [[nodiscard]] bool is_previous_graph() const;
+    // Whether pass `index` (just added) is declared as the previous graph's pass `index` was but
+    // for the texture specs of its ports.
+    [[nodiscard]] bool matches_previous_but_texture_specs(uint32_t index) const;
+    // Whether the graph now declared is the previous graph (redeclare) but for the texture specs
+    // of the passes in respecified_passes_...
+    [[nodiscard]] bool is_previous_structure() const;
+    // ... and whether it is the previous graph.
+    [[nodiscard]] bool is_previous_graph() const { return is_previous_structure() && respecified_passes_.empty(); }
     // Forgets the previous graph, keeping its arrays' memory for the next redeclare.
     void release_previous();
 
@@ -255,14 +265,18 @@ private:
     bool same_as_previous_ = false;
     // How many passes added since redeclare() differ from the previous graph's in their side effect.
     uint32_t side_effect_differences_ = 0;
+    // The passes added since redeclare() that differ from the previous graph's in texture specs only.
+    std::vector<uint32_t> respecified_passes_;
 
-    // The cached plan for another frame size (plan_resize.cpp): true when made.
-    bool resize_cached_plan(const PlanOptions& options);
+    // The cached plan made the plan of `options`, which differ from its options in the frame size
+    // at most, for the graph declared now, which differs from its graph in the texture specs of
+    // the passes `respecified` at most (plan_resize.cpp): true when made.
+    bool replan_cached_plan(const PlanOptions& options, std::span<const uint32_t> respecified);
 
     uint64_t revision_ = 0;
     uint64_t plans_built_ = 0;
     uint64_t plans_resized_ = 0;
-    // Made as a (non-const) Plan, so that resize_cached_plan may change it when nobody else holds it.
+    // Made as a (non-const) Plan, so that replan_cached_plan may change it when nobody else holds it.
     std::shared_ptr<const Plan> cached_plan_;
     // What re-planning the cached plan for another frame size needs; null when it cannot be.
     std::unique_ptr<detail::ResizeBasis> resize_basis_;
