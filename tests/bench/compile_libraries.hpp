@@ -43,8 +43,8 @@ enum class LoomGraphUse {
     /// the same graph every time, which plan() answers with the previous plan...
     Redeclared,
     /// ... or with one output of the middle pass in another format every other call, so that
-    /// every call differs from the one before in that pass: plan() plans afresh after the
-    /// passes before it compared equal.
+    /// every call differs from the one before in that pass's texture spec: plan() makes the plan
+    /// from the previous one (the declared order), joining and resolving that resource again.
     RedeclaredChanging,
     /// One graph declared once and planned by FrameGraph::plan every call for another frame
     /// size than the call before (1920x1080, 1280x720 in turn): no declaring, plan() makes the
