@@ -300,6 +300,34 @@ TEST_P(Figure2Execution, GraphRedeclaredEveryFrameIsPlannedOnceAndRunsEachFrames
     EXPECT_EQ(executor.stats().realisations, 1u);
 }
 
+TEST_P(Figure2Execution, ResizesInTheDeclaredOrderArePlannedFromThePreviousPlan) {
+    // A window resized frame after frame, planned in the declared order: the graph plans once and
+    // makes each new size's plan from the previous one (which the executor holds, so it is
+    // copied); the executor realises each plan, and every picture is the one a fresh plan draws.
+    fg::FrameGraph graph = figure2(p_);
+    fg::Executor executor(device());
+    fg::PlanOptions options;
+    options.order = fg::PassOrder::Declared;
+    options.allocator = fg::AllocatorKind::Interval;
+    const std::vector<fg::Extent2D> frames{{16, 8}, {40, 24}, {12, 30}, {16, 8}};
+    for (const fg::Extent2D frame : frames) {
+        const std::string what = std::to_string(frame.width) + "x" + std::to_string(frame.height);
+        SCOPED_TRACE(what);
+        options.frame = frame;
+        LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        expect_final_picture(executor.texture("composite", "final"), frame.width, frame.height, what);
+        LOOM_ASSIGN_OR_FAIL(rhi::TextureDesc final_desc, device().texture_desc(executor.texture("composite", "final")));
+        EXPECT_EQ(final_desc.width, frame.width);
+        EXPECT_EQ(final_desc.height, frame.height);
+        auto fresh = fg::build_plan(graph, executor.effective_options(options));
+        ASSERT_TRUE(fresh.ok()) << fresh.error().to_string();
+        EXPECT_TRUE(*executor.plan() == *fresh);
+    }
+    EXPECT_EQ(graph.plans_built(), 1u);
+    EXPECT_EQ(graph.plans_resized(), frames.size() - 1);
+    EXPECT_EQ(executor.stats().realisations, frames.size());
+}
+
 TEST_P(Figure2Execution, ResizeRebuildsTexturesWithoutLeaks) {
     fg::FrameGraph graph = figure2(p_);
     const rhi::ResourceStats before = device().resource_stats();
