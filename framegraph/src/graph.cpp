@@ -98,9 +98,9 @@ Result<PassId> FrameGraph::add_pass(std::unique_ptr<Pass> pass) {
     index_name(index);
     for (const auto& [input, source] : passes_.back()->reads()) link(source, PortAddress{index, input});
     if (same_as_previous_) {
-        const bool same = matches_previous(index);
-        if (same || matches_previous_but_texture_specs(index)) {
-            if (!same) respecified_passes_.push_back(index);
+        const PreviousMatch match = compare_with_previous(index);
+        if (match != PreviousMatch::Different) {
+            if (match == PreviousMatch::TextureSpecsDiffer) respecified_passes_.push_back(index);
             if (passes_[index]->side_effect() != previous_->passes[index].side_effect) ++side_effect_differences_;
             // Compared: the previous pass's ports are not needed again, and the passes declared
             // next reuse their memory while it is warm.
@@ -163,30 +163,23 @@ void FrameGraph::redeclare() {
     ++revision_;
 }
 
-bool FrameGraph::matches_previous(uint32_t index) const {
-    if (index >= previous_->passes.size()) return false;
-    const PreviousPass& before = previous_->passes[index];
-    const Pass& pass = *passes_[index];
-    return pass.name() == before.name && pass.kind() == before.kind && pass.queue() == before.queue &&
-           pass.keeps_declared_order() == before.keep_declared_order && pass.ports() == before.ports;
-}
-
-bool FrameGraph::matches_previous_but_texture_specs(uint32_t index) const {
-    if (index >= previous_->passes.size()) return false;
+FrameGraph::PreviousMatch FrameGraph::compare_with_previous(uint32_t index) const {
+    if (index >= previous_->passes.size()) return PreviousMatch::Different;
     const PreviousPass& before = previous_->passes[index];
     const Pass& pass = *passes_[index];
     if (pass.name() != before.name || pass.kind() != before.kind || pass.queue() != before.queue ||
         pass.keeps_declared_order() != before.keep_declared_order || pass.ports().size() != before.ports.size()) {
-        return false;
+        return PreviousMatch::Different;
     }
+    if (pass.ports() == before.ports) return PreviousMatch::Same;
     // Each port compared whole but for its spec, so that a field added to Port is compared too
     // (a copy: only passes that differ get here).
     for (std::size_t i = 0; i < before.ports.size(); ++i) {
         Port port = pass.ports()[i];
         port.spec = before.ports[i].spec;
-        if (!(port == before.ports[i])) return false;
+        if (!(port == before.ports[i])) return PreviousMatch::Different;
     }
-    return true;
+    return PreviousMatch::TextureSpecsDiffer;
 }
 
 bool FrameGraph::is_previous_structure() const {
@@ -459,9 +452,10 @@ Status FrameGraph::validate() const {
 
 Result<std::shared_ptr<const Plan>> FrameGraph::plan(const PlanOptions& options) {
     const bool same_structure = cached_plan_ && (cached_revision_ == revision_ || is_previous_structure());
-    // The passes declared again with other texture specs (none when the graph was not redeclared).
-    const std::vector<uint32_t> respecified =
-        same_structure && cached_revision_ != revision_ ? respecified_passes_ : std::vector<uint32_t>{};
+    // The passes declared again with other texture specs (none when the graph was not redeclared),
+    // taken before release_previous forgets them.
+    std::vector<uint32_t> respecified;
+    if (same_structure && cached_revision_ != revision_) respecified.swap(respecified_passes_);
     release_previous();
     if (same_structure) {
         cached_revision_ = revision_;

@@ -41,6 +41,25 @@ std::optional<ResolvedSpec> join_resolved(const ResolvedSpec& a, const ResolvedS
     return *resolved;
 }
 
+// The most bytes of resources alive at one position (within their occupancies, which async
+// compute widens): each resource adds its bytes at its first position and takes them away after
+// its last.
+uint64_t peak_live_bytes(const std::vector<PlanResource>& resources, uint32_t position_count) {
+    std::vector<uint64_t> change(position_count + 1, 0);
+    std::vector<uint64_t> ending(position_count + 1, 0);
+    for (const PlanResource& resource : resources) {
+        change[resource.occupancy.first] += resource.bytes;
+        ending[resource.occupancy.last + 1] += resource.bytes;
+    }
+    uint64_t live = 0;
+    uint64_t peak = 0;
+    for (uint32_t position = 0; position < position_count; ++position) {
+        live = live + change[position] - ending[position];
+        peak = std::max(peak, live);
+    }
+    return peak;
+}
+
 // Most members of each class alive at once, and the peak of live bytes, over the order
 // (alive: within its occupancy, which async compute widens).
 struct Peaks {
@@ -67,40 +86,15 @@ Peaks measure_peaks(const std::vector<PlanResource>& resources, const std::vecto
     Peaks peaks;
     peaks.live_per_class.assign(class_count, 0);
     std::vector<uint32_t> live(class_count, 0);
-    uint64_t live_bytes = 0;
     for (uint32_t position = 0; position < position_count; ++position) {
-        for (uint32_t k = first_ending[position]; k < first_ending[position + 1]; ++k) {
-            const uint32_t r = ending[k];
-            --live[class_of_resource[r]];
-            live_bytes -= resources[r].bytes;
-        }
+        for (uint32_t k = first_ending[position]; k < first_ending[position + 1]; ++k) --live[class_of_resource[ending[k]]];
         for (uint32_t k = first_starting[position]; k < first_starting[position + 1]; ++k) {
-            const uint32_t r = starting[k];
-            const uint32_t c = class_of_resource[r];
+            const uint32_t c = class_of_resource[starting[k]];
             peaks.live_per_class[c] = std::max(peaks.live_per_class[c], ++live[c]);
-            live_bytes += resources[r].bytes;
         }
-        peaks.bytes = std::max(peaks.bytes, live_bytes);
     }
+    peaks.bytes = peak_live_bytes(resources, position_count);
     return peaks;
-}
-
-// The most bytes of resources alive at one position (Peaks::bytes without the classes' peaks):
-// each resource adds its bytes at its first position and takes them away after its last.
-uint64_t peak_live_bytes(const std::vector<PlanResource>& resources, uint32_t position_count) {
-    std::vector<uint64_t> change(position_count + 1, 0);
-    std::vector<uint64_t> ending(position_count + 1, 0);
-    for (const PlanResource& resource : resources) {
-        change[resource.occupancy.first] += resource.bytes;
-        ending[resource.occupancy.last + 1] += resource.bytes;
-    }
-    uint64_t live = 0;
-    uint64_t peak = 0;
-    for (uint32_t position = 0; position < position_count; ++position) {
-        live = live + change[position] - ending[position];
-        peak = std::max(peak, live);
-    }
-    return peak;
 }
 
 constexpr uint32_t kNoClass = UINT32_MAX;

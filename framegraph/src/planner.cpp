@@ -104,7 +104,7 @@ Result<Plan> plan_in_order(const FrameGraph& graph, const PlanOptions& options, 
     for (const PortAddress& out : graph.outputs()) plan.graph_outputs.push_back(graph.port_name(out));
     detail::name_resource_ports(graph, resolved);
     plan.resources = std::move(resolved.resources);
-    LOOM_TRY(detail::allocate_plan(plan, options, allocator, memory, resolved.graph_output_resources));
+    LOOM_TRY(detail::allocate_plan(plan, options, allocator, memory, std::move(resolved.graph_output_resources)));
     return plan;
 }
 
@@ -127,13 +127,13 @@ Result<OrderProblem> order_problem_of(const FrameGraph& graph, const PlanOptions
 
 }  // namespace detail
 
+namespace {
+
 // The phases in order (plan_phases.hpp). Under PassOrder::Memory the plan of the memory order
 // is kept when its allocation is no bigger than the declared order's, as the chosen allocator
 // places them: the declared order is planned too only when the memory order's bytes exceed a
 // lower bound of the declared order's (below it no allocation of the declared order can be).
-// With `basis`, what re-planning for another frame size needs is kept there (plan_resize.hpp).
-namespace {
-
+// With `basis`, what re-planning from this plan needs is kept there (plan_resize.hpp).
 Result<Plan> plan_graph(const FrameGraph& graph, const PlanOptions& options,
                         std::unique_ptr<detail::ResizeBasis>* basis) {
     if (basis) basis->reset();

@@ -244,12 +244,10 @@ private:
 
     // Empties every declaration, keeping the arrays' memory (clear, redeclare).
     void remove_declarations();
-    // Whether pass `index` (just added) is declared as the previous graph's pass `index` was,
-    // side effects aside (they may change after add_pass; side_effect_differences_ counts them).
-    [[nodiscard]] bool matches_previous(uint32_t index) const;
-    // Whether pass `index` (just added) is declared as the previous graph's pass `index` was but
-    // for the texture specs of its ports.
-    [[nodiscard]] bool matches_previous_but_texture_specs(uint32_t index) const;
+    // How pass `index` (just added) compares with the previous graph's pass `index`, side
+    // effects aside (they may change after add_pass; side_effect_differences_ counts them).
+    enum class PreviousMatch : uint8_t { Same, TextureSpecsDiffer, Different };
+    [[nodiscard]] PreviousMatch compare_with_previous(uint32_t index) const;
     // Whether the graph now declared is the previous graph (redeclare) but for the texture specs
     // of the passes in respecified_passes_...
     [[nodiscard]] bool is_previous_structure() const;
