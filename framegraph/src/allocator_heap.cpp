@@ -271,7 +271,7 @@ struct Placement {
 };
 
 Error overflow_error(const AllocationResource& resource) {
-    return make_error(ErrorCode::Graph, "heap allocator: " + resource.name + " (" + std::to_string(resource.bytes) +
+    return make_error(ErrorCode::Graph, "heap allocator: " + std::string(resource.name) + " (" + std::to_string(resource.bytes) +
                                             " bytes, alignment " + std::to_string(resource.alignment) +
                                             ") does not fit in a heap: its offset would overflow 64 bits");
 }

@@ -31,9 +31,13 @@ public:
         for (uint32_t r = 0; r < resource_count; ++r) members[problem.resources[r].spec_class].push_back(r);
 
         for (std::vector<uint32_t>& spec : members) {
-            std::stable_sort(spec.begin(), spec.end(), [&](uint32_t a, uint32_t b) {
+            const auto starts_before = [&](uint32_t a, uint32_t b) {
                 return problem.resources[a].lifetime.first < problem.resources[b].lifetime.first;
-            });
+            };
+            // Plans number resources by their producers' positions: mostly sorted already.
+            if (!std::is_sorted(spec.begin(), spec.end(), starts_before)) {
+                std::stable_sort(spec.begin(), spec.end(), starts_before);
+            }
             LowestFreeNumber textures;
             // (last position, texture) of the resources holding a texture, earliest end on top.
             using Tenant = std::pair<uint32_t, uint32_t>;

@@ -1,6 +1,5 @@
 #include <algorithm>
 #include <array>
-#include <functional>
 
 #include "allocators.hpp"
 
@@ -12,24 +11,6 @@ constexpr std::array<std::string_view, 3> kNames{"paper", "interval", "heap"};
 constexpr std::array<AllocatorKind, 3> kKinds{AllocatorKind::Paper, AllocatorKind::Interval, AllocatorKind::Heap};
 
 }  // namespace
-
-namespace detail {
-
-uint32_t LowestFreeNumber::take() {
-    // Every freed number is below next_, so the lowest free one is the heap's top if any.
-    if (free_.empty()) return next_++;
-    std::pop_heap(free_.begin(), free_.end(), std::greater<>{});
-    const uint32_t number = free_.back();
-    free_.pop_back();
-    return number;
-}
-
-void LowestFreeNumber::release(uint32_t number) {
-    free_.push_back(number);
-    std::push_heap(free_.begin(), free_.end(), std::greater<>{});
-}
-
-}  // namespace detail
 
 std::span<const std::string_view> allocator_names() { return kNames; }
 

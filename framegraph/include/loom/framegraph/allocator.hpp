@@ -53,7 +53,9 @@ struct AllocationResource {
     Lifetime lifetime;
     uint64_t bytes = 0;
     uint64_t alignment = 1;
-    std::string name;         ///< the resource's name ("pass.port"), for error messages
+    /// The resource's name ("pass.port"), for error messages: the plan's (PlanResource::name),
+    /// which outlives the allocation, so that a problem copies no names.
+    std::string_view name;
 };
 
 /// What an allocator is given: the passes in order and the resources with their classes, lifetimes, sizes and alignments.
