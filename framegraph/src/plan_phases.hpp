@@ -189,11 +189,12 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const Sched
 /// Join and resolve again for one texture resource whose group starts at `start`, after texture
 /// specs of its ports changed (position: per pass, its position in the order or
 /// kNotScheduled): `resource`'s spec (usage: its running ports'), requested format and bytes,
-/// and the size its ports joined to. Errors: the join's or resolve's; also ErrorCode::Join when
-/// the join compared differently declared sizes against the frame (JoinedGroup::sizes_compared),
-/// which a plan made from the previous one cannot keep.
+/// the size its ports joined to, and in `running` its ports that run. Errors: the join's or
+/// resolve's; also ErrorCode::Join when the join compared differently declared sizes against the
+/// frame (JoinedGroup::sizes_compared), which a plan made from the previous one cannot keep.
 Status rejoin_resource(const FrameGraph& graph, PortAddress start, std::span<const uint32_t> position, Extent2D frame,
-                       MemoryModel& memory, PlanResource& resource, std::optional<SizeSpec>& joined_size);
+                       MemoryModel& memory, PlanResource& resource, std::optional<SizeSpec>& joined_size,
+                       std::vector<PortAddress>& running);
 
 /// Fills in every resource's PlanResource::ports: the names of its running ports.
 void name_resource_ports(const FrameGraph& graph, ResolvedResources& resolved);

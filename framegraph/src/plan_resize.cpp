@@ -71,8 +71,7 @@ bool resize_buffers(const FrameGraph& graph, const ResizeBasis& basis, Extent2D 
 // pass reaches a pass that does not run.
 bool respecify(const FrameGraph& graph, ResizeBasis& basis, std::span<const uint32_t> respecified, Extent2D frame,
                MemoryModel& memory, Plan& plan) {
-    std::vector<uint32_t> position(graph.pass_count(), kNotScheduled);
-    for (uint32_t k = 0; k < plan.order.size(); ++k) position[plan.order[k].declaration_index] = k;
+    const std::vector<uint32_t>& position = basis.position;
     std::vector<bool> affected(plan.resources.size(), false);
     for (uint32_t pass : respecified) {
         // The groups of a culled pass are joined too: whether they still join is build_plan's to say.
@@ -87,21 +86,20 @@ bool respecify(const FrameGraph& graph, ResizeBasis& basis, std::span<const uint
             }
         }
     }
+    std::vector<PortAddress> running;
     for (uint32_t r = 0; r < plan.resources.size(); ++r) {
         if (!affected[r]) continue;
-        if (!rejoin_resource(graph, basis.starts[r], position, frame, memory, plan.resources[r], basis.joined_sizes[r])) {
+        PlanResource& resource = plan.resources[r];
+        if (!rejoin_resource(graph, basis.starts[r], position, frame, memory, resource, basis.joined_sizes[r], running)) {
             return false;
         }
-    }
-    for (PlanPass& pass : plan.order) {
-        for (uint32_t i = 0; i < pass.ports.size(); ++i) {
-            PlanPort& port = pass.ports[i];
-            if (!port.resource || !affected[*port.resource]) continue;
-            const ResolvedSpec& spec = plan.resources[*port.resource].spec;
-            const PortAddress address{pass.declaration_index, i};
-            port.usage = port_texture_usage(graph.facts(address), spec.format);
+        for (const PortAddress& address : running) {
+            // A plan pass's ports are its declared ports, in order.
+            PlanPort& port = plan.order[position[address.pass]].ports[address.port];
+            port.usage = port_texture_usage(graph.facts(address), resource.spec.format);
             // Checked by rejoin_resource.
-            port.range = resolve_range(graph.port_at(address).range, spec.mips, spec.layers).value_or(SubresourceRange{});
+            port.range =
+                resolve_range(graph.port_at(address).range, resource.spec.mips, resource.spec.layers).value_or(SubresourceRange{});
         }
     }
     return true;

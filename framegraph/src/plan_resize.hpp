@@ -36,6 +36,8 @@ struct ResizeBasis {
     std::vector<uint32_t> graph_output_resources;
     /// Per resource, the port that starts its group (ResolvedResources::starts).
     std::vector<PortAddress> starts;
+    /// Per pass, its position in the plan's order or kNotScheduled (Schedule::position).
+    std::vector<uint32_t> position;
 };
 
 /// build_plan, also setting `basis` to what resize_plan needs when the plan can be re-planned so:

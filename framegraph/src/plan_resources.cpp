@@ -572,7 +572,8 @@ Result<ResolvedResources> resolve_resources(const FrameGraph& graph, const Sched
 }
 
 Status rejoin_resource(const FrameGraph& graph, PortAddress start, std::span<const uint32_t> position, Extent2D frame,
-                       MemoryModel& memory, PlanResource& resource, std::optional<SizeSpec>& joined_size) {
+                       MemoryModel& memory, PlanResource& resource, std::optional<SizeSpec>& joined_size,
+                       std::vector<PortAddress>& running) {
     std::vector<PortAddress> group;
     collect_group(graph, start, group);
     bool sizes_compared = false;
@@ -581,12 +582,11 @@ Status rejoin_resource(const FrameGraph& graph, PortAddress start, std::span<con
     if (sizes_compared) {
         return make_error(ErrorCode::Join, "resource " + resource.name + ": its sizes join for this frame size only");
     }
-    std::vector<PortAddress> kept;
-    kept.reserve(group.size());
+    running.clear();
     for (const PortAddress& address : group) {
-        if (position[address.pass] != kNotScheduled) kept.push_back(address);
+        if (position[address.pass] != kNotScheduled) running.push_back(address);
     }
-    PendingResource item{resource, start, kept};
+    PendingResource item{resource, start, running};
     LOOM_TRY(resolve_pending(graph, *joined, frame, memory, item));
     joined_size = joined->size;
     return {};

@@ -161,7 +161,7 @@ Result<Plan> plan_graph(const FrameGraph& graph, const PlanOptions& options,
         if (basis && !resolved->joins_compared_sizes) {
             *basis = std::make_unique<detail::ResizeBasis>(
                 detail::ResizeBasis{std::move(resolved->joined_sizes), std::move(resolved->joined_buffer_sizes),
-                                    resolved->graph_output_resources, resolved->starts});
+                                    resolved->graph_output_resources, resolved->starts, schedule.position});
         }
         return plan_in_order(graph, options, *allocator, *memory, *dependencies, *kept, schedule, std::move(*resolved));
     }
