@@ -429,6 +429,32 @@ Status FrameGraph::set_side_effect(PassId id, bool side_effect) {
     return {};
 }
 
+Status FrameGraph::set_texture_spec(PortAddress address, TextureSpec spec) {
+    if (auto problem = address_problem(address)) return graph_error("set_texture_spec: no " + *problem);
+    Pass& pass = *passes_[address.pass];
+    Port& port = pass.ports_[address.port];
+    if (port.type != ResourceType::Texture) {
+        return graph_error("set_texture_spec " + port_name(address) + ": a buffer port; its spec is a BufferSpec");
+    }
+    if (port.spec == spec) return {};
+    // Whether the graph was, up to now, the cached plan's graph but for texture specs.
+    const bool respecified_since_plan =
+        cached_plan_ && !same_as_previous_ && (cached_revision_ == revision_ || respecified_revision_ == revision_);
+    port.spec = std::move(spec);
+    port_facts_[flat(address)] = PortFacts::of(port, pass.kind());
+    ++revision_;
+    // Redeclared passes are compared as they are added: one changed after its comparison is
+    // listed with the respecified ones, so that plan() does not take it for the previous pass.
+    if (same_as_previous_ || respecified_since_plan) {
+        // Listed twice is harmless; ports of one pass are mostly respecified one after another.
+        if (respecified_passes_.empty() || respecified_passes_.back() != address.pass) {
+            respecified_passes_.push_back(address.pass);
+        }
+        if (respecified_since_plan) respecified_revision_ = revision_;
+    }
+    return {};
+}
+
 Status FrameGraph::require_order(std::string_view earlier, std::string_view later) {
     const std::string what = "require_order " + quoted_name(earlier) + " before " + quoted_name(later) + ": ";
     auto first = find_pass(earlier);
@@ -451,7 +477,10 @@ Status FrameGraph::validate() const {
 }
 
 Result<std::shared_ptr<const Plan>> FrameGraph::plan(const PlanOptions& options) {
-    const bool same_structure = cached_plan_ && (cached_revision_ == revision_ || is_previous_structure());
+    // The cached plan's graph, declared again (redeclare) or respecified (set_texture_spec) at most.
+    const bool same_structure =
+        cached_plan_ && (cached_revision_ == revision_ || is_previous_structure() ||
+                         (!same_as_previous_ && respecified_revision_ == revision_));
     // The passes declared again with other texture specs (none when the graph was not redeclared),
     // taken before release_previous forgets them.
     std::vector<uint32_t> respecified;

@@ -1,6 +1,7 @@
-// Re-planning an unchanged graph for another frame size (FrameGraph::plan, plan_resize.hpp): in
-// the declared order the plan is made from the previous one, and must equal what build_plan
-// gives for the new size (every field, Plan::operator==), or fail with build_plan's error.
+// Re-planning a graph for another frame size, or after other texture specs (redeclared, or set by
+// set_texture_spec) (FrameGraph::plan, plan_resize.hpp): in the declared order the plan is made
+// from the previous one, and must equal what build_plan gives (every field, Plan::operator==), or
+// fail with build_plan's error.
 #include <memory>
 #include <vector>
 
@@ -358,6 +359,160 @@ TEST(PlanResize, ARedeclaredGraphWithOtherTextureSpecsIsPlannedFromThePreviousPl
     declare_scene(graph, TextureSpec::of(Format::RGBA16Float).with_scale(0.5f), TextureSpec::any().with_scale(0.5f));
     ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1280, 720})), nullptr);
     EXPECT_EQ(graph.plans_resized(), 4u);
+}
+
+// Each corpus graph planned, then the outputs of one pass (and the inputs that repeat them)
+// given other specs by set_texture_spec (every texture port is set: most to the spec it has),
+// three passes in turn without declaring anything again,
+// the third with another frame size too: the plan (or the error) is build_plan's.
+void check_set_texture_spec_corpus(Corpus corpus, AllocatorKind allocator, SpecSharing sharing) {
+    uint64_t respecified = 0;
+    uint64_t changes = 0;
+    for (uint64_t seed = 1; seed <= 40; ++seed) {
+        testing::RandomGraphOptions options = testing::corpus_options(seed, corpus);
+        FrameGraph graph = testing::random_graph(seed, options);
+        if (!plan_as_build_plan_does(graph, declared_at({1920, 1080}, allocator, sharing))) continue;
+        for (uint32_t changed : {options.passes - 1, options.passes / 2, 0u}) {
+            // The specs the same graph declared with that pass respecified has.
+            options.respecified_pass = changed;
+            const FrameGraph other = testing::random_graph(seed, options);
+            const uint64_t revision = graph.revision();
+            for (uint32_t pass = 0; pass < graph.pass_count(); ++pass) {
+                for (uint32_t port = 0; port < graph.pass(PassId{pass}).ports().size(); ++port) {
+                    const PortAddress address{pass, port};
+                    if (graph.port_at(address).type != ResourceType::Texture) continue;
+                    ASSERT_TRUE(graph.set_texture_spec(address, other.port_at(address).spec).ok());
+                }
+            }
+            if (graph.revision() == revision) continue;  // a pass without palette outputs
+            ++changes;
+            const uint64_t built = graph.plans_built();
+            const uint64_t resized = graph.plans_resized();
+            const Extent2D frame = changed == 0 ? Extent2D{1280, 720} : Extent2D{1920, 1080};
+            if (!plan_as_build_plan_does(graph, declared_at(frame, allocator, sharing))) break;
+            if (graph.plans_resized() == resized + 1) {
+                ++respecified;
+                EXPECT_EQ(graph.plans_built(), built);
+            } else {
+                EXPECT_EQ(graph.plans_built(), built + 1);
+            }
+        }
+    }
+    // Most changes are to passes that run.
+    EXPECT_GT(respecified, changes / 2) << respecified << " of " << changes;
+}
+
+TEST(PlanResize, RandomGraphsWithTextureSpecsSetInPlacePlanAsTheyPlan) {
+    for (AllocatorKind allocator : {AllocatorKind::Paper, AllocatorKind::Interval, AllocatorKind::Heap}) {
+        for (SpecSharing sharing : {SpecSharing::Equal, SpecSharing::Joinable}) {
+            SCOPED_TRACE(std::string(allocator_name(allocator)) + " " + std::string(spec_sharing_name(sharing)));
+            check_set_texture_spec_corpus(Corpus::Textures, allocator, sharing);
+        }
+    }
+    for (AllocatorKind allocator : {AllocatorKind::Interval, AllocatorKind::Heap}) {
+        SCOPED_TRACE(allocator_name(allocator));
+        check_set_texture_spec_corpus(Corpus::Mixed, allocator, SpecSharing::Equal);
+        check_set_texture_spec_corpus(Corpus::Async, allocator, SpecSharing::Equal);
+    }
+}
+
+TEST(PlanResize, ATextureSpecSetInPlaceIsPlannedFromThePreviousPlan) {
+    FrameGraph graph;
+    declare_scene(graph, TextureSpec::of(Format::RGBA16Float));
+    std::shared_ptr<const Plan> first = plan_as_build_plan_does(graph, declared_at({1920, 1080}));
+    ASSERT_NE(first, nullptr);
+    const Plan before = *first;
+    // Another format for the scene's colour, the post pass's read of it at half size: the held
+    // plan is copied and stays as it was.
+    ASSERT_TRUE(graph.set_texture_spec({0, 0}, TextureSpec::of(Format::R11G11B10Float).with_scale(0.5f)).ok());
+    ASSERT_TRUE(graph.set_texture_spec({1, 0}, TextureSpec::any().with_scale(0.5f)).ok());
+    std::shared_ptr<const Plan> other = plan_as_build_plan_does(graph, declared_at({1920, 1080}));
+    ASSERT_NE(other, nullptr);
+    EXPECT_EQ(other->resources[0].spec.format, Format::R11G11B10Float);
+    EXPECT_EQ(other->resources[0].spec.extent, (Extent2D{960, 540}));
+    EXPECT_TRUE(*first == before);
+    EXPECT_EQ(graph.plans_built(), 1u);
+    EXPECT_EQ(graph.plans_resized(), 1u);
+    // Unchanged since: the same plan, the same object.
+    {
+        auto again = graph.plan(declared_at({1920, 1080}));
+        ASSERT_TRUE(again.ok());
+        EXPECT_EQ(*again, other);
+    }
+    // Back to the first specs (a spec equal to the port's changes nothing), and a resize.
+    first.reset();
+    other.reset();
+    const uint64_t revision = graph.revision();
+    ASSERT_TRUE(graph.set_texture_spec({1, 1}, {}).ok());
+    EXPECT_EQ(graph.revision(), revision);
+    ASSERT_TRUE(graph.set_texture_spec({0, 0}, TextureSpec::of(Format::RGBA16Float)).ok());
+    ASSERT_TRUE(graph.set_texture_spec({1, 0}, {}).ok());
+    std::shared_ptr<const Plan> back = plan_as_build_plan_does(graph, declared_at({1920, 1080}));
+    ASSERT_NE(back, nullptr);
+    EXPECT_TRUE(*back == before);
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1280, 720})), nullptr);
+    EXPECT_EQ(graph.plans_built(), 1u);
+    EXPECT_EQ(graph.plans_resized(), 3u);
+}
+
+TEST(PlanResize, ATextureSpecSetWithOtherChangesOrOnAPassThatDoesNotRunIsPlannedAnew) {
+    FrameGraph graph;
+    declare_scene(graph, TextureSpec::of(Format::RGBA16Float));
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    // The culled debug pass.
+    ASSERT_TRUE(graph.set_texture_spec({2, 0}, TextureSpec::any().with_samples(1)).ok());
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    EXPECT_EQ(graph.plans_built(), 2u);
+    // A spec set, then a graph output marked: planned anew...
+    ASSERT_TRUE(graph.set_texture_spec({0, 0}, TextureSpec::of(Format::RGBA8Unorm)).ok());
+    ASSERT_TRUE(graph.mark_output({2, 1}).ok());
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    EXPECT_EQ(graph.plans_built(), 3u);
+    // ... and the other way round.
+    ASSERT_TRUE(graph.require_order("debug", "post").ok());
+    ASSERT_TRUE(graph.set_texture_spec({0, 0}, TextureSpec::of(Format::RGBA16Float)).ok());
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    EXPECT_EQ(graph.plans_built(), 4u);
+    // Specs that no longer join: the join's error, as build_plan gives it.
+    ASSERT_TRUE(graph.set_texture_spec({1, 0}, TextureSpec::of(Format::RGBA8Unorm)).ok());
+    auto conflict = graph.plan(declared_at({1920, 1080}));
+    ASSERT_FALSE(conflict.ok());
+    EXPECT_EQ(conflict.error().code, ErrorCode::Join);
+    EXPECT_EQ(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    EXPECT_EQ(graph.plans_resized(), 0u);
+}
+
+TEST(PlanResize, ATextureSpecSetWhileRedeclaringIsPlanned) {
+    // A pass declared again as it was, so found the same as before, then given another spec.
+    FrameGraph graph;
+    declare_scene(graph, TextureSpec::of(Format::RGBA16Float));
+    ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080})), nullptr);
+    graph.redeclare();
+    declare_scene(graph, TextureSpec::of(Format::RGBA16Float));
+    ASSERT_TRUE(graph.set_texture_spec({0, 0}, TextureSpec::of(Format::RGBA8Unorm)).ok());
+    std::shared_ptr<const Plan> plan = plan_as_build_plan_does(graph, declared_at({1920, 1080}));
+    ASSERT_NE(plan, nullptr);
+    EXPECT_EQ(plan->resources[0].spec.format, Format::RGBA8Unorm);
+    EXPECT_EQ(graph.plans_built(), 1u);
+    EXPECT_EQ(graph.plans_resized(), 1u);
+}
+
+TEST(PlanResize, SetTextureSpecRefusesBufferPortsAndAddressesOutsideTheGraph) {
+    FrameGraph graph;
+    declare_scene(graph, TextureSpec::of(Format::RGBA16Float));
+    ASSERT_TRUE(graph.add_pass(Pass("cull").set_kind(PassKind::Compute).buffer_output("lights", BufferSpec::of_size(64))).ok());
+    const uint64_t revision = graph.revision();
+    Status buffer = graph.set_texture_spec({3, 0}, TextureSpec::of(Format::RGBA8Unorm));
+    ASSERT_FALSE(buffer.ok());
+    EXPECT_EQ(buffer.error().code, ErrorCode::Graph);
+    EXPECT_EQ(buffer.error().message, "set_texture_spec cull.lights: a buffer port; its spec is a BufferSpec");
+    Status pass = graph.set_texture_spec({4, 0}, {});
+    ASSERT_FALSE(pass.ok());
+    EXPECT_EQ(pass.error().message, "set_texture_spec: no pass #4, which is not in the graph (it has 4 passes)");
+    Status port = graph.set_texture_spec({0, 2}, {});
+    ASSERT_FALSE(port.ok());
+    EXPECT_EQ(port.error().message, "set_texture_spec: no port #2 of pass 'scene', which has 2 ports (color, depth)");
+    EXPECT_EQ(graph.revision(), revision);
 }
 
 TEST(PlanResize, AnotherUsageKeepsTheClassesAndWidensTheirUsage) {

@@ -120,6 +120,14 @@ public:
     /// set_side_effect by handle.
     Status set_side_effect(PassId pass, bool side_effect = true);
 
+    /// Gives texture port `port` another spec, as if its pass had been declared with it (a
+    /// quality setting that changes a format or a scale, say), without declaring the graph again.
+    /// When every change to the graph since the current plan was such a respecification and the
+    /// plan is in the declared order, the next plan() makes the new plan from the previous one
+    /// (see plan()); whether the specs still join is planning's to say. Setting the spec the port
+    /// has changes nothing. Errors (ErrorCode::Graph): an address outside the graph, a buffer port.
+    Status set_texture_spec(PortAddress port, TextureSpec spec);
+
     /// Makes room for `passes` passes with `ports` ports in all (and as many connections), so
     /// that declaring a graph of a known size does not grow its arrays pass by pass.
     void reserve(uint32_t passes, uint32_t ports);
@@ -263,8 +271,12 @@ private:
     bool same_as_previous_ = false;
     // How many passes added since redeclare() differ from the previous graph's in their side effect.
     uint32_t side_effect_differences_ = 0;
-    // The passes added since redeclare() that differ from the previous graph's in texture specs only.
+    // The passes added since redeclare() that differ from the previous graph's in texture specs
+    // only, or whose texture specs set_texture_spec changed since then, or since the cached plan.
     std::vector<uint32_t> respecified_passes_;
+    // The revision set_texture_spec left when every change since the cached plan was one of its:
+    // equal to revision_ while that holds (any other change increases revision_ past it).
+    uint64_t respecified_revision_ = 0;
 
     // The cached plan made the plan of `options`, which differ from its options in the frame size
     // at most, for the graph declared now, which differs from its graph in the texture specs of
