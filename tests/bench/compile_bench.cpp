@@ -167,6 +167,14 @@ BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_resized_held, LoomAllocatorUnder
     ->Apply(sizes);
 BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_replanned, LoomAllocatorUnderTest::Interval, LoomGraphUse::Replanned)
     ->Apply(sizes);
+// A graph declared once whose middle pass's first output takes the next format every call
+// (set_texture_spec): plan() makes the plan from the previous one, in place (spec_set) or copied
+// from a held plan (spec_set_held); interval_cleared_planned is the graph declared and planned anew.
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_spec_set, LoomAllocatorUnderTest::Interval, LoomGraphUse::SpecSet)
+    ->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_spec_set_held, LoomAllocatorUnderTest::Interval,
+                  LoomGraphUse::SpecSetHeld)
+    ->Apply(sizes);
 // The heap allocator places by bytes, so a resize allocates again: 1k and 10k passes.
 BENCHMARK_CAPTURE(BM_CompileLoomTyped, heap_resized, LoomAllocatorUnderTest::Heap, LoomGraphUse::Resized)
     ->RangeMultiplier(10)

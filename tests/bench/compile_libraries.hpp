@@ -56,6 +56,13 @@ enum class LoomGraphUse {
     /// The same graph declared once, planned from scratch by build_plan every call at the
     /// sizes in turn: what Resized saves.
     Replanned,
+    /// One graph declared once; every call gives the first output of its middle pass the next
+    /// format (FrameGraph::set_texture_spec) and plans by FrameGraph::plan at one frame size:
+    /// plan() makes the plan from the previous one (it checks that it did), changing it in
+    /// place...
+    SpecSet,
+    /// ... or copying it, the previous plan held (as an executor holds it).
+    SpecSetHeld,
 };
 
 /// loom through its typed API: reads by the handle of the write (Pass::read), outputs by

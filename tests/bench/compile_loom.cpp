@@ -100,6 +100,38 @@ void declare_typed(FrameGraph& frame_graph, const CompileGraph& graph, const Com
     }
 }
 
+// The spec series: one graph declared once per graph size, the first output of its middle pass
+// in the next format every call.
+uint64_t plan_respecified(const CompileGraph& graph, const CompileNames& names, LoomGraphUse use) {
+    static FrameGraph declared;
+    static std::size_t declared_passes = 0;
+    static uint32_t format = 0;
+    static std::shared_ptr<const Plan> held;
+    const PlanOptions options = plan_options(LoomAllocatorUnderTest::Interval);
+    const std::size_t middle = graph.passes.size() / 2;
+    const CompilePass& pass = graph.passes[middle];
+    if (declared_passes != graph.passes.size()) {
+        held.reset();
+        declared.clear();
+        declare_typed(declared, graph, names, SIZE_MAX);
+        declared_passes = graph.passes.size();
+        format = graph.textures[pass.first_texture].format;
+        if (!declared.plan(options)) std::abort();
+    }
+    if (use != LoomGraphUse::SpecSetHeld) held.reset();
+    CompileTexture texture = graph.textures[pass.first_texture];
+    texture.format = format = (format + 1) % kFormats;
+    const PortAddress output = port_of(PassId{static_cast<uint32_t>(middle)}, pass.read_count);
+    if (!declared.set_texture_spec(output, spec_of(texture))) std::abort();
+    const uint64_t resized = declared.plans_resized();
+    auto plan = declared.plan(options);
+    if (!plan) std::abort();
+    // The series measures planning from the previous plan: one planned anew would make it meaningless.
+    if (declared.plans_resized() != resized + 1) std::abort();
+    if (use == LoomGraphUse::SpecSetHeld) held = *plan;
+    return (*plan)->summary.bytes;
+}
+
 // The resize series: one graph declared once per graph size, planned at 1920x1080 and 1280x720
 // in turn.
 uint64_t plan_in_turn(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator,
@@ -145,6 +177,7 @@ uint64_t compile_in_loom_typed(const CompileGraph& graph, const CompileNames& na
     if (use == LoomGraphUse::Resized || use == LoomGraphUse::ResizedHeld || use == LoomGraphUse::Replanned) {
         return plan_in_turn(graph, names, allocator, use);
     }
+    if (use == LoomGraphUse::SpecSet || use == LoomGraphUse::SpecSetHeld) return plan_respecified(graph, names, use);
     // One graph per kind of reuse, kept from call to call.
     static FrameGraph cleared;
     static FrameGraph cleared_planned;
