@@ -94,9 +94,9 @@ std::optional<BufferRange> resolve_bytes(const BufferRange& bytes, uint64_t size
 
 /// How a port uses its buffer: a write is Storage (CopyDst in a copy pass); a read is the one
 /// read usage the port declares (vertex, index, indirect, uniform, storage; copy in a copy pass),
-/// Storage (CopySrc) when it declares none. ErrorCode::Graph naming the port when it declares
-/// several read usages.
-Result<rhi::BufferUsage> port_buffer_usage(const Port& port, PassKind pass_kind, std::string_view port_name);
+/// Storage (CopySrc) when it declares none. ErrorCode::Graph naming the port (its name built
+/// only then) when it declares several read usages.
+Result<rhi::BufferUsage> port_buffer_usage(const FrameGraph& graph, PortAddress address);
 /// What a buffer port does by its role alone: Storage, or in a copy pass CopyDst (writes) and
 /// CopySrc (reads).
 rhi::BufferUsage default_buffer_use(PortKind kind, PassKind pass_kind);

@@ -204,8 +204,7 @@ Status resolve_pending_buffer(const FrameGraph& graph, const BufferSpec& joined,
     auto resolved = resolve_buffer(joined, frame, r.name);
     if (!resolved) return subjects(resolved.take_error());
     for (const PortAddress& address : item.kept_ports) {
-        const Port& port = graph.port_at(address);
-        auto role = port_buffer_usage(port, graph.pass(PassId{address.pass}).kind(), graph.port_name(address));
+        auto role = port_buffer_usage(graph, address);
         if (!role) return role.take_error();
         resolved->usage |= *role;
     }
@@ -492,8 +491,10 @@ rhi::BufferUsage default_buffer_use(PortKind kind, PassKind pass_kind) {
     return copy ? rhi::BufferUsage::CopySrc : rhi::BufferUsage::Storage;
 }
 
-Result<rhi::BufferUsage> port_buffer_usage(const Port& port, PassKind pass_kind, std::string_view port_name) {
+Result<rhi::BufferUsage> port_buffer_usage(const FrameGraph& graph, PortAddress address) {
     using rhi::BufferUsage;
+    const Port& port = graph.port_at(address);
+    const PassKind pass_kind = graph.pass(PassId{address.pass}).kind();
     if (port_writes(port.kind)) return default_buffer_use(port.kind, pass_kind);
     static constexpr BufferUsage kReads[] = {BufferUsage::Vertex, BufferUsage::Index, BufferUsage::Uniform,
                                              BufferUsage::Storage, BufferUsage::Indirect, BufferUsage::CopySrc};
@@ -501,11 +502,12 @@ Result<rhi::BufferUsage> port_buffer_usage(const Port& port, PassKind pass_kind,
     for (BufferUsage flag : kReads) {
         if (!rhi::has_all(port.buffer.usage, flag)) continue;
         if (read != BufferUsage::None) {
+            const std::string port_name = graph.port_name(address);
             Error error = make_error(ErrorCode::Graph,
-                                     "port " + std::string(port_name) + " reads its buffer in several ways (" +
+                                     "port " + port_name + " reads its buffer in several ways (" +
                                          describe_buffer_usage(read | flag) +
                                          "); a port reads a buffer one way: declare one input port per use");
-            error.subjects = {std::string(port_name)};
+            error.subjects = {port_name};
             return error;
         }
         read = flag;
@@ -596,8 +598,11 @@ void name_resource_ports(const FrameGraph& graph, ResolvedResources& resolved) {
     for (uint32_t r = 0; r < resolved.resources.size(); ++r) {
         std::vector<std::string>& ports = resolved.resources[r].ports;
         ports.clear();
-        ports.reserve(resolved.running_ports_of(r).size());
-        for (const PortAddress& address : resolved.running_ports_of(r)) ports.push_back(graph.port_name(address));
+        const std::span<const PortAddress> running = resolved.running_ports_of(r);
+        ports.reserve(running.size());
+        // The starting port, which runs with its producer, comes first and names the resource.
+        ports.push_back(resolved.resources[r].name);
+        for (const PortAddress& address : running.subspan(1)) ports.push_back(graph.port_name(address));
     }
 }
 
@@ -662,7 +667,7 @@ std::vector<PlanPass> plan_passes(const FrameGraph& graph, const Schedule& sched
             // buffer may stand in). Ports with a resource were checked when it was resolved.
             if (port.type == ResourceType::Buffer) {
                 planned_port.buffer_usage =
-                    port_buffer_usage(port, pass.kind(), {}).value_or(default_buffer_use(port.kind, pass.kind()));
+                    port_buffer_usage(graph, {p, i}).value_or(default_buffer_use(port.kind, pass.kind()));
             }
             const uint32_t r = resolved.resource_of_port[p][i];
             if (r != kNoResource) {
