@@ -175,6 +175,15 @@ BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_spec_set, LoomAllocatorUnderTest
 BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_spec_set_held, LoomAllocatorUnderTest::Interval,
                   LoomGraphUse::SpecSetHeld)
     ->Apply(sizes);
+// Parts that bound what planning faster could reach, side by side with the peers: declaring a
+// graph without planning it, and each allocator alone on the plan's allocation problem.
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, declared_only, LoomAllocatorUnderTest::Interval, LoomGraphUse::DeclaredOnly)
+    ->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, interval_allocator_only, LoomAllocatorUnderTest::Interval,
+                  LoomGraphUse::AllocatorOnly)
+    ->Apply(sizes);
+BENCHMARK_CAPTURE(BM_CompileLoomTyped, heap_allocator_only, LoomAllocatorUnderTest::Heap, LoomGraphUse::AllocatorOnly)
+    ->Apply(sizes);
 // The heap allocator places by bytes, so a resize allocates again: 1k and 10k passes.
 BENCHMARK_CAPTURE(BM_CompileLoomTyped, heap_resized, LoomAllocatorUnderTest::Heap, LoomGraphUse::Resized)
     ->RangeMultiplier(10)

@@ -63,6 +63,12 @@ enum class LoomGraphUse {
     SpecSet,
     /// ... or copying it, the previous plan held (as an executor holds it).
     SpecSetHeld,
+    /// What no faster planning can save: a new graph declared (and destroyed) every call, not
+    /// planned at all.
+    DeclaredOnly,
+    /// The allocator alone: the graph planned once, then every call runs the allocator on the
+    /// plan's allocation problem (the resources with their classes, lifetimes and bytes).
+    AllocatorOnly,
 };
 
 /// loom through its typed API: reads by the handle of the write (Pass::read), outputs by

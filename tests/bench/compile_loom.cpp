@@ -132,6 +132,40 @@ uint64_t plan_respecified(const CompileGraph& graph, const CompileNames& names, 
     return (*plan)->summary.bytes;
 }
 
+// The allocator series: the graph planned once per graph size and allocator, then only the
+// allocator run on the plan's problem, as the planner gives it (no pass lists: neither the
+// interval nor the heap allocator reads them).
+uint64_t allocate_only(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator) {
+    static std::size_t planned_passes = 0;
+    static LoomAllocatorUnderTest planned_allocator = allocator;
+    static Plan plan;
+    static AllocationProblem problem;
+    const PlanOptions options = plan_options(allocator);
+    if (planned_passes != graph.passes.size() || planned_allocator != allocator) {
+        FrameGraph declared;
+        declare_typed(declared, graph, names, SIZE_MAX);
+        auto planned = build_plan(declared, options);
+        if (!planned) std::abort();
+        plan = std::move(*planned);
+        problem = {};
+        problem.spec_class_count = static_cast<uint32_t>(plan.spec_classes.size());
+        problem.max_heap_bytes = options.max_heap_bytes;
+        problem.passes.resize(plan.order.size());
+        for (const PlanResource& resource : plan.resources) {
+            problem.resources.push_back(
+                {resource.spec_class, resource.occupancy, resource.bytes, resource.alignment, resource.name});
+            if (resource.graph_output) problem.graph_outputs.push_back(static_cast<uint32_t>(problem.resources.size() - 1));
+        }
+        planned_passes = graph.passes.size();
+        planned_allocator = allocator;
+    }
+    const std::unique_ptr<Allocator> chosen = make_allocator(options.allocator);
+    if (chosen->reads_pass_lists()) std::abort();  // the problem has none
+    auto allocation = chosen->allocate(problem);
+    if (!allocation) std::abort();
+    return allocation->texture_count;
+}
+
 // The resize series: one graph declared once per graph size, planned at 1920x1080 and 1280x720
 // in turn.
 uint64_t plan_in_turn(const CompileGraph& graph, const CompileNames& names, LoomAllocatorUnderTest allocator,
@@ -178,6 +212,12 @@ uint64_t compile_in_loom_typed(const CompileGraph& graph, const CompileNames& na
         return plan_in_turn(graph, names, allocator, use);
     }
     if (use == LoomGraphUse::SpecSet || use == LoomGraphUse::SpecSetHeld) return plan_respecified(graph, names, use);
+    if (use == LoomGraphUse::AllocatorOnly) return allocate_only(graph, names, allocator);
+    if (use == LoomGraphUse::DeclaredOnly) {
+        FrameGraph declared;
+        declare_typed(declared, graph, names, SIZE_MAX);
+        return declared.pass_count();
+    }
     // One graph per kind of reuse, kept from call to call.
     static FrameGraph cleared;
     static FrameGraph cleared_planned;
