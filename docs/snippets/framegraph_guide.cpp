@@ -148,6 +148,18 @@ Status plan_framegraph_examples() {
         LOOM_TRY(fail_unless((*plan)->order.size() == 3, "the typed graph schedules its three passes"));
         LOOM_TRY(fail_unless((*plan)->texture_of("geometry", "albedo") == (*plan)->texture_of("composite", "color"),
                              "the connection by handles joins the two ports"));
+        options.order = PassOrder::Declared;
+        LOOM_TRY(graph.plan(options));
+        // [docs:set-texture-spec]
+        // A setting changed: albedo in 16-bit float from now on. Nothing is declared again, and
+        // in the declared order the next plan() is made from the previous plan.
+        LOOM_TRY(graph.set_texture_spec(port_of(geometry, 0), TextureSpec::of(rhi::Format::RGBA16Float)));
+        auto respecified = graph.plan(options);
+        // [/docs:set-texture-spec]
+        if (!respecified) return respecified.take_error();
+        LOOM_TRY(fail_unless((*respecified)->resources[0].spec.format == rhi::Format::RGBA16Float,
+                             "the respecified albedo is 16-bit float"));
+        LOOM_TRY(fail_unless(graph.plans_resized() == 1, "the respecified graph is planned from the previous plan"));
     }
     return {};
 }
