@@ -36,6 +36,12 @@ uint64_t result_of(const Result<Plan>& plan) {
     return plan->summary.bytes;
 }
 
+// FrameGraph::plan's plan, which must be one (as result_of).
+std::shared_ptr<const Plan> planned(Result<std::shared_ptr<const Plan>> plan) {
+    if (!plan) std::abort();
+    return std::move(*plan);
+}
+
 }  // namespace
 
 CompileNames make_compile_names(const CompileGraph& graph) {
@@ -116,7 +122,7 @@ uint64_t plan_respecified(const CompileGraph& graph, const CompileNames& names, 
         declare_typed(declared, graph, names, SIZE_MAX);
         declared_passes = graph.passes.size();
         format = graph.textures[pass.first_texture].format;
-        if (!declared.plan(options)) std::abort();
+        planned(declared.plan(options));
     }
     if (use != LoomGraphUse::SpecSetHeld) held.reset();
     CompileTexture texture = graph.textures[pass.first_texture];
@@ -124,12 +130,11 @@ uint64_t plan_respecified(const CompileGraph& graph, const CompileNames& names, 
     const PortAddress output = port_of(PassId{static_cast<uint32_t>(middle)}, pass.read_count);
     if (!declared.set_texture_spec(output, spec_of(texture))) std::abort();
     const uint64_t resized = declared.plans_resized();
-    auto plan = declared.plan(options);
-    if (!plan) std::abort();
+    std::shared_ptr<const Plan> plan = planned(declared.plan(options));
     // The series measures planning from the previous plan: one planned anew would make it meaningless.
     if (declared.plans_resized() != resized + 1) std::abort();
-    if (use == LoomGraphUse::SpecSetHeld) held = *plan;
-    return (*plan)->summary.bytes;
+    if (use == LoomGraphUse::SpecSetHeld) held = plan;
+    return plan->summary.bytes;
 }
 
 // The allocator series: the graph planned once per graph size and allocator, then only the
@@ -194,14 +199,13 @@ uint64_t plan_in_turn(const CompileGraph& graph, const CompileNames& names, Loom
     }
     options.frame = other_than(planned_frame);
     const uint64_t resized = declared.plans_resized();
-    auto plan = declared.plan(options);
-    if (!plan) std::abort();
+    std::shared_ptr<const Plan> plan = planned(declared.plan(options));
     // The series measures resizing: a graph that planned anew would make it meaningless.
     if (planned_frame != Extent2D{} && declared.plans_resized() != resized + 1) std::abort();
     planned_frame = options.frame;
     planned_allocator = allocator;
-    if (use == LoomGraphUse::ResizedHeld) held = *plan;
-    return (*plan)->summary.bytes;
+    if (use == LoomGraphUse::ResizedHeld) held = plan;
+    return plan->summary.bytes;
 }
 
 }  // namespace
@@ -243,9 +247,7 @@ uint64_t compile_in_loom_typed(const CompileGraph& graph, const CompileNames& na
     if (use == LoomGraphUse::Fresh || use == LoomGraphUse::Cleared) {
         return result_of(build_plan(frame_graph, plan_options(allocator)));
     }
-    auto plan = frame_graph.plan(plan_options(allocator));
-    if (!plan) std::abort();
-    return (*plan)->summary.bytes;
+    return planned(frame_graph.plan(plan_options(allocator)))->summary.bytes;
 }
 
 }  // namespace loom::bench

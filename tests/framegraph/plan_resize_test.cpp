@@ -111,12 +111,18 @@ TEST(PlanResize, RandomGraphsWithAsyncComputeResizeAsTheyPlan) {
     }
 }
 
-// Each corpus graph planned, then redeclared three times with the outputs of one pass in other
-// specs (and the inputs that repeat them): plan() makes the plan from the previous one when the
-// passes that changed run, else plans anew; either way the plan (or the error) is build_plan's.
-void check_respecified_corpus(Corpus corpus, AllocatorKind allocator, SpecSharing sharing, Extent2D second_frame) {
+// How the graph is changed: declared again (redeclare) with the outputs of one pass in other
+// specs, or given those specs in place (set_texture_spec on every texture port: most keep theirs).
+enum class SpecChange { Redeclared, SetInPlace };
+
+// Each corpus graph planned, then changed three times, the outputs of one pass in other specs
+// each time (and the inputs that repeat them), the third time with `third_frame`: plan() makes
+// the plan from the previous one when the passes that changed run, else plans anew; either way
+// the plan (or the error) is build_plan's.
+void check_respecified_corpus(Corpus corpus, AllocatorKind allocator, SpecSharing sharing, Extent2D third_frame,
+                              SpecChange how) {
     uint64_t respecified = 0;
-    uint64_t redeclared = 0;
+    uint64_t changes = 0;
     for (uint64_t seed = 1; seed <= 40; ++seed) {
         testing::RandomGraphOptions options = testing::corpus_options(seed, corpus);
         FrameGraph graph;
@@ -124,40 +130,69 @@ void check_respecified_corpus(Corpus corpus, AllocatorKind allocator, SpecSharin
         ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1920, 1080}, allocator, sharing)), nullptr);
         for (uint32_t changed : {options.passes - 1, options.passes / 2, 0u}) {
             options.respecified_pass = changed;
-            graph.redeclare();
-            testing::declare_random_graph(graph, seed, options);
+            if (how == SpecChange::Redeclared) {
+                graph.redeclare();
+                testing::declare_random_graph(graph, seed, options);
+            } else {
+                const FrameGraph other = testing::random_graph(seed, options);
+                const uint64_t revision = graph.revision();
+                for (uint32_t pass = 0; pass < graph.pass_count(); ++pass) {
+                    for (uint32_t port = 0; port < graph.pass(PassId{pass}).ports().size(); ++port) {
+                        const PortAddress address{pass, port};
+                        if (graph.port_at(address).type != ResourceType::Texture) continue;
+                        ASSERT_TRUE(graph.set_texture_spec(address, other.port_at(address).spec).ok());
+                    }
+                }
+                if (graph.revision() == revision) continue;  // a pass without palette outputs
+            }
             const uint64_t built = graph.plans_built();
             const uint64_t resized = graph.plans_resized();
-            const Extent2D frame = changed == 0 ? second_frame : Extent2D{1920, 1080};
+            const Extent2D frame = changed == 0 ? third_frame : Extent2D{1920, 1080};
             if (!plan_as_build_plan_does(graph, declared_at(frame, allocator, sharing))) break;
-            ++redeclared;
-            // Made from the previous plan, planned anew, or (the same specs as the declaration
-            // before, as when the changed pass draws no palette output) the previous plan itself.
+            ++changes;
+            // Made from the previous plan or planned anew; a graph redeclared with the specs it
+            // had (the changed pass draws no palette output) gets the previous plan itself.
             if (graph.plans_resized() == resized + 1) {
                 ++respecified;
                 EXPECT_EQ(graph.plans_built(), built);
-            } else {
+            } else if (how == SpecChange::Redeclared) {
                 EXPECT_LE(graph.plans_built(), built + 1);
+            } else {
+                EXPECT_EQ(graph.plans_built(), built + 1);
             }
         }
     }
-    // Most redeclared graphs change passes that run.
-    EXPECT_GT(respecified, redeclared / 2) << respecified << " of " << redeclared;
+    // Most changes are to passes that run.
+    EXPECT_GT(respecified, changes / 2) << respecified << " of " << changes;
 }
 
 TEST(PlanResize, RandomGraphsRedeclaredWithOtherTextureSpecsPlanAsTheyPlan) {
     for (AllocatorKind allocator : {AllocatorKind::Paper, AllocatorKind::Interval, AllocatorKind::Heap}) {
         for (SpecSharing sharing : {SpecSharing::Equal, SpecSharing::Joinable}) {
             SCOPED_TRACE(std::string(allocator_name(allocator)) + " " + std::string(spec_sharing_name(sharing)));
-            check_respecified_corpus(Corpus::Textures, allocator, sharing, {1920, 1080});
+            check_respecified_corpus(Corpus::Textures, allocator, sharing, {1920, 1080}, SpecChange::Redeclared);
             // With the frame size changing at once.
-            check_respecified_corpus(Corpus::Textures, allocator, sharing, {1280, 720});
+            check_respecified_corpus(Corpus::Textures, allocator, sharing, {1280, 720}, SpecChange::Redeclared);
         }
     }
     for (AllocatorKind allocator : {AllocatorKind::Interval, AllocatorKind::Heap}) {
         SCOPED_TRACE(allocator_name(allocator));
-        check_respecified_corpus(Corpus::Mixed, allocator, SpecSharing::Equal, {1280, 720});
-        check_respecified_corpus(Corpus::Async, allocator, SpecSharing::Equal, {1280, 720});
+        check_respecified_corpus(Corpus::Mixed, allocator, SpecSharing::Equal, {1280, 720}, SpecChange::Redeclared);
+        check_respecified_corpus(Corpus::Async, allocator, SpecSharing::Equal, {1280, 720}, SpecChange::Redeclared);
+    }
+}
+
+TEST(PlanResize, RandomGraphsWithTextureSpecsSetInPlacePlanAsTheyPlan) {
+    for (AllocatorKind allocator : {AllocatorKind::Paper, AllocatorKind::Interval, AllocatorKind::Heap}) {
+        for (SpecSharing sharing : {SpecSharing::Equal, SpecSharing::Joinable}) {
+            SCOPED_TRACE(std::string(allocator_name(allocator)) + " " + std::string(spec_sharing_name(sharing)));
+            check_respecified_corpus(Corpus::Textures, allocator, sharing, {1280, 720}, SpecChange::SetInPlace);
+        }
+    }
+    for (AllocatorKind allocator : {AllocatorKind::Interval, AllocatorKind::Heap}) {
+        SCOPED_TRACE(allocator_name(allocator));
+        check_respecified_corpus(Corpus::Mixed, allocator, SpecSharing::Equal, {1280, 720}, SpecChange::SetInPlace);
+        check_respecified_corpus(Corpus::Async, allocator, SpecSharing::Equal, {1280, 720}, SpecChange::SetInPlace);
     }
 }
 
@@ -359,61 +394,6 @@ TEST(PlanResize, ARedeclaredGraphWithOtherTextureSpecsIsPlannedFromThePreviousPl
     declare_scene(graph, TextureSpec::of(Format::RGBA16Float).with_scale(0.5f), TextureSpec::any().with_scale(0.5f));
     ASSERT_NE(plan_as_build_plan_does(graph, declared_at({1280, 720})), nullptr);
     EXPECT_EQ(graph.plans_resized(), 4u);
-}
-
-// Each corpus graph planned, then the outputs of one pass (and the inputs that repeat them)
-// given other specs by set_texture_spec (every texture port is set: most to the spec it has),
-// three passes in turn without declaring anything again,
-// the third with another frame size too: the plan (or the error) is build_plan's.
-void check_set_texture_spec_corpus(Corpus corpus, AllocatorKind allocator, SpecSharing sharing) {
-    uint64_t respecified = 0;
-    uint64_t changes = 0;
-    for (uint64_t seed = 1; seed <= 40; ++seed) {
-        testing::RandomGraphOptions options = testing::corpus_options(seed, corpus);
-        FrameGraph graph = testing::random_graph(seed, options);
-        if (!plan_as_build_plan_does(graph, declared_at({1920, 1080}, allocator, sharing))) continue;
-        for (uint32_t changed : {options.passes - 1, options.passes / 2, 0u}) {
-            // The specs the same graph declared with that pass respecified has.
-            options.respecified_pass = changed;
-            const FrameGraph other = testing::random_graph(seed, options);
-            const uint64_t revision = graph.revision();
-            for (uint32_t pass = 0; pass < graph.pass_count(); ++pass) {
-                for (uint32_t port = 0; port < graph.pass(PassId{pass}).ports().size(); ++port) {
-                    const PortAddress address{pass, port};
-                    if (graph.port_at(address).type != ResourceType::Texture) continue;
-                    ASSERT_TRUE(graph.set_texture_spec(address, other.port_at(address).spec).ok());
-                }
-            }
-            if (graph.revision() == revision) continue;  // a pass without palette outputs
-            ++changes;
-            const uint64_t built = graph.plans_built();
-            const uint64_t resized = graph.plans_resized();
-            const Extent2D frame = changed == 0 ? Extent2D{1280, 720} : Extent2D{1920, 1080};
-            if (!plan_as_build_plan_does(graph, declared_at(frame, allocator, sharing))) break;
-            if (graph.plans_resized() == resized + 1) {
-                ++respecified;
-                EXPECT_EQ(graph.plans_built(), built);
-            } else {
-                EXPECT_EQ(graph.plans_built(), built + 1);
-            }
-        }
-    }
-    // Most changes are to passes that run.
-    EXPECT_GT(respecified, changes / 2) << respecified << " of " << changes;
-}
-
-TEST(PlanResize, RandomGraphsWithTextureSpecsSetInPlacePlanAsTheyPlan) {
-    for (AllocatorKind allocator : {AllocatorKind::Paper, AllocatorKind::Interval, AllocatorKind::Heap}) {
-        for (SpecSharing sharing : {SpecSharing::Equal, SpecSharing::Joinable}) {
-            SCOPED_TRACE(std::string(allocator_name(allocator)) + " " + std::string(spec_sharing_name(sharing)));
-            check_set_texture_spec_corpus(Corpus::Textures, allocator, sharing);
-        }
-    }
-    for (AllocatorKind allocator : {AllocatorKind::Interval, AllocatorKind::Heap}) {
-        SCOPED_TRACE(allocator_name(allocator));
-        check_set_texture_spec_corpus(Corpus::Mixed, allocator, SpecSharing::Equal);
-        check_set_texture_spec_corpus(Corpus::Async, allocator, SpecSharing::Equal);
-    }
 }
 
 TEST(PlanResize, ATextureSpecSetInPlaceIsPlannedFromThePreviousPlan) {
