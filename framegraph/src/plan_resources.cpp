@@ -595,12 +595,19 @@ Status rejoin_resource(const FrameGraph& graph, PortAddress start, std::span<con
 }
 
 void name_resource_ports(const FrameGraph& graph, ResolvedResources& resolved) {
-    // Each running port's place in its resource's list; the first, the starting port, is named
-    // by the resource's own name. The other names are then built pass by pass, reading each
-    // pass's name and ports once and in order: built in resource order, every name read a pass
-    // and a port elsewhere in memory, and on big graphs those misses were most of planning's
-    // naming.
-    PortTable place(graph, 0);
+    for (uint32_t r = 0; r < resolved.resources.size(); ++r) {
+        std::vector<std::string>& ports = resolved.resources[r].ports;
+        ports.clear();
+        ports.reserve(resolved.running_ports_of(r).size());
+        for (const PortAddress& address : resolved.running_ports_of(r)) ports.push_back(graph.port_name(address));
+    }
+}
+
+void name_resource_ports(const std::vector<PlanPass>& order, ResolvedResources& resolved) {
+    // Each running port's place in its resource's list; the first, the starting port, which
+    // runs with its producer, is named by the resource's own name.
+    PortTable place = resolved.resource_of_port;
+    std::fill(place.values().begin(), place.values().end(), 0u);
     for (uint32_t r = 0; r < resolved.resources.size(); ++r) {
         const std::span<const PortAddress> running = resolved.running_ports_of(r);
         std::vector<std::string>& ports = resolved.resources[r].ports;
@@ -609,16 +616,17 @@ void name_resource_ports(const FrameGraph& graph, ResolvedResources& resolved) {
         ports[0] = resolved.resources[r].name;
         for (uint32_t k = 1; k < running.size(); ++k) place[running[k].pass][running[k].port] = k;
     }
-    for (uint32_t p = 0; p < graph.pass_count(); ++p) {
-        const std::span<const uint32_t> places = place[p];
-        if (std::all_of(places.begin(), places.end(), [](uint32_t k) { return k == 0; })) continue;
-        const std::string& pass = graph.pass(PassId{p}).name();
+    // The others from the plan's passes, pass by pass: just made, they are still in cache, where
+    // the graph's passes and ports are scattered in memory (on big graphs, reading those for
+    // every port was most of the cost of naming them).
+    for (const PlanPass& pass : order) {
+        const std::span<const uint32_t> places = place[pass.declaration_index];
         for (uint32_t i = 0; i < places.size(); ++i) {
             if (places[i] == 0) continue;
-            const std::string& port = graph.port_at({p, i}).name;
-            std::string& name = resolved.resources[resolved.resource_of_port[p][i]].ports[places[i]];
-            name.reserve(pass.size() + 1 + port.size());
-            name.append(pass).append(1, '.').append(port);
+            const std::string& port = pass.ports[i].name;
+            std::string& name = resolved.resources[*pass.ports[i].resource].ports[places[i]];
+            name.reserve(pass.name.size() + 1 + port.size());
+            name.append(pass.name).append(1, '.').append(port);
         }
     }
 }

@@ -102,7 +102,7 @@ Result<Plan> plan_in_order(const FrameGraph& graph, const PlanOptions& options, 
     plan.culled = detail::culled_pass_names(graph, kept);
     plan.edges = detail::plan_edges(graph, schedule, resolved.resource_of_port);
     for (const PortAddress& out : graph.outputs()) plan.graph_outputs.push_back(graph.port_name(out));
-    detail::name_resource_ports(graph, resolved);
+    detail::name_resource_ports(plan.order, resolved);
     plan.resources = std::move(resolved.resources);
     LOOM_TRY(detail::allocate_plan(plan, options, allocator, memory, std::move(resolved.graph_output_resources)));
     return plan;
