@@ -328,6 +328,46 @@ TEST_P(Figure2Execution, ResizesInTheDeclaredOrderArePlannedFromThePreviousPlan)
     EXPECT_EQ(executor.stats().realisations, frames.size());
 }
 
+TEST_P(Figure2Execution, TextureSpecsSetBetweenFramesArePlannedFromThePreviousPlan) {
+    // A setting changed between frames, nothing declared again: the shadow map at 32x32, then
+    // at 48x48, set on its write and its read, which must join (a format would need other
+    // pipelines, a usage other bindings). In the declared order each plan is made from the
+    // previous one, which the executor holds; each is realised, draws the same picture and is
+    // the plan build_plan makes.
+    fg::FrameGraph graph = figure2(p_);
+    fg::Executor executor(device());
+    fg::PlanOptions options;
+    options.frame = {16, 8};
+    options.order = fg::PassOrder::Declared;
+    options.allocator = fg::AllocatorKind::Interval;
+    auto address = [&](const char* pass, const char* port) {
+        auto found = graph.resolve(fg::port(pass, port));
+        EXPECT_TRUE(found.ok()) << found.error().to_string();
+        return found.ok() ? *found : fg::PortAddress{};
+    };
+    const std::vector<uint32_t> shadow_sizes{64, 32, 48};
+    for (std::size_t frame = 0; frame < shadow_sizes.size(); ++frame) {
+        SCOPED_TRACE("frame " + std::to_string(frame));
+        const uint32_t size = shadow_sizes[frame];
+        if (frame > 0) {
+            const fg::TextureSpec shadow = fg::TextureSpec::of(Format::Depth32F).with_size(size, size);
+            LOOM_ASSERT_OK(graph.set_texture_spec(address("shadow", "shadow_map"), shadow));
+            LOOM_ASSERT_OK(graph.set_texture_spec(address("deferred", "shadow_map"), shadow));
+        }
+        LOOM_ASSERT_OK(executor.run_frame(graph, options));
+        expect_final_picture(executor.texture("composite", "final"), 16, 8, "frame " + std::to_string(frame));
+        LOOM_ASSIGN_OR_FAIL(rhi::TextureDesc shadow_desc, device().texture_desc(executor.texture("shadow", "shadow_map")));
+        EXPECT_EQ(shadow_desc.width, size);
+        EXPECT_EQ(shadow_desc.height, size);
+        auto fresh = fg::build_plan(graph, executor.effective_options(options));
+        ASSERT_TRUE(fresh.ok()) << fresh.error().to_string();
+        EXPECT_TRUE(*executor.plan() == *fresh);
+    }
+    EXPECT_EQ(graph.plans_built(), 1u);
+    EXPECT_EQ(graph.plans_resized(), 2u);
+    EXPECT_EQ(executor.stats().realisations, 3u);
+}
+
 TEST_P(Figure2Execution, ResizeRebuildsTexturesWithoutLeaks) {
     fg::FrameGraph graph = figure2(p_);
     const rhi::ResourceStats before = device().resource_stats();
