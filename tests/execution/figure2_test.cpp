@@ -300,6 +300,13 @@ TEST_P(Figure2Execution, GraphRedeclaredEveryFrameIsPlannedOnceAndRunsEachFrames
     EXPECT_EQ(executor.stats().realisations, 1u);
 }
 
+// The executor's latest plan is the one build_plan makes of `graph` now.
+void expect_plan_of_build_plan(const fg::Executor& executor, const fg::FrameGraph& graph, const fg::PlanOptions& options) {
+    auto fresh = fg::build_plan(graph, executor.effective_options(options));
+    ASSERT_TRUE(fresh.ok()) << fresh.error().to_string();
+    EXPECT_TRUE(*executor.plan() == *fresh);
+}
+
 TEST_P(Figure2Execution, ResizesInTheDeclaredOrderArePlannedFromThePreviousPlan) {
     // A window resized frame after frame, planned in the declared order: the graph plans once and
     // makes each new size's plan from the previous one (which the executor holds, so it is
@@ -319,9 +326,7 @@ TEST_P(Figure2Execution, ResizesInTheDeclaredOrderArePlannedFromThePreviousPlan)
         LOOM_ASSIGN_OR_FAIL(rhi::TextureDesc final_desc, device().texture_desc(executor.texture("composite", "final")));
         EXPECT_EQ(final_desc.width, frame.width);
         EXPECT_EQ(final_desc.height, frame.height);
-        auto fresh = fg::build_plan(graph, executor.effective_options(options));
-        ASSERT_TRUE(fresh.ok()) << fresh.error().to_string();
-        EXPECT_TRUE(*executor.plan() == *fresh);
+        expect_plan_of_build_plan(executor, graph, options);
     }
     EXPECT_EQ(graph.plans_built(), 1u);
     EXPECT_EQ(graph.plans_resized(), frames.size() - 1);
@@ -359,9 +364,7 @@ TEST_P(Figure2Execution, TextureSpecsSetBetweenFramesArePlannedFromThePreviousPl
         LOOM_ASSIGN_OR_FAIL(rhi::TextureDesc shadow_desc, device().texture_desc(executor.texture("shadow", "shadow_map")));
         EXPECT_EQ(shadow_desc.width, size);
         EXPECT_EQ(shadow_desc.height, size);
-        auto fresh = fg::build_plan(graph, executor.effective_options(options));
-        ASSERT_TRUE(fresh.ok()) << fresh.error().to_string();
-        EXPECT_TRUE(*executor.plan() == *fresh);
+        expect_plan_of_build_plan(executor, graph, options);
     }
     EXPECT_EQ(graph.plans_built(), 1u);
     EXPECT_EQ(graph.plans_resized(), 2u);
