@@ -289,7 +289,7 @@ PortFacts PortFacts::of(const Port& port, PassKind pass_kind) {
     facts.pass_kind = pass_kind;
     facts.optional = port.optional;
     if (port.type == ResourceType::Buffer) {
-        facts.unconstrained = port.buffer == BufferSpec{};
+        facts.unconstrained = port.buffer.unconstrained();
         facts.whole = port.bytes == BufferRange{};
     } else {
         facts.unconstrained = port.spec.unconstrained();

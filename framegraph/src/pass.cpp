@@ -256,7 +256,9 @@ std::optional<uint32_t> Pass::port_index(std::string_view name) const {
 
 Pass& Pass::read(PortAddress source, TextureSpec spec, SubresourceRange range) {
     std::string port = "read" + std::to_string(reads_.size());
-    if (!error_ && port_index(port)) {
+    // Every read adds its own port, read0, read1, ...: only a port declared otherwise can have
+    // the new name (most passes read before they declare anything else, and skip the search).
+    if (!error_ && ports_.size() != reads_.size() && port_index(port)) {
         error_ = make_error(ErrorCode::Graph, "pass " + quoted_name(name_) + ": read() names its input " +
                                                   quoted_name(port) + ", a name the pass already declares");
         return *this;

@@ -126,7 +126,10 @@ TextureSpec TextureSpec::with_cube() const {
     return copy;
 }
 
-bool TextureSpec::unconstrained() const { return *this == TextureSpec{}; }
+bool TextureSpec::unconstrained() const {
+    // What TextureSpec{} holds, field by field: no default spec built and compared whole.
+    return !format && !size && !samples && !mips && !layers && usage == rhi::TextureUsage::None && !cube;
+}
 
 rhi::FormatFeatures color_features(uint32_t channels, uint32_t bits, ChannelKind kind) {
     rhi::FormatFeatures features{};

@@ -84,6 +84,20 @@ TEST(TypedGraph, ReadsOfPortsOutsideTheGraphOrOfInputsAreRefusedAndLeaveTheGraph
     EXPECT_TRUE(graph.connections().empty());
 }
 
+TEST(TypedGraph, AReadWhoseNameAPortDeclaredBetweenReadsTakesIsRefused) {
+    // read0 comes from read(); the pass then declares read1 itself, which the next read() would
+    // be called.
+    FrameGraph graph;
+    const PassId geometry = *graph.add_pass(Pass("geometry").output("albedo"));
+    auto clash = graph.add_pass(Pass("blur").read(port_of(geometry, 0)).output("read1").read(port_of(geometry, 0)));
+    ASSERT_FALSE(clash);
+    EXPECT_EQ(clash.error().message, "pass 'blur': read() names its input 'read1', a name the pass already declares");
+    // Declared after the reads, the name is the pass's own: no clash.
+    auto after = graph.add_pass(Pass("blur").read(port_of(geometry, 0)).read(port_of(geometry, 0)).output("read2"));
+    ASSERT_TRUE(after) << after.error().to_string();
+    EXPECT_EQ(graph.pass(*after).ports().size(), 3u);
+}
+
 TEST(TypedGraph, ErrorsByHandleReadAsErrorsByName) {
     FrameGraph named = by_names();
     FrameGraph typed = by_names();
