@@ -285,7 +285,7 @@ Status Pass::status() const {
     return {};
 }
 
-void Pass::append_port(Port port) {
+void Pass::append_port(Port&& port) {
     // Most passes declare a handful of ports: room for four at the first is one allocation
     // where growing one by one reallocates (and moves every port) at one, two and four. Past
     // that the room grows by half, not double: a Port is 240 bytes, and a pass of five ports

@@ -409,7 +409,7 @@ private:
 
     void merge(Port declaration, const std::string& port_set);
     // Adds a port whose name the pass does not declare yet.
-    void append_port(Port port);
+    void append_port(Port&& port);
 
     std::string name_;
     std::vector<Port> ports_;
