@@ -281,23 +281,6 @@ void FrameGraph::grow_name_index(std::size_t slots) {
     }
 }
 
-PortFacts PortFacts::of(const Port& port, PassKind pass_kind) {
-    PortFacts facts;
-    facts.requested_usage = port.spec.usage;
-    facts.kind = port.kind;
-    facts.type = port.type;
-    facts.pass_kind = pass_kind;
-    facts.optional = port.optional;
-    if (port.type == ResourceType::Buffer) {
-        facts.unconstrained = port.buffer.unconstrained();
-        facts.whole = port.bytes == BufferRange{};
-    } else {
-        facts.unconstrained = port.spec.unconstrained();
-        facts.whole = port.range == SubresourceRange{};
-    }
-    return facts;
-}
-
 std::optional<PortAddress> FrameGraph::source(PortAddress address) const { return sources_[flat(address)]; }
 
 std::span<const PortAddress> FrameGraph::consumers(PortAddress address) const {

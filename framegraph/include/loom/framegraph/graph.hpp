@@ -61,7 +61,7 @@ struct Connection {
 
 /// What planning reads of most ports, kept by the graph in one flat array (FrameGraph::port_facts)
 /// so that the planner reads 12 bytes per port instead of walking to each Pass and its Port.
-/// Written when the pass is added; its ports are fixed from then on.
+/// Written when the pass is added, and again for a port set_texture_spec changes.
 struct PortFacts {
     rhi::TextureUsage requested_usage = rhi::TextureUsage::None;  ///< the texture spec's usage
     PortKind kind = PortKind::Input;
@@ -78,6 +78,25 @@ struct PortFacts {
     /// The facts of `port`, a port of a pass of kind `pass_kind`.
     static PortFacts of(const Port& port, PassKind pass_kind);
 };
+
+// Inline: built where it is stored, rather than returned through the stack, which made GCC
+// store the fields one by one and load them back whole (a stalled load for every port declared).
+inline PortFacts PortFacts::of(const Port& port, PassKind pass_kind) {
+    PortFacts facts;
+    facts.requested_usage = port.spec.usage;
+    facts.kind = port.kind;
+    facts.type = port.type;
+    facts.pass_kind = pass_kind;
+    facts.optional = port.optional;
+    if (port.type == ResourceType::Buffer) {
+        facts.unconstrained = port.buffer.unconstrained();
+        facts.whole = port.bytes == BufferRange{};
+    } else {
+        facts.unconstrained = port.spec.unconstrained();
+        facts.whole = port.range == SubresourceRange{};
+    }
+    return facts;
+}
 
 /// Passes and their connections, with the graph outputs: what is planned (plan()) and executed (Executor).
 class FrameGraph {
