@@ -420,9 +420,7 @@ Status FrameGraph::set_texture_spec(PortAddress address, TextureSpec spec) {
         return graph_error("set_texture_spec " + port_name(address) + ": a buffer port; its spec is a BufferSpec");
     }
     if (port.spec == spec) return {};
-    // Whether the graph was, up to now, the cached plan's graph but for texture specs.
-    const bool respecified_since_plan =
-        cached_plan_ && !same_as_previous_ && (cached_revision_ == revision_ || respecified_revision_ == revision_);
+    const bool respecified_since_plan = is_plan_graph_respecified();
     port.spec = std::move(spec);
     port_facts_[flat(address)] = PortFacts::of(port, pass.kind());
     ++revision_;
@@ -462,8 +460,7 @@ Status FrameGraph::validate() const {
 Result<std::shared_ptr<const Plan>> FrameGraph::plan(const PlanOptions& options) {
     // The cached plan's graph, declared again (redeclare) or respecified (set_texture_spec) at most.
     const bool same_structure =
-        cached_plan_ && (cached_revision_ == revision_ || is_previous_structure() ||
-                         (!same_as_previous_ && respecified_revision_ == revision_));
+        cached_plan_ && (cached_revision_ == revision_ || is_previous_structure() || is_plan_graph_respecified());
     // The passes declared again with other texture specs (none when the graph was not redeclared),
     // taken before release_previous forgets them.
     std::vector<uint32_t> respecified;

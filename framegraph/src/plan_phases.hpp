@@ -196,11 +196,9 @@ Status rejoin_resource(const FrameGraph& graph, PortAddress start, std::span<con
                        MemoryModel& memory, PlanResource& resource, std::optional<SizeSpec>& joined_size,
                        std::vector<PortAddress>& running);
 
-/// Fills in every resource's PlanResource::ports: the names of its running ports, from the
-/// graph...
-void name_resource_ports(const FrameGraph& graph, ResolvedResources& resolved);
-/// ... or from the plan's passes (plan_passes of the same resources), which the planner has in
-/// cache when it names them.
+/// Fills in every resource's PlanResource::ports: the names of its running ports, taken from
+/// `order`, the plan's passes (plan_passes of the same resources), which the planner has in cache
+/// when it names them.
 void name_resource_ports(const std::vector<PlanPass>& order, ResolvedResources& resolved);
 
 /// The same resources for another order of the same passes: lifetimes (and occupancies) from

@@ -594,15 +594,6 @@ Status rejoin_resource(const FrameGraph& graph, PortAddress start, std::span<con
     return {};
 }
 
-void name_resource_ports(const FrameGraph& graph, ResolvedResources& resolved) {
-    for (uint32_t r = 0; r < resolved.resources.size(); ++r) {
-        std::vector<std::string>& ports = resolved.resources[r].ports;
-        ports.clear();
-        ports.reserve(resolved.running_ports_of(r).size());
-        for (const PortAddress& address : resolved.running_ports_of(r)) ports.push_back(graph.port_name(address));
-    }
-}
-
 void name_resource_ports(const std::vector<PlanPass>& order, ResolvedResources& resolved) {
     // Each running port's place in its resource's list; the first, the starting port, which
     // runs with its producer, is named by the resource's own name.

@@ -126,10 +126,13 @@ TextureSpec TextureSpec::with_cube() const {
     return copy;
 }
 
-bool TextureSpec::unconstrained() const {
-    // What TextureSpec{} holds, field by field: no default spec built and compared whole.
-    return !format && !size && !samples && !mips && !layers && usage == rhi::TextureUsage::None && !cube;
-}
+namespace {
+// Compared whole, so that a field added to TextureSpec counts too; built once rather than per call
+// (unconstrained() runs for every declared port).
+const TextureSpec kUnconstrainedSpec{};
+}  // namespace
+
+bool TextureSpec::unconstrained() const { return *this == kUnconstrainedSpec; }
 
 rhi::FormatFeatures color_features(uint32_t channels, uint32_t bits, ChannelKind kind) {
     rhi::FormatFeatures features{};

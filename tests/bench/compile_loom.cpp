@@ -149,9 +149,9 @@ uint64_t allocate_only(const CompileGraph& graph, const CompileNames& names, Loo
     if (planned_passes != graph.passes.size() || planned_allocator != allocator) {
         FrameGraph declared;
         declare_typed(declared, graph, names, SIZE_MAX);
-        auto planned = build_plan(declared, options);
-        if (!planned) std::abort();
-        plan = std::move(*planned);
+        auto built = build_plan(declared, options);
+        if (!built) std::abort();
+        plan = std::move(*built);
         problem = {};
         problem.spec_class_count = static_cast<uint32_t>(plan.spec_classes.size());
         problem.max_heap_bytes = options.max_heap_bytes;

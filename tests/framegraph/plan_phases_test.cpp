@@ -228,7 +228,7 @@ TEST(PlanPhases, ResolveMakesTheResourcesOfRunningPassesWithUsagesLifetimesAndBy
     }
     // The ports are kept as addresses and named only when the plan is put together.
     for (const PlanResource& resource : resolved->resources) EXPECT_TRUE(resource.ports.empty()) << resource.name;
-    name_resource_ports(graph, *resolved);
+    name_resource_ports(plan_passes(graph, schedule, *resolved), *resolved);
     EXPECT_EQ(resolved->resources, expected);
 
     EXPECT_EQ(resolved->resource_of_port, (std::vector<std::vector<uint32_t>>{

@@ -280,6 +280,11 @@ private:
     [[nodiscard]] bool is_previous_structure() const;
     // ... and whether it is the previous graph.
     [[nodiscard]] bool is_previous_graph() const { return is_previous_structure() && respecified_passes_.empty(); }
+    // Whether the graph is the cached plan's graph (not redeclared since) but for the texture
+    // specs set_texture_spec changed: it is unchanged, or every change since was one of its.
+    [[nodiscard]] bool is_plan_graph_respecified() const {
+        return cached_plan_ && !same_as_previous_ && (cached_revision_ == revision_ || respecified_revision_ == revision_);
+    }
     // Forgets the previous graph, keeping its arrays' memory for the next redeclare.
     void release_previous();
 
